@@ -1,0 +1,222 @@
+// The step both published algorithms share: the bisector set of an agent, sorted counter-clockwise by
+// the direction of the neighbour starting from the nearest neighbour (Boundary Scan's Step 1, RCVC's
+// constructChords), and the final assembly of a cell from its cyclic list of boundary bisectors.
+#pragma once
+
+#include "dvoronoi/core/cell.hpp"
+#include "dvoronoi/core/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace dvoronoi::detail {
+
+/// One bisector: the neighbour p, a = p - c (rounded, for constructions only), its caller index.
+struct Line {
+    Vec2 p;
+    Vec2 a;
+    Index id;
+    double key;  // pseudo-angle from the nearest neighbour's direction, in [0, 4); ordering hint only
+    int half;    // exact: 0 for directions in [0, pi) from the nearest neighbour, 1 for [pi, 2 pi)
+};
+
+/// Scratch buffers reused across the agents a thread processes (no allocation per agent).
+struct CellWorkspace {
+    std::vector<Line> lines;
+    std::vector<int> stack;
+    std::vector<int> bound;        // RCVC: kept chords
+    std::vector<char> removed;     // RCVC: checkChords flags
+    std::vector<char> start_is_vertex;
+};
+
+/// The agents of `others` strictly within 2R of `center` (exact), with their row as index.
+inline std::vector<Candidate> candidates_within_2r(const Vec2& center, PointsRef others, double radius) {
+    std::vector<Candidate> cand;
+    for (Eigen::Index j = 0; j < others.rows(); ++j) {
+        const Vec2 p = others.row(j).transpose();
+        if (pred::within_2r(center, p, radius) > 0) cand.push_back({p, static_cast<Index>(j)});
+    }
+    return cand;
+}
+
+inline double diamond_angle(double x, double y) {
+    if (x == 0.0 && y == 0.0) return 0.0;  // underflow; the exact pass orders it
+    if (y >= 0.0) return x >= 0.0 ? y / (x + y) : 1.0 - x / (-x + y);
+    return x < 0.0 ? 2.0 - y / (-x - y) : 3.0 + x / (x - y);
+}
+
+/// Builds ws.lines from the candidates (all strictly within 2R of c): sorted counter-clockwise by
+/// the direction of p - c starting at the nearest neighbour; of several neighbours in one direction
+/// only the nearest is kept (the farther bisectors are parallel and outside its half-plane).
+/// Throws CoincidentError when a candidate lies at c or two candidates coincide.
+inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, CellWorkspace& ws) {
+    auto& L = ws.lines;
+    L.clear();
+    if (cand.empty()) return;
+    // Nearest neighbour (Lemma 1 of Boundary Scan: its bisector is always a boundary edge).
+    std::size_t best = 0;
+    double best_d2 = (cand[0].p - c).squaredNorm();
+    for (std::size_t j = 0; j < cand.size(); ++j) {
+        if (cand[j].p == c)
+            throw CoincidentError("agent " + std::to_string(cand[j].id) +
+                                      " coincides with the center; its Voronoi cell is undefined",
+                                  cand[j].id, cand[j].id);
+        if (j == 0) continue;
+        const double d2 = (cand[j].p - c).squaredNorm();
+        if (d2 > best_d2 * (1.0 + 1e-9)) continue;
+        int cmp = d2 < best_d2 * (1.0 - 1e-9) ? -1 : pred::compare_distance(c, cand[j].p, cand[best].p);
+        if (cmp < 0 || (cmp == 0 && cand[j].id < cand[best].id)) {
+            best = j;
+            best_d2 = d2;
+        }
+    }
+    const Vec2 p1 = cand[best].p;
+    const Vec2 a1 = p1 - c;
+    L.reserve(cand.size());
+    for (const Candidate& q : cand) {
+        const Vec2 a = q.p - c;
+        const double u = a1.dot(a), v = a1.x() * a.y() - a1.y() * a.x();
+        const int o = pred::orient(c, p1, q.p);
+        const int half = (o > 0 || (o == 0 && pred::dot_sign(c, p1, q.p) > 0)) ? 0 : 1;
+        double key = diamond_angle(u, v);
+        if (!(key >= 0.0 && key < 4.0)) key = 0.0;
+        key = half == 0 ? std::min(key, 2.0) : std::max(key, 2.0);  // agree with the exact half
+        L.push_back({q.p, a, q.id, key, half});
+    }
+    // Sort by the pseudo-angle, then repair with the exact order (insertion sort: the floating-point
+    // order is already right except among nearly parallel directions, so this pass is linear).
+    std::sort(L.begin(), L.end(), [](const Line& x, const Line& y) { return x.key < y.key; });
+    const auto exact_less = [&](const Line& x, const Line& y) {
+        if (x.half != y.half) return x.half < y.half;
+        const int o = pred::orient(c, x.p, y.p);
+        if (o != 0) return o > 0;
+        // Same direction: nearer first; equal distance means the agents coincide.
+        const int d = pred::compare_distance(c, x.p, y.p);
+        if (d == 0)
+            throw CoincidentError("agents " + std::to_string(std::min(x.id, y.id)) + " and " +
+                                      std::to_string(std::max(x.id, y.id)) +
+                                      " coincide; their Voronoi cells are undefined",
+                                  std::min(x.id, y.id), std::max(x.id, y.id));
+        return d < 0;
+    };
+    for (std::size_t i = 1; i < L.size(); ++i)
+        for (std::size_t j = i; j > 0 && exact_less(L[j], L[j - 1]); --j) std::swap(L[j], L[j - 1]);
+    // Drop farther agents in a direction already taken (exact: same half and collinear).
+    std::size_t w = 1;
+    for (std::size_t i = 1; i < L.size(); ++i) {
+        const Line& prev = L[w - 1];
+        if (L[i].half == prev.half && pred::orient(c, prev.p, L[i].p) == 0) continue;
+        L[w++] = L[i];
+    }
+    L.resize(w);
+}
+
+// ---- constructions (rounded once per operation; never used for decisions) ----
+
+/// Half-length of the chord of L_j in the disk: sqrt(R^2 - |a|^2/4), in a cancellation-free form.
+inline double half_chord(const Vec2& a, double radius) {
+    const double h = 0.5 * a.norm();
+    return std::sqrt(std::max(0.0, (radius - h) * (radius + h)));
+}
+
+/// Chord endpoint relative to c: sigma = -1 the counter-clockwise-first (s_j), +1 the last (e_j).
+inline Vec2 chord_end(const Vec2& a, double radius, int sigma) {
+    const double w = half_chord(a, radius) / a.norm();
+    return 0.5 * a + sigma * w * Vec2(-a.y(), a.x());
+}
+
+/// v_jk relative to c (the circumcenter of c, p_j, p_k).
+inline Vec2 vertex(const Vec2& aj, const Vec2& ak) {
+    const double d = aj.x() * ak.y() - aj.y() * ak.x();
+    const double hj = 0.5 * aj.squaredNorm(), hk = 0.5 * ak.squaredNorm();
+    return Vec2((hj * ak.y() - hk * aj.y()) / d, (aj.x() * hk - ak.x() * hj) / d);
+}
+
+/// Half the angle the chord of L_j subtends at c.
+inline double chord_half_angle(const Vec2& a, double radius) {
+    return std::atan2(half_chord(a, radius), 0.5 * a.norm());
+}
+
+/// Counter-clockwise angle from direction a_j to a_k, in (0, 2 pi]; `same` lines give 2 pi. The
+/// branch (below or above pi) comes from the exact orientation.
+inline double ccw_gap(const Vec2& c, const Line& j, const Line& k) {
+    constexpr double kTwoPi = 6.283185307179586476925286766559;
+    if (&j == &k) return kTwoPi;
+    const int o = pred::orient(c, j.p, k.p);
+    const double cr = std::fabs(j.a.x() * k.a.y() - j.a.y() * k.a.x());
+    const double t = std::atan2(cr, j.a.dot(k.a));  // in [0, pi]
+    if (o > 0) return t;
+    if (o < 0) return kTwoPi - t;
+    return kTwoPi / 2.0;  // opposite directions (same directions were merged)
+}
+
+/// Assembles the cell from its boundary bisectors in counter-clockwise order (`cycle`, indices into
+/// ws.lines) and, for each t, whether the edge of cycle[t] meets the edge of cycle[t+1] at their
+/// vertex (true) or the boundary follows an arc between them (false).
+inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
+                      const std::vector<int>& cycle, const std::vector<char>& meets,
+                      LimitedCell& out) {
+    constexpr double kTwoPi = 6.283185307179586476925286766559;
+    out.pieces.clear();
+    out.center = c;
+    out.radius = radius;
+    const std::size_t s = cycle.size();
+    if (s == 0) {
+        Piece arc;
+        arc.start = c + Vec2(radius, 0.0);
+        arc.arc_span = kTwoPi;
+        out.pieces.push_back(arc);
+        return;
+    }
+    for (std::size_t t = 0; t < s; ++t) {
+        const Line& j = L[static_cast<std::size_t>(cycle[t])];
+        const std::size_t tp = (t + s - 1) % s;
+        const Line& i = L[static_cast<std::size_t>(cycle[tp])];
+        Piece edge;
+        edge.neighbor = j.id;
+        edge.start = c + (meets[tp] ? vertex(i.a, j.a) : chord_end(j.a, radius, -1));
+        out.pieces.push_back(edge);
+        if (!meets[t]) {
+            const Line& k = L[static_cast<std::size_t>(cycle[(t + 1) % s])];
+            Piece arc;
+            const Vec2 e = chord_end(j.a, radius, +1), sk = chord_end(k.a, radius, -1);
+            arc.start = c + e;
+            // The span from the combinatorial gap, refined by the direct angle between the
+            // endpoints when both agree on the branch (tiny arcs never become full turns).
+            const double approx = ccw_gap(c, j, s == 1 ? j : k) - chord_half_angle(j.a, radius) -
+                                  chord_half_angle(k.a, radius);
+            double direct = std::atan2(e.x() * sk.y() - e.y() * sk.x(), e.dot(sk));
+            if (direct < 0.0) direct += kTwoPi;
+            if (direct - approx > kTwoPi / 2) direct -= kTwoPi;
+            if (approx - direct > kTwoPi / 2) direct += kTwoPi;
+            arc.arc_span = std::clamp(direct, 0.0, kTwoPi);
+            out.pieces.push_back(arc);
+        }
+    }
+}
+
+/// Sign helpers on lines (indices into ws.lines) around c.
+struct LineGeometry {
+    const Vec2& c;
+    const std::vector<Line>& L;
+    double radius;
+
+    const Vec2& p(int j) const { return L[static_cast<std::size_t>(j)].p; }
+    int orient(int j, int k) const { return pred::orient(c, p(j), p(k)); }
+    /// Is v_jk inside the closed disk?
+    bool vertex_in_closed_disk(int j, int k) const { return pred::vertex_in_disk(c, p(j), p(k), radius) <= 0; }
+    /// Is v_jk strictly after the chord start s_j along L_j? (t_jk > -w)
+    bool after_chord_start(int j, int k) const {
+        return pred::vertex_position(c, p(j), p(k)) >= 0 || pred::vertex_in_disk(c, p(j), p(k), radius) < 0;
+    }
+    /// Is v_jk strictly before the chord end e_j along L_j? (t_jk < w)
+    bool before_chord_end(int j, int k) const {
+        return pred::vertex_position(c, p(j), p(k)) <= 0 || pred::vertex_in_disk(c, p(j), p(k), radius) < 0;
+    }
+    /// Is v_ji strictly before v_jk along L_j? Requires D_ji < 0 and D_jk > 0.
+    bool vertex_before(int j, int i, int k) const { return pred::vertex_side(c, p(j), p(i), p(k)) < 0; }
+};
+
+}  // namespace dvoronoi::detail

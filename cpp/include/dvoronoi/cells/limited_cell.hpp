@@ -1,0 +1,47 @@
+// One agent's range-limited Voronoi cell V_i ∩ B(p_i, R), as a robot computes it from the positions it
+// knows. Pure function of (center, others, radius): no I/O, no threads, no global state.
+#pragma once
+
+#include "dvoronoi/cells/boundary_scan.hpp"
+#include "dvoronoi/cells/rcvc.hpp"
+
+#include <string>
+
+namespace dvoronoi {
+
+/// Which published algorithm computes the limited cell. Both return the same cell.
+enum class Method {
+    Scan,    ///< Boundary Scan (He, Feng & Ren 2018): O(m log m).
+    Chords,  ///< RCVC (Guruprasad & Dasgupta 2012): checkChords is O(m^2) in the worst case.
+};
+
+inline Method parse_method(const std::string& name) {
+    if (name == "scan") return Method::Scan;
+    if (name == "chords") return Method::Chords;
+    throw InputError("method must be \"scan\" or \"chords\", got \"" + name + "\"");
+}
+
+inline const char* method_name(Method m) { return m == Method::Scan ? "scan" : "chords"; }
+
+/// The limited cell of the agent at `center` among the agents `others` (any frame; only positions
+/// closer than 2*radius matter, the rest are ignored).
+///
+/// Edge pieces name their neighbour by its row in `others`. Combinatorics (which agents are limited
+/// neighbours, the order of pieces, whether two edges meet inside the disk) are decided with exact
+/// predicates; vertex coordinates and measures are rounded once per operation.
+///
+/// \throws InputError if `radius` is not positive and finite, a coordinate is NaN or inf.
+/// \throws CoincidentError if an agent of `others` lies at `center` or two agents within 2*radius
+///         coincide (the error names them).
+/// \note Thread-safe (pure function). Complexity O(m log m) for Scan, O(m^2) worst case for Chords,
+///       m = agents within 2*radius.
+inline LimitedCell limited_cell(const Vec2& center, PointsRef others, double radius,
+                                Method method = Method::Scan) {
+    detail::require_finite_radius(radius);
+    detail::require_finite_point(center, "center");
+    detail::require_finite_points(others, "others");
+    return method == Method::Scan ? boundary_scan_cell(center, others, radius)
+                                  : rcvc_cell(center, others, radius);
+}
+
+}  // namespace dvoronoi

@@ -1,0 +1,108 @@
+// The cell representation shared by every algorithm: a counter-clockwise cycle of pieces, each a
+// straight edge on the bisector with one named neighbour or an arc of the circle |q - center| = radius.
+#pragma once
+
+#include "dvoronoi/core/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace dvoronoi {
+
+/// Marker stored in Piece::neighbor for arc pieces.
+inline constexpr Index kArc = -1;
+
+/// One piece of a cell boundary. It starts at `start` and ends where the next piece of the cycle
+/// starts (the cycle is closed).
+struct Piece {
+    /// Edge: index of the agent across the edge (in the caller's indexing). Arc: kArc.
+    Index neighbor = kArc;
+    /// Start point, in the caller's frame.
+    Vec2 start = Vec2::Zero();
+    /// Arcs: the counter-clockwise angle swept, in (0, 2*pi]. Edges: 0. Computed from exact
+    /// combinatorics plus one atan2/acos per line, so a tiny arc is never mistaken for a full turn.
+    double arc_span = 0.0;
+
+    bool is_arc() const noexcept { return neighbor < 0; }
+};
+
+/// Area, centroid and perimeter of a cell, exact up to floating-point rounding of the vertices
+/// (circular segments included, never a polygon approximation of the circle).
+struct CellMeasures {
+    double area = 0.0;
+    Vec2 centroid = Vec2::Zero();
+    double perimeter = 0.0;
+};
+
+/// A range-limited Voronoi cell V_i ∩ B(center, radius).
+///
+/// `pieces` is a closed counter-clockwise cycle. An agent with nothing within 2*radius has one arc
+/// piece with arc_span = 2*pi starting at center + (radius, 0).
+struct LimitedCell {
+    Vec2 center = Vec2::Zero();
+    double radius = 0.0;
+    std::vector<Piece> pieces;
+    /// Number of agents within 2*radius that the algorithm examined (m in the papers).
+    Index candidates = 0;
+    /// RCVC only: chords left after checkChords (M' in the RCVC paper); -1 for other methods.
+    Index chords_after_check = -1;
+
+    std::size_t size() const noexcept { return pieces.size(); }
+
+    /// End point of piece k (the start of the next piece, cyclically).
+    const Vec2& piece_end(std::size_t k) const { return pieces[(k + 1) % pieces.size()].start; }
+
+    /// Limited neighbours: agents sharing a boundary edge of positive length, ascending.
+    std::vector<Index> neighbors() const {
+        std::vector<Index> out;
+        for (const Piece& p : pieces)
+            if (!p.is_arc()) out.push_back(p.neighbor);
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    }
+
+    /// Counter-clockwise vertices (the piece start points). Empty for a full disk.
+    std::vector<Vec2> vertices() const {
+        std::vector<Vec2> out;
+        if (pieces.size() == 1 && pieces[0].is_arc()) return out;
+        out.reserve(pieces.size());
+        for (const Piece& p : pieces) out.push_back(p.start);
+        return out;
+    }
+
+    /// Area, centroid and perimeter (computed relative to the center for accuracy).
+    CellMeasures measures() const {
+        CellMeasures m;
+        double area = 0.0, mx = 0.0, my = 0.0, perim = 0.0;
+        const std::size_t n = pieces.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            const Vec2 u = pieces[k].start - center;
+            const Vec2 v = piece_end(k) - center;
+            if (pieces[k].is_arc()) {
+                // Circular sector from u to v of angle phi: area r^2 phi / 2, first moment
+                // (r^2/3) (v_y - u_y, u_x - v_x).
+                const double phi = pieces[k].arc_span;
+                const double r2 = radius * radius;
+                area += 0.5 * r2 * phi;
+                mx += r2 / 3.0 * (v.y() - u.y());
+                my += r2 / 3.0 * (u.x() - v.x());
+                perim += radius * phi;
+            } else {
+                // Triangle (center, u, v): area cross/2, first moment area * (u + v) / 3.
+                const double a = 0.5 * (u.x() * v.y() - u.y() * v.x());
+                area += a;
+                mx += a * (u.x() + v.x()) / 3.0;
+                my += a * (u.y() + v.y()) / 3.0;
+                perim += (v - u).norm();
+            }
+        }
+        m.area = area;
+        m.centroid = area > 0.0 ? Vec2(center.x() + mx / area, center.y() + my / area) : center;
+        m.perimeter = perim;
+        return m;
+    }
+};
+
+}  // namespace dvoronoi

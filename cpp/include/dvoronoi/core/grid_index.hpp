@@ -1,0 +1,118 @@
+// Uniform-grid radius index: every agent strictly closer than 2R to a given agent, exactly.
+//
+// Cells are squares of side slightly above 2R, so the 3x3 block around an agent's cell holds every
+// agent within 2R even after the rounding of the cell coordinates; the final test is the exact
+// predicate within_2r. A dense cell array is used when the grid is small (the usual case), a sorted
+// list of occupied cells otherwise (huge extents relative to R, e.g. two far-apart clusters).
+#pragma once
+
+#include "dvoronoi/core/predicates.hpp"
+#include "dvoronoi/core/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+namespace dvoronoi {
+
+class GridIndex {
+public:
+    /// Index `pts` (kept by reference: it must outlive the index) for queries of range `range` (2R).
+    GridIndex(const Points& pts, double range) : pts_(pts) {
+        const Index n = pts.rows();
+        if (n == 0) return;
+        x0_ = pts.col(0).minCoeff();
+        y0_ = pts.col(1).minCoeff();
+        const double xspan = pts.col(0).maxCoeff() - x0_;
+        const double yspan = pts.col(1).maxCoeff() - y0_;
+        // A margin of 2^-16 covers the relative rounding of (x - x0) / cell for up to 2^32 cells per
+        // axis; beyond that the cells are made coarser (still correct, only slower).
+        cell_ = range * (1.0 + std::ldexp(1.0, -16));
+        const double max_cells = std::ldexp(1.0, 32);
+        cell_ = std::max({cell_, xspan / max_cells, yspan / max_cells});
+        nx_ = static_cast<std::int64_t>(std::floor(xspan / cell_)) + 1;
+        ny_ = static_cast<std::int64_t>(std::floor(yspan / cell_)) + 1;
+
+        keys_.resize(static_cast<std::size_t>(n));
+        for (Index i = 0; i < n; ++i) keys_[static_cast<std::size_t>(i)] = key_of(i);
+        order_.resize(static_cast<std::size_t>(n));
+        std::iota(order_.begin(), order_.end(), Index{0});
+        dense_ = static_cast<double>(nx_) * static_cast<double>(ny_) <= 4.0 * static_cast<double>(n) + 1024.0;
+        if (dense_) {
+            // Counting sort into a dense cell array (CSR).
+            start_.assign(static_cast<std::size_t>(nx_ * ny_ + 1), 0);
+            for (const Key& k : keys_) ++start_[static_cast<std::size_t>(k.cx * ny_ + k.cy + 1)];
+            std::partial_sum(start_.begin(), start_.end(), start_.begin());
+            std::vector<Index> fill(start_.begin(), start_.end() - 1);
+            for (Index i = 0; i < n; ++i) {
+                const Key& k = keys_[static_cast<std::size_t>(i)];
+                order_[static_cast<std::size_t>(fill[static_cast<std::size_t>(k.cx * ny_ + k.cy)]++)] = i;
+            }
+        } else {
+            std::sort(order_.begin(), order_.end(), [&](Index a, Index b) {
+                const Key& ka = keys_[static_cast<std::size_t>(a)];
+                const Key& kb = keys_[static_cast<std::size_t>(b)];
+                return ka.cx != kb.cx ? ka.cx < kb.cx : (ka.cy != kb.cy ? ka.cy < kb.cy : a < b);
+            });
+            sorted_keys_.reserve(static_cast<std::size_t>(n));
+            for (Index i : order_) sorted_keys_.push_back(keys_[static_cast<std::size_t>(i)]);
+        }
+    }
+
+    /// Agents j != i with |p_j - p_i| < 2*radius (exact), appended to `out` (cleared first) in
+    /// increasing index order of the grid traversal (deterministic).
+    void within(const Points& pts, Index i, double radius, std::vector<detail::Candidate>& out) const {
+        out.clear();
+        if (pts.rows() == 0) return;
+        const Vec2 c = pts.row(i).transpose();
+        const Key k = keys_[static_cast<std::size_t>(i)];
+        for (std::int64_t cx = k.cx - 1; cx <= k.cx + 1; ++cx) {
+            if (cx < 0 || cx >= nx_) continue;
+            const std::int64_t cy0 = std::max<std::int64_t>(0, k.cy - 1);
+            const std::int64_t cy1 = std::min<std::int64_t>(ny_ - 1, k.cy + 1);
+            std::size_t lo, hi;
+            if (dense_) {
+                lo = static_cast<std::size_t>(start_[static_cast<std::size_t>(cx * ny_ + cy0)]);
+                hi = static_cast<std::size_t>(start_[static_cast<std::size_t>(cx * ny_ + cy1 + 1)]);
+            } else {
+                const auto cmp = [](const Key& a, const Key& b) {
+                    return a.cx != b.cx ? a.cx < b.cx : a.cy < b.cy;
+                };
+                lo = static_cast<std::size_t>(std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), Key{cx, cy0}, cmp) - sorted_keys_.begin());
+                hi = static_cast<std::size_t>(std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), Key{cx, cy1}, cmp) - sorted_keys_.begin());
+            }
+            for (std::size_t s = lo; s < hi; ++s) {
+                const Index j = order_[s];
+                if (j == i) continue;
+                const Vec2 p = pts.row(j).transpose();
+                // Cheap rejection first; the exact predicate decides near the boundary.
+                const double dx = p.x() - c.x(), dy = p.y() - c.y();
+                const double d2 = dx * dx + dy * dy, r2 = 4.0 * radius * radius;
+                if (d2 > r2 * (1.0 + 1e-9)) continue;
+                if (d2 < r2 * (1.0 - 1e-9) || pred::within_2r(c, p, radius) > 0) out.push_back({p, j});
+            }
+        }
+    }
+
+private:
+    struct Key {
+        std::int64_t cx, cy;
+    };
+    Key key_of(Index i) const {
+        return {static_cast<std::int64_t>(std::floor((pts_(i, 0) - x0_) / cell_)),
+                static_cast<std::int64_t>(std::floor((pts_(i, 1) - y0_) / cell_))};
+    }
+
+    const Points& pts_;
+    double x0_ = 0.0, y0_ = 0.0, cell_ = 1.0;
+    std::int64_t nx_ = 0, ny_ = 0;
+    bool dense_ = true;
+    std::vector<Key> keys_;
+    std::vector<Index> order_;
+    std::vector<Index> start_;
+    std::vector<Key> sorted_keys_;
+};
+
+}  // namespace dvoronoi

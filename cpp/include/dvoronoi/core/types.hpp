@@ -1,0 +1,84 @@
+// Canonical types and the error policy of dvoronoi.
+//
+// Error policy (decided once, for every header): misuse of the API (bad shapes, NaN/inf coordinates,
+// a non-positive radius, coinciding agents) throws dvoronoi::Error (or its subclass InputError) with a
+// message that names the argument. Geometric degeneracy (cocircular, collinear, lattice inputs) is never
+// an error: it is decided exactly.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace dvoronoi {
+
+/// Agent indices: 0-based, input order, 64-bit (scipy's CSR layout uses int64 too).
+using Index = std::int64_t;
+
+/// A point of the plane.
+using Vec2 = Eigen::Vector2d;
+
+/// `n x 2` row-major array of agent positions: the layout numpy hands over without a copy.
+using Points = Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>;
+
+/// Read-only view of an `n x 2` array of any stride (a numpy slice binds without a copy when its rows
+/// are contiguous).
+using PointsRef = Eigen::Ref<const Points, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+
+/// The library's exception type: every misuse of the API throws it.
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Bad input data (shape, non-finite values, coinciding agents, malformed files).
+class InputError : public Error {
+public:
+    using Error::Error;
+};
+
+/// Coinciding agents: their cells are undefined. Carries the first pair of indices found.
+class CoincidentError : public InputError {
+public:
+    CoincidentError(const std::string& what, Index first, Index second)
+        : InputError(what), first_(first), second_(second) {}
+    Index first() const noexcept { return first_; }
+    Index second() const noexcept { return second_; }
+
+private:
+    Index first_, second_;
+};
+
+namespace detail {
+
+/// An agent seen by another: its position and its index in the caller's numbering.
+struct Candidate {
+    Vec2 p;
+    Index id;
+};
+
+inline void require_finite_radius(double radius, const char* name = "radius") {
+    if (!std::isfinite(radius) || !(radius > 0.0))
+        throw InputError(std::string(name) + " must be a positive finite number, got " +
+                         std::to_string(radius));
+}
+
+inline void require_finite_point(const Vec2& p, const std::string& name) {
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+        throw InputError(name + " has a non-finite coordinate (NaN or inf)");
+}
+
+template <class Derived>
+void require_finite_points(const Eigen::MatrixBase<Derived>& pts, const char* name) {
+    for (Eigen::Index i = 0; i < pts.rows(); ++i)
+        for (int d = 0; d < 2; ++d)
+            if (!std::isfinite(pts(i, d)))
+                throw InputError(std::string(name) + "[" + std::to_string(i) + ", " +
+                                 std::to_string(d) + "] is not finite (NaN or inf)");
+}
+
+}  // namespace detail
+}  // namespace dvoronoi
