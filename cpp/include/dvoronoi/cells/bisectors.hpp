@@ -7,6 +7,8 @@
 #include "dvoronoi/core/predicates.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <utility>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -17,6 +19,7 @@ namespace dvoronoi::detail {
 struct Line {
     Vec2 p;
     Vec2 a;
+    double n2;  // |a|^2, rounded (fast-path filters only)
     Index id;
     double key;  // pseudo-angle from the nearest neighbour's direction, in [0, 4); ordering hint only
     int half;    // exact: 0 for directions in [0, pi) from the nearest neighbour, 1 for [pi, 2 pi)
@@ -29,6 +32,7 @@ struct CellWorkspace {
     std::vector<int> bound;        // RCVC: kept chords
     std::vector<char> removed;     // RCVC: checkChords flags
     std::vector<char> start_is_vertex;
+    std::vector<std::pair<double, std::uint32_t>> order;
 };
 
 /// The agents of `others` strictly within 2R of `center` (exact), with their row as index.
@@ -39,6 +43,18 @@ inline std::vector<Candidate> candidates_within_2r(const Vec2& center, PointsRef
         if (pred::within_2r(center, p, radius) > 0) cand.push_back({p, static_cast<Index>(j)});
     }
     return cand;
+}
+
+/// The sign of a polynomial evaluated in floating point from the rounded differences a = p - c,
+/// certified by the bound c * u * perm (perm: the same polynomial with every term made positive;
+/// c at least twice the number of roundings along any path, input roundings included); 2 when not
+/// certain, or when over- or underflow could void the bound. The exact predicates decide then.
+inline int fast_sign(double v, double perm, double c) {
+    if (!(perm < 1e295) || perm < 1e-280) return 2;
+    const double b = c * 1.1102230246251565e-16 * perm;
+    if (v > b) return 1;
+    if (v < -b) return -1;
+    return 2;
 }
 
 inline double diamond_angle(double x, double y) {
@@ -74,23 +90,43 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
     }
     const Vec2 p1 = cand[best].p;
     const Vec2 a1 = p1 - c;
+    // Sort (pseudo-angle, candidate) pairs, then lay the lines out in that order.
+    auto& order = ws.order;
+    order.clear();
+    for (std::size_t j = 0; j < cand.size(); ++j) {
+        const Vec2 a = cand[j].p - c;
+        double key = j == best ? 0.0 : diamond_angle(a1.dot(a), a1.x() * a.y() - a1.y() * a.x());
+        if (!(key >= 0.0 && key < 4.0)) key = 0.0;
+        order.push_back({key, static_cast<std::uint32_t>(j)});
+    }
+    std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     L.reserve(cand.size());
-    for (const Candidate& q : cand) {
+    for (const auto& [key0, j] : order) {
+        const Candidate& q = cand[j];
         const Vec2 a = q.p - c;
         const double u = a1.dot(a), v = a1.x() * a.y() - a1.y() * a.x();
-        const int o = pred::orient(c, p1, q.p);
-        const int half = (o > 0 || (o == 0 && pred::dot_sign(c, p1, q.p) > 0)) ? 0 : 1;
-        double key = diamond_angle(u, v);
-        if (!(key >= 0.0 && key < 4.0)) key = 0.0;
-        key = half == 0 ? std::min(key, 2.0) : std::max(key, 2.0);  // agree with the exact half
-        L.push_back({q.p, a, q.id, key, half});
+        int o = j == best ? 0 : fast_sign(v, std::fabs(a1.x() * a.y()) + std::fabs(a1.y() * a.x()), 16);
+        if (o == 2) o = pred::orient(c, p1, q.p);
+        int dsg = 1;
+        if (o == 0) {
+            dsg = fast_sign(u, std::fabs(a1.x() * a.x()) + std::fabs(a1.y() * a.y()), 16);
+            if (dsg == 2) dsg = pred::dot_sign(c, p1, q.p);
+        }
+        const int half = (o > 0 || (o == 0 && dsg > 0)) ? 0 : 1;
+        // Keys that disagree with the exact half are pinned to its range (the repair pass orders them).
+        const double key = half == 0 ? std::min(key0, 2.0) : std::max(key0, 2.0);
+        L.push_back({q.p, a, a.squaredNorm(), q.id, key, half});
     }
-    // Sort by the pseudo-angle, then repair with the exact order (insertion sort: the floating-point
-    // order is already right except among nearly parallel directions, so this pass is linear).
-    std::sort(L.begin(), L.end(), [](const Line& x, const Line& y) { return x.key < y.key; });
+    // Repair with the exact order (insertion sort: the floating-point order is already right except
+    // among nearly parallel directions, so this pass is linear).
+    const auto orient = [&](const Line& x, const Line& y) {
+        const double l = x.a.x() * y.a.y(), r = x.a.y() * y.a.x();
+        const int s = fast_sign(l - r, std::fabs(l) + std::fabs(r), 16);
+        return s != 2 ? s : pred::orient(c, x.p, y.p);
+    };
     const auto exact_less = [&](const Line& x, const Line& y) {
         if (x.half != y.half) return x.half < y.half;
-        const int o = pred::orient(c, x.p, y.p);
+        const int o = orient(x, y);
         if (o != 0) return o > 0;
         // Same direction: nearer first; equal distance means the agents coincide.
         const int d = pred::compare_distance(c, x.p, y.p);
@@ -107,7 +143,7 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
     std::size_t w = 1;
     for (std::size_t i = 1; i < L.size(); ++i) {
         const Line& prev = L[w - 1];
-        if (L[i].half == prev.half && pred::orient(c, prev.p, L[i].p) == 0) continue;
+        if (L[i].half == prev.half && orient(prev, L[i]) == 0) continue;
         L[w++] = L[i];
     }
     L.resize(w);
@@ -197,26 +233,65 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
     }
 }
 
-/// Sign helpers on lines (indices into ws.lines) around c.
+/// The predicates on bisectors (indices into ws.lines) around c: a floating-point fast path on the
+/// cached differences, certified by fast_sign, and the exact predicates of core/predicates.hpp when it
+/// cannot decide.
 struct LineGeometry {
     const Vec2& c;
     const std::vector<Line>& L;
     double radius;
 
-    const Vec2& p(int j) const { return L[static_cast<std::size_t>(j)].p; }
-    int orient(int j, int k) const { return pred::orient(c, p(j), p(k)); }
+    const Line& at(int j) const { return L[static_cast<std::size_t>(j)]; }
+
+    /// sign(D_jk).
+    int orient(int j, int k) const {
+        const Vec2 &a = at(j).a, &b = at(k).a;
+        const double l = a.x() * b.y(), r = a.y() * b.x();
+        const int s = fast_sign(l - r, std::fabs(l) + std::fabs(r), 16);
+        return s != 2 ? s : pred::orient(c, at(j).p, at(k).p);
+    }
+    /// sign(t_jk), the position of v_jk along L_j; o = orient(j, k) != 0.
+    int position(int j, int k, int o) const {
+        const Line &lj = at(j), &lk = at(k);
+        const double xx = lj.a.x() * lk.a.x(), yy = lj.a.y() * lk.a.y();
+        const int s = fast_sign(lk.n2 - xx - yy, lk.n2 + std::fabs(xx) + std::fabs(yy), 32);
+        return s != 2 ? s * o : pred::vertex_position(c, lj.p, lk.p);
+    }
+    /// sign(|v_jk|^2 - R^2); requires D_jk != 0.
+    int in_disk(int j, int k) const {
+        const Line &lj = at(j), &lk = at(k);
+        const Vec2 jk = lj.p - lk.p;
+        const double l = lj.a.x() * lk.a.y(), r = lj.a.y() * lk.a.x();
+        const double d = l - r, pd = std::fabs(l) + std::fabs(r);
+        const double prod = lj.n2 * lk.n2 * jk.squaredNorm();
+        const double r4 = 4.0 * radius * radius;
+        const int s = fast_sign(prod - r4 * d * d, prod + r4 * pd * pd, 64);
+        return s != 2 ? s : pred::vertex_in_disk(c, lj.p, lk.p, radius);
+    }
+    /// Side of v_jk with respect to L_l (-1 strictly inside H_l); o = orient(j, k) != 0.
+    int side(int j, int k, int l, int o) const {
+        const Line &lj = at(j), &lk = at(k), &ll = at(l);
+        const auto cr = [](const Vec2& a, const Vec2& b, double& perm) {
+            const double x = a.x() * b.y(), y = a.y() * b.x();
+            perm = std::fabs(x) + std::fabs(y);
+            return x - y;
+        };
+        double p1, p2, p3;
+        const double c1 = cr(lk.a, ll.a, p1), c2 = cr(lj.a, ll.a, p2), c3 = cr(lj.a, lk.a, p3);
+        const double inc = lj.n2 * c1 - lk.n2 * c2 + ll.n2 * c3;
+        const int s = fast_sign(inc, lj.n2 * p1 + lk.n2 * p2 + ll.n2 * p3, 64);
+        return s != 2 ? -s * o : pred::vertex_side(c, lj.p, lk.p, ll.p);
+    }
+
     /// Is v_jk inside the closed disk?
-    bool vertex_in_closed_disk(int j, int k) const { return pred::vertex_in_disk(c, p(j), p(k), radius) <= 0; }
-    /// Is v_jk strictly after the chord start s_j along L_j? (t_jk > -w)
-    bool after_chord_start(int j, int k) const {
-        return pred::vertex_position(c, p(j), p(k)) >= 0 || pred::vertex_in_disk(c, p(j), p(k), radius) < 0;
-    }
-    /// Is v_jk strictly before the chord end e_j along L_j? (t_jk < w)
-    bool before_chord_end(int j, int k) const {
-        return pred::vertex_position(c, p(j), p(k)) <= 0 || pred::vertex_in_disk(c, p(j), p(k), radius) < 0;
-    }
+    bool vertex_in_closed_disk(int j, int k) const { return in_disk(j, k) <= 0; }
+    /// Is v_jk strictly after the chord start s_j along L_j (t_jk > -w)? o = orient(j, k) != 0.
+    bool after_chord_start(int j, int k, int o) const { return position(j, k, o) >= 0 || in_disk(j, k) < 0; }
+    bool after_chord_start(int j, int k) const { return after_chord_start(j, k, orient(j, k)); }
+    /// Is v_jk strictly before the chord end e_j along L_j (t_jk < w)? o = orient(j, k) != 0.
+    bool before_chord_end(int j, int k, int o) const { return position(j, k, o) <= 0 || in_disk(j, k) < 0; }
     /// Is v_ji strictly before v_jk along L_j? Requires D_ji < 0 and D_jk > 0.
-    bool vertex_before(int j, int i, int k) const { return pred::vertex_side(c, p(j), p(i), p(k)) < 0; }
+    bool vertex_before(int j, int i, int k) const { return side(j, i, k, -1) < 0; }
 };
 
 }  // namespace dvoronoi::detail

@@ -36,9 +36,9 @@ inline bool keeps_positive_part(const LineGeometry& g, int j, const int* nb, int
     }
     // Every lower bound must lie strictly before every upper bound (chord ends included).
     for (int u = 0; u < nu; ++u)
-        if (!g.after_chord_start(j, upper[u])) return false;
+        if (!g.after_chord_start(j, upper[u], 1)) return false;
     for (int l = 0; l < nl; ++l)
-        if (!g.before_chord_end(j, lower[l])) return false;
+        if (!g.before_chord_end(j, lower[l], -1)) return false;
     for (int l = 0; l < nl; ++l)
         for (int u = 0; u < nu; ++u)
             if (lower[l] != upper[u] && !g.vertex_before(j, lower[l], upper[u])) return false;

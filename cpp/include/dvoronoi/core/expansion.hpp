@@ -163,6 +163,9 @@ template <class F>
 int filtered_sign(F&& f) {
     const int s = f(Tag<ErrDouble>{}).sign();
     if (s != 2) return s;
+#ifdef DV_DEBUG_EXACT
+    DV_DEBUG_EXACT(f(Tag<ErrDouble>{}));
+#endif
     return f(Tag<Expansion>{}).sign();
 }
 

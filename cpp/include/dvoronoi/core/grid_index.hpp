@@ -50,6 +50,7 @@ public:
                 const Key& k = keys_[static_cast<std::size_t>(i)];
                 order_[static_cast<std::size_t>(fill[static_cast<std::size_t>(k.cx * ny_ + k.cy)]++)] = i;
             }
+            // Within a cell keep input order (deterministic candidate order).
         } else {
             std::sort(order_.begin(), order_.end(), [&](Index a, Index b) {
                 const Key& ka = keys_[static_cast<std::size_t>(a)];
@@ -59,14 +60,20 @@ public:
             sorted_keys_.reserve(static_cast<std::size_t>(n));
             for (Index i : order_) sorted_keys_.push_back(keys_[static_cast<std::size_t>(i)]);
         }
+        // Positions copied in grid order: a query reads a few contiguous runs, not scattered rows.
+        sorted_pts_.resize(n, 2);
+        for (Index s = 0; s < n; ++s) sorted_pts_.row(s) = pts.row(order_[static_cast<std::size_t>(s)]);
     }
+
+    /// The agents in grid order: processing agents in this order keeps queries cache-friendly.
+    const std::vector<Index>& grid_order() const noexcept { return order_; }
 
     /// Agents j != i with |p_j - p_i| < 2*radius (exact), appended to `out` (cleared first) in
     /// increasing index order of the grid traversal (deterministic).
-    void within(const Points& pts, Index i, double radius, std::vector<detail::Candidate>& out) const {
+    void within(Index i, double radius, std::vector<detail::Candidate>& out) const {
         out.clear();
-        if (pts.rows() == 0) return;
-        const Vec2 c = pts.row(i).transpose();
+        if (pts_.rows() == 0) return;
+        const Vec2 c = pts_.row(i).transpose();
         const Key k = keys_[static_cast<std::size_t>(i)];
         for (std::int64_t cx = k.cx - 1; cx <= k.cx + 1; ++cx) {
             if (cx < 0 || cx >= nx_) continue;
@@ -86,7 +93,7 @@ public:
             for (std::size_t s = lo; s < hi; ++s) {
                 const Index j = order_[s];
                 if (j == i) continue;
-                const Vec2 p = pts.row(j).transpose();
+                const Vec2 p = sorted_pts_.row(static_cast<Index>(s)).transpose();
                 // Cheap rejection first; the exact predicate decides near the boundary.
                 const double dx = p.x() - c.x(), dy = p.y() - c.y();
                 const double d2 = dx * dx + dy * dy, r2 = 4.0 * radius * radius;
@@ -113,6 +120,7 @@ private:
     std::vector<Index> order_;
     std::vector<Index> start_;
     std::vector<Key> sorted_keys_;
+    Points sorted_pts_;
 };
 
 }  // namespace dvoronoi

@@ -127,16 +127,23 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     if (n == 0) return out;
 
     const GridIndex index(out.points, 2.0 * radius);
+    const std::vector<Index>& order = index.grid_order();
 #ifdef _OPENMP
     const int nthreads = threads > 0 ? threads : omp_get_max_threads();
 #else
     const int nthreads = 1;
     (void)threads;
 #endif
-    // Cells are computed in blocks; each block writes its own piece buffers, stitched in order after.
-    const Index block = 4096;
+    // Agents are processed in grid order, in blocks; each block appends its cells to its own buffers
+    // and records where each agent's pieces landed. The flat arrays are then laid out in input order.
+    struct Block {
+        std::vector<Piece> pieces;
+        std::vector<Index> first;  // per agent of the block: offset of its first piece
+    };
+    const Index block = 2048;
     const Index nblocks = (n + block - 1) / block;
-    std::vector<LimitedPartition> parts(static_cast<std::size_t>(nblocks));
+    std::vector<Block> blocks(static_cast<std::size_t>(nblocks));
+    std::vector<Index> count(static_cast<std::size_t>(n)), nb_count(static_cast<std::size_t>(n));
     std::atomic<Index> done{0};
 
 #pragma omp parallel num_threads(nthreads)
@@ -146,34 +153,29 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         detail::CellWorkspace ws;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
-            LimitedPartition& part = parts[static_cast<std::size_t>(b)];
+            Block& blk = blocks[static_cast<std::size_t>(b)];
             const Index lo = b * block, hi = std::min(n, lo + block);
-            for (Index i = lo; i < hi; ++i) {
+            for (Index pos = lo; pos < hi; ++pos) {
+                const Index i = order[static_cast<std::size_t>(pos)];
+                const auto ii = static_cast<std::size_t>(i);
+                index.within(i, radius, cand);
                 const Vec2 c = out.points.row(i).transpose();
-                index.within(out.points, i, radius, cand);
                 if (method == Method::Scan)
                     detail::boundary_scan(c, cand, radius, cell, ws);
                 else
                     detail::rcvc(c, cand, radius, cell, ws);
                 const CellMeasures m = cell.measures();
-                const auto ii = static_cast<std::size_t>(i);
                 out.areas[ii] = m.area;
                 out.perimeters[ii] = m.perimeter;
                 out.centroids(i, 0) = m.centroid.x();
                 out.centroids(i, 1) = m.centroid.y();
                 out.candidates[ii] = cell.candidates;
-                const std::size_t first_nb = part.indices.size();
-                for (const Piece& p : cell.pieces) {
-                    part.piece_neighbor.push_back(p.neighbor);
-                    part.piece_x.push_back(p.start.x());
-                    part.piece_y.push_back(p.start.y());
-                    part.piece_span.push_back(p.arc_span);
-                    if (!p.is_arc()) part.indices.push_back(p.neighbor);
-                }
-                std::sort(part.indices.begin() + static_cast<std::ptrdiff_t>(first_nb),
-                          part.indices.end());
-                part.piece_ptr.push_back(static_cast<Index>(part.piece_neighbor.size()));
-                part.indptr.push_back(static_cast<Index>(part.indices.size()));
+                blk.first.push_back(static_cast<Index>(blk.pieces.size()));
+                blk.pieces.insert(blk.pieces.end(), cell.pieces.begin(), cell.pieces.end());
+                count[ii] = static_cast<Index>(cell.pieces.size());
+                Index edges = 0;
+                for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
+                nb_count[ii] = edges;
             }
             const Index now = done.fetch_add(hi - lo) + (hi - lo);
 #ifdef _OPENMP
@@ -184,20 +186,36 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         }
     }
 
-    // Stitch the blocks in input order.
-    for (const LimitedPartition& part : parts) {
-        const Index piece_base = static_cast<Index>(out.piece_neighbor.size());
-        const Index nb_base = static_cast<Index>(out.indices.size());
-        for (std::size_t k = 1; k < part.piece_ptr.size(); ++k) {
-            out.piece_ptr.push_back(piece_base + part.piece_ptr[k]);
-            out.indptr.push_back(nb_base + part.indptr[k]);
+    // Lay out the pieces and the neighbour CSR in input order.
+    out.piece_ptr.resize(static_cast<std::size_t>(n) + 1);
+    out.indptr.resize(static_cast<std::size_t>(n) + 1);
+    for (Index i = 0; i < n; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        out.piece_ptr[ii + 1] = out.piece_ptr[ii] + count[ii];
+        out.indptr[ii + 1] = out.indptr[ii] + nb_count[ii];
+    }
+    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
+    out.piece_neighbor.resize(total);
+    out.piece_x.resize(total);
+    out.piece_y.resize(total);
+    out.piece_span.resize(total);
+    out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
+#pragma omp parallel for num_threads(nthreads) schedule(static)
+    for (Index pos = 0; pos < n; ++pos) {
+        const Index i = order[static_cast<std::size_t>(pos)];
+        const auto ii = static_cast<std::size_t>(i);
+        const Block& blk = blocks[static_cast<std::size_t>(pos / block)];
+        const Piece* src = blk.pieces.data() + blk.first[static_cast<std::size_t>(pos % block)];
+        auto dst = static_cast<std::size_t>(out.piece_ptr[ii]);
+        auto nb = static_cast<std::size_t>(out.indptr[ii]);
+        for (Index k = 0; k < count[ii]; ++k, ++dst) {
+            out.piece_neighbor[dst] = src[k].neighbor;
+            out.piece_x[dst] = src[k].start.x();
+            out.piece_y[dst] = src[k].start.y();
+            out.piece_span[dst] = src[k].arc_span;
+            if (!src[k].is_arc()) out.indices[nb++] = src[k].neighbor;
         }
-        out.piece_neighbor.insert(out.piece_neighbor.end(), part.piece_neighbor.begin(),
-                                  part.piece_neighbor.end());
-        out.piece_x.insert(out.piece_x.end(), part.piece_x.begin(), part.piece_x.end());
-        out.piece_y.insert(out.piece_y.end(), part.piece_y.begin(), part.piece_y.end());
-        out.piece_span.insert(out.piece_span.end(), part.piece_span.begin(), part.piece_span.end());
-        out.indices.insert(out.indices.end(), part.indices.begin(), part.indices.end());
+        std::sort(out.indices.begin() + out.indptr[ii], out.indices.begin() + out.indptr[ii + 1]);
     }
     if (progress) progress(n, n);
     return out;

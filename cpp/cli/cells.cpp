@@ -1,0 +1,132 @@
+// `dvoronoi cells POINTS --radius R`: every agent's range-limited Voronoi cell.
+#include "common.hpp"
+
+#include "dvoronoi/io/csv.hpp"
+#include "dvoronoi/io/geojson.hpp"
+#include "dvoronoi/io/json.hpp"
+#include "dvoronoi/io/svg.hpp"
+#include "dvoronoi/partition/limited_partition.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+
+namespace dvoronoi::cli {
+namespace {
+
+struct CellsOptions {
+    std::string points;
+    double radius = 0.0;
+    std::string method = "scan";
+    std::string columns;
+    int threads = 0;
+    std::string output;
+    std::string svg;
+    double tolerance = 0.0;
+    bool quiet = false;
+};
+
+void write_result(std::ostream& os, Format format, const LimitedPartition& p, Method method,
+                  double tolerance) {
+    switch (format) {
+        case Format::Json:
+            io::write_json(os, p, method);
+            os << '\n';
+            break;
+        case Format::GeoJson:
+            io::write_geojson(os, p, tolerance);
+            os << '\n';
+            break;
+        case Format::Csv: io::write_csv(os, p); break;
+    }
+}
+
+int run_cells(const CellsOptions& o) {
+    // Everything that can be checked without the data is checked before reading it.
+    if (!std::isfinite(o.radius) || !(o.radius > 0.0))
+        throw UsageError("--radius: must be a positive finite number, got " + show(o.radius));
+    if (!std::isfinite(o.tolerance) || o.tolerance < 0.0)
+        throw UsageError("--tolerance: must be a finite number >= 0, got " + show(o.tolerance));
+    const Method method = parse_method(o.method);
+    const bool to_stdout = o.output.empty() || o.output == "-";
+    const Format format = to_stdout ? Format::Json : output_format(o.output, "-o/--output");
+    if (!to_stdout && !o.svg.empty() && o.output == o.svg)
+        throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
+
+    const io::PointFile file = read_points_argument(o.points, o.columns);
+
+    // Create the output files now, so an unwritable destination fails before the computation.
+    std::unique_ptr<io::AtomicFile> out, svg;
+    if (!to_stdout) out = open_output(o.output, "-o/--output");
+    if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
+
+    Progress progress("cells", file.points.rows(), o.quiet);
+    LimitedPartition result;
+    try {
+        result = limited_cells(file.points, o.radius, method, o.threads,
+                               [&progress](Index done, Index total) { progress(done, total); });
+    } catch (const CoincidentError& e) {
+        progress.abort();
+        throw InputError(coincident_message(file, e));
+    } catch (...) {
+        progress.abort();
+        throw;
+    }
+    progress.finish();
+
+    if (svg) io::write_svg(svg->stream(), result);
+    if (out) {
+        write_result(out->stream(), format, result, method, o.tolerance);
+    }
+    // Commit only when every output is complete: a failure leaves no output behind.
+    if (out) out->commit();
+    if (svg) svg->commit();
+    if (to_stdout) {
+        write_result(std::cout, Format::Json, result, method, o.tolerance);
+        std::cout.flush();
+        if (!std::cout) {
+            std::cerr << "dvoronoi: error: writing to stdout failed\n";
+            return 1;
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+Command add_cells(CLI::App& parent) {
+    auto o = std::make_shared<CellsOptions>();
+    CLI::App* sub = parent.add_subcommand(
+        "cells",
+        "every agent's Voronoi cell clipped to the disk of radius R around it (pieces, limited "
+        "neighbours, areas, centroids, perimeters)");
+    sub->add_option("POINTS", o->points,
+                    "point file: 'x y' per line, whitespace- or comma-separated, '#' comments, "
+                    "optional header line; or a numpy .npy array of shape (n, 2); '-' reads stdin")
+        ->required();
+    sub->add_option("-r,--radius", o->radius,
+                    "cell radius R > 0 (each cell is clipped to the disk of radius R; agents within "
+                    "2R shape it)")
+        ->required();
+    sub->add_option("-m,--method", o->method,
+                    "algorithm: scan (Boundary Scan, O(m log m)) or chords (RCVC); same cells")
+        ->check(CLI::IsMember({"scan", "chords"}))
+        ->capture_default_str();
+    sub->add_option("--columns", o->columns,
+                    "X,Y: the fields holding x and y, as 0-based indices (e.g. 1,2 for 'id x y') or "
+                    "header names (e.g. lon,lat)");
+    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    sub->add_option("-o,--output", o->output,
+                    "output file, format from its extension: .json, .geojson (arcs densified) or "
+                    ".csv (per-agent table); default: JSON on stdout");
+    sub->add_option("--svg", o->svg, "also draw the partition into this SVG file");
+    sub->add_option("--tolerance", o->tolerance,
+                    "GeoJSON: largest distance between an arc and its chords (default 1e-3 R)");
+    sub->add_flag("-q,--quiet", o->quiet, "no progress counter on stderr");
+    return {sub, [o] { return run_cells(*o); }};
+}
+
+}  // namespace dvoronoi::cli

@@ -1,0 +1,157 @@
+// Pieces every `dvoronoi` subcommand shares: the usage-error type, the choice of output format, the
+// progress counter, output files. Argument parsing and I/O only; all formatting lives in dvoronoi/io.
+#pragma once
+
+#include "dvoronoi/core/types.hpp"
+#include "dvoronoi/io/atomic_write.hpp"
+#include "dvoronoi/io/point_file.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#ifdef _WIN32
+#include <io.h>
+#define DVORONOI_ISATTY(f) _isatty(_fileno(f))
+#else
+#include <unistd.h>
+#define DVORONOI_ISATTY(f) ::isatty(::fileno(f))
+#endif
+
+namespace dvoronoi::cli {
+
+/// A bad command line (exit code 2). The message names the argument.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// A subcommand: its CLI11 app (to see whether it was chosen) and the function that runs it after
+/// parsing, returning the exit code. Each subcommand lives in its own .cpp and adds itself in main.
+struct Command {
+    CLI::App* app = nullptr;
+    std::function<int()> run;
+};
+
+Command add_cells(CLI::App& parent);
+
+/// A double as the user would write it ("-1", "0.5", "nan").
+inline std::string show(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
+}
+
+/// Output formats chosen by file extension.
+enum class Format { Json, GeoJson, Csv };
+
+inline std::string lower_extension(const std::string& path) {
+    const std::size_t slash = path.find_last_of("/\\");
+    const std::size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot);
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    return ext;
+}
+
+/// The format of an output path, from its extension. \throws UsageError naming `option`.
+inline Format output_format(const std::string& path, const std::string& option) {
+    const std::string ext = lower_extension(path);
+    if (ext == ".json") return Format::Json;
+    if (ext == ".geojson") return Format::GeoJson;
+    if (ext == ".csv") return Format::Csv;
+    throw UsageError(option + ": cannot tell the output format of '" + path + "' (extension '" + ext +
+                     "'); use .json, .geojson or .csv, or leave " + option +
+                     " out to write JSON to stdout");
+}
+
+/// Opens an output file atomically now (before any work), turning failures into usage errors that
+/// name the option.
+inline std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::string& option) {
+    try {
+        return std::make_unique<io::AtomicFile>(path);
+    } catch (const io::OutputError& e) {
+        throw UsageError(option + ": " + e.what());
+    }
+}
+
+/// Reads the POINTS argument with an optional --columns selection (InputError carries FILE:LINE:COL).
+inline io::PointFile read_points_argument(const std::string& path, const std::string& columns) {
+    const io::Columns cols = columns.empty() ? io::Columns{} : io::parse_columns(columns, "--columns");
+    return io::read_point_file(path, cols);
+}
+
+/// Rewrites a CoincidentError in terms of the file: both lines, the later one as the location.
+inline std::string coincident_message(const io::PointFile& file, const CoincidentError& e) {
+    const auto i = e.first(), j = e.second();
+    if (static_cast<std::size_t>(j) < file.line.size())
+        return file.where(j) + ":1: point " + std::to_string(j) + " coincides with point " +
+               std::to_string(i) + " (line " + std::to_string(file.line[static_cast<std::size_t>(i)]) +
+               "); coinciding agents have no Voronoi cells";
+    return file.name + ": " + e.what();
+}
+
+/// "LABEL: done/total" on stderr. On a terminal it is updated in place (only once a run has taken
+/// more than half a second); otherwise only runs of at least `large` items report, a line every 5 s
+/// and a final line. --quiet turns it off.
+class Progress {
+public:
+    Progress(std::string label, Index total, bool quiet, Index large = 100000)
+        : label_(std::move(label)), total_(total), tty_(DVORONOI_ISATTY(stderr) != 0),
+          start_(Clock::now()), last_(start_) {
+        enabled_ = !quiet && total > 0 && (tty_ || total >= large);
+    }
+
+    /// The library's progress callback (called from one thread).
+    void operator()(Index done, Index /*total*/) {
+        if (!enabled_) return;
+        const auto now = Clock::now();
+        const double since_start = seconds(now - start_), since_last = seconds(now - last_);
+        if (tty_) {
+            if (since_start < 0.5 || (printed_ && since_last < 0.1)) return;
+            std::fprintf(stderr, "\r%s: %lld/%lld", label_.c_str(), static_cast<long long>(done),
+                         static_cast<long long>(total_));
+        } else {
+            if (since_last < 5.0) return;
+            std::fprintf(stderr, "%s: %lld/%lld\n", label_.c_str(), static_cast<long long>(done),
+                         static_cast<long long>(total_));
+        }
+        std::fflush(stderr);
+        printed_ = true;
+        last_ = now;
+    }
+
+    /// Final line (on a terminal only if the counter was shown).
+    void finish() {
+        if (!enabled_ || (tty_ && !printed_)) return;
+        std::fprintf(stderr, "%s%s: %lld/%lld (%.2f s)\n", tty_ ? "\r" : "", label_.c_str(),
+                     static_cast<long long>(total_), static_cast<long long>(total_),
+                     seconds(Clock::now() - start_));
+        std::fflush(stderr);
+    }
+
+    /// Ends an in-place line before an error message.
+    void abort() {
+        if (enabled_ && tty_ && printed_) std::fputc('\n', stderr);
+        enabled_ = false;
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+    std::string label_;
+    Index total_;
+    bool tty_, enabled_ = false, printed_ = false;
+    Clock::time_point start_, last_;
+};
+
+}  // namespace dvoronoi::cli
