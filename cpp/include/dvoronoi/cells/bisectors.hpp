@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <cmath>
 #include <string>
@@ -93,13 +94,25 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
     // Sort (pseudo-angle, candidate) pairs, then lay the lines out in that order.
     auto& order = ws.order;
     order.clear();
+    bool keys_reliable = true;  // false when products underflow: then every pair is compared exactly
     for (std::size_t j = 0; j < cand.size(); ++j) {
         const Vec2 a = cand[j].p - c;
-        double key = j == best ? 0.0 : diamond_angle(a1.dot(a), a1.x() * a.y() - a1.y() * a.x());
+        const double u = a1.dot(a), v = a1.x() * a.y() - a1.y() * a.x();
+        if (!(std::fabs(u) + std::fabs(v) > 1e-280)) keys_reliable = false;
+        double key = j == best ? 0.0 : diamond_angle(u, v);
         if (!(key >= 0.0 && key < 4.0)) key = 0.0;
         order.push_back({key, static_cast<std::uint32_t>(j)});
     }
-    std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    if (order.size() > 48) {
+        std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    } else {  // small sets (the usual ~30): insertion sort mispredicts less than introsort
+        for (std::size_t i = 1; i < order.size(); ++i) {
+            const auto x = order[i];
+            std::size_t j = i;
+            for (; j > 0 && x.first < order[j - 1].first; --j) order[j] = order[j - 1];
+            order[j] = x;
+        }
+    }
     L.reserve(cand.size());
     for (const auto& [key0, j] : order) {
         const Candidate& q = cand[j];
@@ -137,13 +150,18 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
                                   std::min(x.id, y.id), std::max(x.id, y.id));
         return d < 0;
     };
+    // Keys are monotone in the angle and off by at most ~1e-15, so neighbours whose keys differ by
+    // more than kKeyGap are certainly in order and in different directions: only closer pairs are
+    // compared exactly.
+    const double kKeyGap = keys_reliable ? 1e-12 : std::numeric_limits<double>::infinity();
     for (std::size_t i = 1; i < L.size(); ++i)
-        for (std::size_t j = i; j > 0 && exact_less(L[j], L[j - 1]); --j) std::swap(L[j], L[j - 1]);
+        for (std::size_t j = i; j > 0 && L[j].key - L[j - 1].key <= kKeyGap && exact_less(L[j], L[j - 1]); --j)
+            std::swap(L[j], L[j - 1]);
     // Drop farther agents in a direction already taken (exact: same half and collinear).
     std::size_t w = 1;
     for (std::size_t i = 1; i < L.size(); ++i) {
         const Line& prev = L[w - 1];
-        if (L[i].half == prev.half && orient(prev, L[i]) == 0) continue;
+        if (L[i].key - prev.key <= kKeyGap && L[i].half == prev.half && orient(prev, L[i]) == 0) continue;
         L[w++] = L[i];
     }
     L.resize(w);

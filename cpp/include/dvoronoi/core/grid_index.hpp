@@ -61,8 +61,12 @@ public:
             for (Index i : order_) sorted_keys_.push_back(keys_[static_cast<std::size_t>(i)]);
         }
         // Positions copied in grid order: a query reads a few contiguous runs, not scattered rows.
-        sorted_pts_.resize(n, 2);
-        for (Index s = 0; s < n; ++s) sorted_pts_.row(s) = pts.row(order_[static_cast<std::size_t>(s)]);
+        xs_.resize(static_cast<std::size_t>(n));
+        ys_.resize(static_cast<std::size_t>(n));
+        for (std::size_t s = 0; s < order_.size(); ++s) {
+            xs_[s] = pts(order_[s], 0);
+            ys_[s] = pts(order_[s], 1);
+        }
     }
 
     /// The agents in grid order: processing agents in this order keeps queries cache-friendly.
@@ -90,15 +94,15 @@ public:
                 lo = static_cast<std::size_t>(std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), Key{cx, cy0}, cmp) - sorted_keys_.begin());
                 hi = static_cast<std::size_t>(std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), Key{cx, cy1}, cmp) - sorted_keys_.begin());
             }
+            // Branch-free distance pass over the contiguous run, then the rare exact checks.
+            const double r2 = 4.0 * radius * radius, r2hi = r2 * (1.0 + 1e-9), r2lo = r2 * (1.0 - 1e-9);
             for (std::size_t s = lo; s < hi; ++s) {
+                const double dx = xs_[s] - c.x(), dy = ys_[s] - c.y();
+                const double d2 = dx * dx + dy * dy;
+                if (d2 > r2hi) continue;
                 const Index j = order_[s];
-                if (j == i) continue;
-                const Vec2 p = sorted_pts_.row(static_cast<Index>(s)).transpose();
-                // Cheap rejection first; the exact predicate decides near the boundary.
-                const double dx = p.x() - c.x(), dy = p.y() - c.y();
-                const double d2 = dx * dx + dy * dy, r2 = 4.0 * radius * radius;
-                if (d2 > r2 * (1.0 + 1e-9)) continue;
-                if (d2 < r2 * (1.0 - 1e-9) || pred::within_2r(c, p, radius) > 0) out.push_back({p, j});
+                const Vec2 p(xs_[s], ys_[s]);
+                if (j != i && (d2 < r2lo || pred::within_2r(c, p, radius) > 0)) out.push_back({p, j});
             }
         }
     }
@@ -120,7 +124,7 @@ private:
     std::vector<Index> order_;
     std::vector<Index> start_;
     std::vector<Key> sorted_keys_;
-    Points sorted_pts_;
+    std::vector<double> xs_, ys_;
 };
 
 }  // namespace dvoronoi
