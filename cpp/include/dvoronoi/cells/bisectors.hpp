@@ -34,6 +34,7 @@ struct CellWorkspace {
     std::vector<char> removed;     // RCVC: checkChords flags
     std::vector<char> start_is_vertex;
     std::vector<std::pair<double, std::uint32_t>> order;
+    std::vector<Line> unsorted;
 };
 
 /// The agents of `others` strictly within 2R of `center` (exact), with their row as index.
@@ -91,16 +92,33 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
     }
     const Vec2 p1 = cand[best].p;
     const Vec2 a1 = p1 - c;
-    // Sort (pseudo-angle, candidate) pairs, then lay the lines out in that order.
+    // Lines with their exact half and pseudo-angle; sort (pseudo-angle, line) pairs, then lay the
+    // lines out in that order.
+    auto& tmp = ws.unsorted;
+    tmp.clear();
     auto& order = ws.order;
     order.clear();
     bool keys_reliable = true;  // false when products underflow: then every pair is compared exactly
     for (std::size_t j = 0; j < cand.size(); ++j) {
-        const Vec2 a = cand[j].p - c;
+        const Candidate& q = cand[j];
+        const Vec2 a = q.p - c;
         const double u = a1.dot(a), v = a1.x() * a.y() - a1.y() * a.x();
         if (!(std::fabs(u) + std::fabs(v) > 1e-280)) keys_reliable = false;
+        int o = j == best ? 0 : fast_sign(v, std::fabs(a1.x() * a.y()) + std::fabs(a1.y() * a.x()), 16);
+        if (o == 2) o = pred::orient(c, p1, q.p);
+        int dsg = 1;
+        if (o == 0) {
+            dsg = fast_sign(u, std::fabs(a1.x() * a.x()) + std::fabs(a1.y() * a.y()), 16);
+            if (dsg == 2) dsg = pred::dot_sign(c, p1, q.p);
+        }
+        const int half = (o > 0 || (o == 0 && dsg > 0)) ? 0 : 1;
         double key = j == best ? 0.0 : diamond_angle(u, v);
         if (!(key >= 0.0 && key < 4.0)) key = 0.0;
+        // A key on the wrong side of the exact half is within rounding of a half boundary: pin it
+        // there (0 or pi for half 0; pi or 2 pi for half 1).
+        if (half == 0 && key >= 2.0) key = key > 3.0 ? 0.0 : 2.0;
+        if (half == 1 && key < 2.0) key = key < 1.0 ? 4.0 : 2.0;
+        tmp.push_back({q.p, a, a.squaredNorm(), q.id, key, half});
         order.push_back({key, static_cast<std::uint32_t>(j)});
     }
     if (order.size() > 48) {
@@ -114,22 +132,7 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
         }
     }
     L.reserve(cand.size());
-    for (const auto& [key0, j] : order) {
-        const Candidate& q = cand[j];
-        const Vec2 a = q.p - c;
-        const double u = a1.dot(a), v = a1.x() * a.y() - a1.y() * a.x();
-        int o = j == best ? 0 : fast_sign(v, std::fabs(a1.x() * a.y()) + std::fabs(a1.y() * a.x()), 16);
-        if (o == 2) o = pred::orient(c, p1, q.p);
-        int dsg = 1;
-        if (o == 0) {
-            dsg = fast_sign(u, std::fabs(a1.x() * a.x()) + std::fabs(a1.y() * a.y()), 16);
-            if (dsg == 2) dsg = pred::dot_sign(c, p1, q.p);
-        }
-        const int half = (o > 0 || (o == 0 && dsg > 0)) ? 0 : 1;
-        // Keys that disagree with the exact half are pinned to its range (the repair pass orders them).
-        const double key = half == 0 ? std::min(key0, 2.0) : std::max(key0, 2.0);
-        L.push_back({q.p, a, a.squaredNorm(), q.id, key, half});
-    }
+    for (const auto& kj : order) L.push_back(tmp[kj.second]);
     // Repair with the exact order (insertion sort: the floating-point order is already right except
     // among nearly parallel directions, so this pass is linear).
     const auto orient = [&](const Line& x, const Line& y) {
