@@ -304,6 +304,22 @@ struct LineGeometry {
         return s != 2 ? -s * o : pred::vertex_side(c, lj.p, lk.p, ll.p);
     }
 
+    /// Side of an endpoint of chord m (sigma = -1 first, +1 last) w.r.t. L_j (-1 strictly inside
+    /// H_j): the sign of X sqrt(P) + Y sqrt(Q), see pred::endpoint_side.
+    int endpoint_side(int m, int sigma, int j) const {
+        const Line &lm = at(m), &lj = at(j);
+        const double dx = lm.a.x() * lj.a.x(), dy = lm.a.y() * lj.a.y();
+        const double cx = lm.a.x() * lj.a.y(), cy = lm.a.y() * lj.a.x();
+        const double x = dx + dy - lj.n2, xp = std::fabs(dx) + std::fabs(dy) + lj.n2;
+        const double y = sigma * (cx - cy), yp = std::fabs(cx) + std::fabs(cy);
+        const int sx = fast_sign(x, xp, 32), sy = fast_sign(y, yp, 32);
+        if (sx == 2 || sy == 2) return pred::endpoint_side(c, lm.p, sigma, lj.p, radius);
+        if (sx == sy) return sx;
+        const double q = 4.0 * radius * radius - lm.n2, qp = 4.0 * radius * radius + lm.n2;
+        const int cmp = fast_sign(x * x * lm.n2 - y * y * q, xp * xp * lm.n2 + yp * yp * qp, 64);
+        return cmp != 2 ? sx * cmp : pred::endpoint_side(c, lm.p, sigma, lj.p, radius);
+    }
+
     /// Is v_jk inside the closed disk?
     bool vertex_in_closed_disk(int j, int k) const { return in_disk(j, k) <= 0; }
     /// Is v_jk strictly after the chord start s_j along L_j (t_jk > -w)? o = orient(j, k) != 0.

@@ -38,8 +38,7 @@ inline void rcvc(const Vec2& c, const std::vector<Candidate>& cand, double radiu
     for (int j = 0; j < m; ++j)
         for (int q = 0; q < m; ++q) {
             if (q == j || removed[static_cast<std::size_t>(q)]) continue;
-            if (pred::endpoint_side(c, L[static_cast<std::size_t>(q)].p, -1, L[static_cast<std::size_t>(j)].p, radius) >= 0 &&
-                pred::endpoint_side(c, L[static_cast<std::size_t>(q)].p, +1, L[static_cast<std::size_t>(j)].p, radius) >= 0)
+            if (g.endpoint_side(q, -1, j) >= 0 && g.endpoint_side(q, +1, j) >= 0)
                 removed[static_cast<std::size_t>(q)] = 1;
         }
     auto& kept = ws.bound;
@@ -65,8 +64,7 @@ inline void rcvc(const Vec2& c, const std::vector<Candidate>& cand, double radiu
             const int j = st.back();
             // Consecutive chords intersect in the disk when L_k's first endpoint lies on or beyond
             // L_j (after checkChords, the only way one endpoint of L_k is beyond L_j).
-            const bool intersect = k != j && pred::endpoint_side(c, L[static_cast<std::size_t>(k)].p, -1,
-                                                                 L[static_cast<std::size_t>(j)].p, radius) >= 0;
+            const bool intersect = k != j && g.endpoint_side(k, -1, j) >= 0;
             if (!intersect) {
                 if (step % mk != 0) {
                     st.push_back(k);
