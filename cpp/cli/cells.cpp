@@ -121,7 +121,7 @@ Command add_cells(CLI::App& parent) {
         ->capture_default_str();
     sub->add_option("-o,--output", o->output,
                     "output file, format from its extension: .json, .geojson (arcs densified) or "
-                    ".csv (per-agent table); default: JSON on stdout");
+                    ".csv (per-agent table); default or '-': JSON on stdout");
     sub->add_option("--svg", o->svg, "also draw the partition into this SVG file");
     sub->add_option("--tolerance", o->tolerance,
                     "GeoJSON: largest distance between an arc and its chords (default 1e-3 R)");

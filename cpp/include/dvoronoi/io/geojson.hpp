@@ -67,58 +67,71 @@ inline std::vector<Vec2> densify(const LimitedCell& cell, double tolerance = 0.0
 
 namespace detail {
 
-inline json feature_json(const LimitedCell& cell, double tolerance, Index agent, double area) {
-    json ring = json::array();
-    for (const Vec2& v : densify(cell, tolerance)) ring.push_back(xy(v));
-    json geometry = json::object();
-    geometry["type"] = "Polygon";
-    geometry["coordinates"] = json::array({std::move(ring)});
-    json props = json::object();
-    if (agent >= 0) props["agent"] = agent;
-    props["area"] = area;
-    props["neighbors"] = cell.neighbors();
-    json f = json::object();
-    f["type"] = "Feature";
-    f["properties"] = std::move(props);
-    f["geometry"] = std::move(geometry);
-    return f;
+/// One Feature; `agent` < 0 leaves the agent property out.
+inline void write_feature(JsonText& w, const LimitedCell& cell, double tolerance, Index agent,
+                          double area) {
+    w.raw("{\"geometry\":{\"coordinates\":[[");
+    bool first = true;
+    for (const Vec2& v : densify(cell, tolerance)) {
+        if (!first) w.raw(',');
+        first = false;
+        w.xy(v);
+    }
+    w.raw("]],\"type\":\"Polygon\"},\"properties\":{");
+    if (agent >= 0) {
+        w.key("agent");
+        w.num(agent);
+        w.raw(',');
+    }
+    w.key("area");
+    w.num(area);
+    w.raw(',');
+    w.key("neighbors");
+    write_numbers(w, cell.neighbors());
+    w.raw("},\"type\":\"Feature\"}");
+}
+
+inline void write_collection(JsonText& w, const LimitedPartition& p, double tolerance) {
+    const double tol = check_tolerance(tolerance, p.radius > 0 ? p.radius : 1.0);
+    w.raw("{\"features\":[");
+    for (Index i = 0; i < p.size(); ++i) {
+        if (i) w.raw(',');
+        write_feature(w, p.cell(i), tol, i, p.areas[static_cast<std::size_t>(i)]);
+        w.maybe_flush();
+    }
+    w.raw("],\"type\":\"FeatureCollection\"}");
 }
 
 }  // namespace detail
 
-/// One cell as a GeoJSON Feature (properties: area, neighbors).
-inline nlohmann::json to_geojson(const LimitedCell& cell, double tolerance = 0.0) {
-    return detail::feature_json(cell, tolerance, -1, cell.measures().area);
-}
-
-/// The partition as a GeoJSON FeatureCollection (see the top of this header).
+/// Writes the partition as a GeoJSON FeatureCollection (see the top of this header), compact, no
+/// trailing newline, streaming.
 /// \param tolerance largest sagitta of an arc chord; 0 = default_tolerance(p.radius).
 /// \throws InputError for a negative or non-finite tolerance, or one so small that an arc would
 ///         need more than 1e7 chords.
-inline nlohmann::json to_geojson(const LimitedPartition& p, double tolerance = 0.0) {
-    using detail::json;
-    const double tol = detail::check_tolerance(tolerance, p.radius > 0 ? p.radius : 1.0);
-    json features = json::array();
-    for (Index i = 0; i < p.size(); ++i)
-        features.push_back(detail::feature_json(p.cell(i), tol, i, p.areas[static_cast<std::size_t>(i)]));
-    json fc = json::object();
-    fc["type"] = "FeatureCollection";
-    fc["features"] = std::move(features);
-    return fc;
+inline void write_geojson(std::ostream& os, const LimitedPartition& p, double tolerance = 0.0) {
+    detail::JsonText w(&os);
+    detail::write_collection(w, p, tolerance);
+    w.flush();
 }
 
-/// Writes `to_geojson(p, tolerance).dump()` without building the whole document.
-inline void write_geojson(std::ostream& os, const LimitedPartition& p, double tolerance = 0.0) {
-    using detail::json;
-    const double tol = detail::check_tolerance(tolerance, p.radius > 0 ? p.radius : 1.0);
-    json small = json::object();
-    small["type"] = "FeatureCollection";
-    std::map<std::string, detail::LargeArray> large;
-    large["features"] = {p.size(), [&p, tol](Index i) {
-                             return detail::feature_json(p.cell(i), tol, i,
-                                                         p.areas[static_cast<std::size_t>(i)]);
-                         }};
-    detail::stream_object(os, std::move(small), large);
+/// The GeoJSON text of the partition.
+inline std::string to_geojson_string(const LimitedPartition& p, double tolerance = 0.0) {
+    detail::JsonText w;
+    detail::write_collection(w, p, tolerance);
+    return w.take();
+}
+
+/// The partition as a GeoJSON document (parsed from to_geojson_string).
+inline nlohmann::json to_geojson(const LimitedPartition& p, double tolerance = 0.0) {
+    return nlohmann::json::parse(to_geojson_string(p, tolerance));
+}
+
+/// One cell as a GeoJSON Feature (properties: area, neighbors).
+inline nlohmann::json to_geojson(const LimitedCell& cell, double tolerance = 0.0) {
+    detail::JsonText w;
+    detail::write_feature(w, cell, tolerance, -1, cell.measures().area);
+    return nlohmann::json::parse(w.take());
 }
 
 }  // namespace dvoronoi::io

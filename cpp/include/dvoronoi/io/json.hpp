@@ -16,16 +16,19 @@
 //
 // `span` is the counter-clockwise angle swept, in (0, 2 pi]; a full disk is one arc with
 // start == end and span == 2 pi. Doubles are written with the shortest text that reads back to the
-// same double (nlohmann's dump), so the JSON round-trips exactly.
+// same double (nlohmann's Grisu2, exactly as `nlohmann::json::dump` writes them), so the JSON
+// round-trips exactly.
+//
+// One implementation: the text is written directly (write_json, streaming, O(1) extra memory per
+// cell); to_json parses that text, so `to_json(p, m).dump() == to_json_string(p, m)` byte for byte.
 #pragma once
 
 #include "dvoronoi/partition/limited_partition.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
-#include <functional>
-#include <map>
+#include <charconv>
+#include <cmath>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -34,174 +37,245 @@ namespace dvoronoi::io {
 
 namespace detail {
 
-using json = nlohmann::json;
+/// A buffer of JSON text, flushed to a stream in large blocks.
+class JsonText {
+public:
+    explicit JsonText(std::ostream* os = nullptr) : os_(os) { s_.reserve(kFlush + 4096); }
 
-inline json xy(const Vec2& v) { return json::array({v.x(), v.y()}); }
-inline json xy(double x, double y) { return json::array({x, y}); }
-
-inline json piece_json(const Vec2& start, const Vec2& end, Index neighbor, double span,
-                       const Vec2& center, double radius) {
-    json p = json::object();
-    if (neighbor >= 0) {
-        p["type"] = "edge";
-        p["neighbor"] = neighbor;
-        p["start"] = xy(start);
-        p["end"] = xy(end);
-    } else {
-        p["type"] = "arc";
-        p["start"] = xy(start);
-        p["end"] = xy(end);
-        p["center"] = xy(center);
-        p["radius"] = radius;
-        p["span"] = span;
+    /// A double exactly as nlohmann::json::dump writes it ("null" for NaN/inf, "1.0" for 1).
+    void num(double x) {
+        if (!std::isfinite(x)) {
+            s_ += "null";
+            return;
+        }
+#if NLOHMANN_JSON_VERSION_MAJOR == 3 && NLOHMANN_JSON_VERSION_MINOR >= 1
+        char buf[64];
+        char* end = ::nlohmann::detail::to_chars(buf, buf + sizeof buf, x);
+        s_.append(buf, end);
+#else
+        s_ += nlohmann::json(x).dump();
+#endif
     }
-    return p;
+    void num(Index i) {
+        char buf[24];
+        const auto r = std::to_chars(buf, buf + sizeof buf, i);
+        s_.append(buf, r.ptr);
+    }
+    /// `"name":` (names are plain ASCII, no escaping needed).
+    void key(const char* name) {
+        s_ += '"';
+        s_ += name;
+        s_ += "\":";
+    }
+    void str(const char* value) {
+        s_ += '"';
+        s_ += value;
+        s_ += '"';
+    }
+    void xy(double x, double y) {
+        s_ += '[';
+        num(x);
+        s_ += ',';
+        num(y);
+        s_ += ']';
+    }
+    void xy(const Vec2& v) { xy(v.x(), v.y()); }
+    void raw(char ch) { s_ += ch; }
+    void raw(const char* text) { s_ += text; }
+
+    /// Writes the buffer to the stream when it is large (call between elements).
+    void maybe_flush() {
+        if (os_ && s_.size() >= kFlush) flush();
+    }
+    void flush() {
+        if (!os_) return;
+        os_->write(s_.data(), static_cast<std::streamsize>(s_.size()));
+        s_.clear();
+    }
+    const std::string& text() const noexcept { return s_; }
+    std::string take() { return std::move(s_); }
+
+private:
+    static constexpr std::size_t kFlush = std::size_t{1} << 16;
+    std::ostream* os_;
+    std::string s_;
+};
+
+/// One piece, keys in alphabetical order.
+inline void write_piece(JsonText& w, const Vec2& start, const Vec2& end, Index neighbor, double span,
+                        const Vec2& center, double radius) {
+    if (neighbor >= 0) {
+        w.raw('{');
+        w.key("end");
+        w.xy(end);
+        w.raw(',');
+        w.key("neighbor");
+        w.num(neighbor);
+        w.raw(',');
+        w.key("start");
+        w.xy(start);
+        w.raw(",\"type\":\"edge\"}");
+    } else {
+        w.raw('{');
+        w.key("center");
+        w.xy(center);
+        w.raw(',');
+        w.key("end");
+        w.xy(end);
+        w.raw(',');
+        w.key("radius");
+        w.num(radius);
+        w.raw(',');
+        w.key("span");
+        w.num(span);
+        w.raw(',');
+        w.key("start");
+        w.xy(start);
+        w.raw(",\"type\":\"arc\"}");
+    }
 }
 
-inline json pieces_json(const LimitedCell& c) {
-    json out = json::array();
+inline void write_pieces(JsonText& w, const LimitedCell& c) {
+    w.raw('[');
     for (std::size_t k = 0; k < c.pieces.size(); ++k) {
+        if (k) w.raw(',');
         const Piece& p = c.pieces[k];
-        out.push_back(piece_json(p.start, c.piece_end(k), p.neighbor, p.arc_span, c.center, c.radius));
+        write_piece(w, p.start, c.piece_end(k), p.neighbor, p.arc_span, c.center, c.radius);
     }
-    return out;
+    w.raw(']');
 }
 
 /// Agent i's entry of "cells", read straight from the partition's flat arrays.
-inline json partition_cell_json(const LimitedPartition& p, Index i) {
-    json pieces = json::array();
+inline void write_partition_cell(JsonText& w, const LimitedPartition& p, Index i) {
     const Index lo = p.piece_ptr[static_cast<std::size_t>(i)];
     const Index hi = p.piece_ptr[static_cast<std::size_t>(i) + 1];
     const Vec2 center = p.points.row(i).transpose();
+    w.raw('{');
+    w.key("agent");
+    w.num(i);
+    w.raw(",\"pieces\":[");
     for (Index k = lo; k < hi; ++k) {
         const auto kk = static_cast<std::size_t>(k);
         const auto next = static_cast<std::size_t>(k + 1 < hi ? k + 1 : lo);
-        pieces.push_back(piece_json(Vec2(p.piece_x[kk], p.piece_y[kk]),
-                                    Vec2(p.piece_x[next], p.piece_y[next]), p.piece_neighbor[kk],
-                                    p.piece_span[kk], center, p.radius));
+        if (k > lo) w.raw(',');
+        write_piece(w, Vec2(p.piece_x[kk], p.piece_y[kk]), Vec2(p.piece_x[next], p.piece_y[next]),
+                    p.piece_neighbor[kk], p.piece_span[kk], center, p.radius);
     }
-    json c = json::object();
-    c["agent"] = i;
-    c["pieces"] = std::move(pieces);
-    return c;
+    w.raw("]}");
 }
 
-/// Writes the elements 0..count-1 of a JSON array as `dump()` would, building only a block of
-/// elements at a time (memory O(block) instead of O(count)).
-inline void stream_array(std::ostream& os, Index count, const std::function<json(Index)>& element,
-                         Index block = 2048) {
-    os << '[';
-    for (Index lo = 0; lo < count; lo += block) {
-        const Index hi = std::min(count, lo + block);
-        json chunk = json::array();
-        for (Index k = lo; k < hi; ++k) chunk.push_back(element(k));
-        const std::string text = chunk.dump();
-        if (lo > 0) os << ',';
-        os.write(text.data() + 1, static_cast<std::streamsize>(text.size() - 2));  // strip [ ]
+template <class T>
+void write_numbers(JsonText& w, const std::vector<T>& v) {
+    w.raw('[');
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        if (k) w.raw(',');
+        w.num(v[k]);
+        if ((k & 1023) == 0) w.maybe_flush();
     }
-    os << ']';
+    w.raw(']');
 }
 
-/// Writes a JSON object whose small members are in `small` and whose large arrays are produced by
-/// `large` (name -> (count, element)); key order is nlohmann::json's, so the text equals dump().
-struct LargeArray {
-    Index count;
-    std::function<json(Index)> element;
-};
-
-inline void stream_object(std::ostream& os, json small, const std::map<std::string, LargeArray>& large) {
-    for (const auto& kv : large) small[kv.first] = json::array();  // placeholders fix the key order
-    os << '{';
-    bool first = true;
-    for (auto it = small.begin(); it != small.end(); ++it) {
-        if (!first) os << ',';
-        first = false;
-        os << json(it.key()).dump() << ':';
-        const auto big = large.find(it.key());
-        if (big != large.end())
-            stream_array(os, big->second.count, big->second.element);
-        else
-            os << it.value().dump();
+inline void write_rows(JsonText& w, const Points& m) {
+    w.raw('[');
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+        if (i) w.raw(',');
+        w.xy(m(i, 0), m(i, 1));
+        if ((i & 1023) == 0) w.maybe_flush();
     }
-    os << '}';
+    w.raw(']');
+}
+
+inline void write_partition(JsonText& w, const LimitedPartition& p, Method method) {
+    w.raw('{');
+    w.key("areas");
+    write_numbers(w, p.areas);
+    w.raw(',');
+    w.key("cells");
+    w.raw('[');
+    for (Index i = 0; i < p.size(); ++i) {
+        if (i) w.raw(',');
+        write_partition_cell(w, p, i);
+        w.maybe_flush();
+    }
+    w.raw("],");
+    w.key("centroids");
+    write_rows(w, p.centroids);
+    w.raw(',');
+    w.key("indices");
+    write_numbers(w, p.indices);
+    w.raw(',');
+    w.key("indptr");
+    write_numbers(w, p.indptr);
+    w.raw(",\"kind\":\"limited_partition\",");
+    w.key("method");
+    w.str(method_name(method));
+    w.raw(',');
+    w.key("perimeters");
+    write_numbers(w, p.perimeters);
+    w.raw(',');
+    w.key("points");
+    write_rows(w, p.points);
+    w.raw(',');
+    w.key("radius");
+    w.num(p.radius);
+    w.raw('}');
 }
 
 }  // namespace detail
 
-/// One cell as JSON: {"kind": "limited_cell", "center", "radius", "area", "centroid", "perimeter",
-/// "neighbors" (ascending), "pieces" (as in the partition schema)}.
-inline nlohmann::json to_json(const LimitedCell& cell) {
-    using detail::json;
-    const CellMeasures m = cell.measures();
-    json j = json::object();
-    j["kind"] = "limited_cell";
-    j["center"] = detail::xy(cell.center);
-    j["radius"] = cell.radius;
-    j["area"] = m.area;
-    j["centroid"] = detail::xy(m.centroid);
-    j["perimeter"] = m.perimeter;
-    j["neighbors"] = cell.neighbors();
-    j["pieces"] = detail::pieces_json(cell);
-    return j;
-}
-
-namespace detail {
-
-inline json partition_header(const LimitedPartition& p, Method method) {
-    json j = json::object();
-    j["kind"] = "limited_partition";
-    j["method"] = method_name(method);
-    j["radius"] = p.radius;
-    return j;
-}
-
-inline std::map<std::string, LargeArray> partition_arrays(const LimitedPartition& p) {
-    std::map<std::string, LargeArray> large;
-    const auto ints = [](const std::vector<Index>& v) {
-        return LargeArray{static_cast<Index>(v.size()),
-                          [&v](Index k) { return json(v[static_cast<std::size_t>(k)]); }};
-    };
-    const auto reals = [](const std::vector<double>& v) {
-        return LargeArray{static_cast<Index>(v.size()),
-                          [&v](Index k) { return json(v[static_cast<std::size_t>(k)]); }};
-    };
-    large["indptr"] = ints(p.indptr);
-    large["indices"] = ints(p.indices);
-    large["areas"] = reals(p.areas);
-    large["perimeters"] = reals(p.perimeters);
-    large["points"] = {p.size(), [&p](Index i) { return xy(p.points(i, 0), p.points(i, 1)); }};
-    large["centroids"] = {p.size(), [&p](Index i) { return xy(p.centroids(i, 0), p.centroids(i, 1)); }};
-    large["cells"] = {p.size(), [&p](Index i) { return partition_cell_json(p, i); }};
-    return large;
-}
-
-}  // namespace detail
-
-/// The whole partition as JSON (the schema at the top of this header).
-/// \note Builds the document in memory (roughly 1 kB per agent); for large partitions prefer
-///       write_json, which streams the same text. Thread-safe.
-inline nlohmann::json to_json(const LimitedPartition& p, Method method) {
-    using detail::json;
-    json j = detail::partition_header(p, method);
-    for (const auto& kv : detail::partition_arrays(p)) {
-        json arr = json::array();
-        for (Index i = 0; i < kv.second.count; ++i) arr.push_back(kv.second.element(i));
-        j[kv.first] = std::move(arr);
-    }
-    return j;
-}
-
-/// Writes `to_json(p, method).dump()` to `os` without building the whole document (memory
-/// O(block of cells)). No trailing newline.
+/// Writes the partition's JSON (the schema at the top of this header), compact, no trailing newline.
+/// \note Streams: memory O(1) beyond the partition. Thread-safe. The stream's state is the caller's
+///       to check.
 inline void write_json(std::ostream& os, const LimitedPartition& p, Method method) {
-    detail::stream_object(os, detail::partition_header(p, method), detail::partition_arrays(p));
+    detail::JsonText w(&os);
+    detail::write_partition(w, p, method);
+    w.flush();
 }
 
-/// The compact JSON text of the partition (equal to `to_json(p, method).dump()`).
+/// The compact JSON text of the partition.
 inline std::string to_json_string(const LimitedPartition& p, Method method) {
-    std::ostringstream os;
-    write_json(os, p, method);
-    return os.str();
+    detail::JsonText w;
+    detail::write_partition(w, p, method);
+    return w.take();
 }
+
+/// The partition as a JSON document (parsed from to_json_string, so `dump()` gives the same text).
+/// \note Holds the whole document in memory (about 1 kB per agent); prefer write_json for files.
+inline nlohmann::json to_json(const LimitedPartition& p, Method method) {
+    return nlohmann::json::parse(to_json_string(p, method));
+}
+
+/// The JSON text of one cell: {"area", "center", "centroid", "kind": "limited_cell", "neighbors"
+/// (ascending), "perimeter", "pieces" (as in the partition schema), "radius"}.
+inline std::string to_json_string(const LimitedCell& cell) {
+    const CellMeasures m = cell.measures();
+    detail::JsonText w;
+    w.raw('{');
+    w.key("area");
+    w.num(m.area);
+    w.raw(',');
+    w.key("center");
+    w.xy(cell.center);
+    w.raw(',');
+    w.key("centroid");
+    w.xy(m.centroid);
+    w.raw(",\"kind\":\"limited_cell\",");
+    w.key("neighbors");
+    detail::write_numbers(w, cell.neighbors());
+    w.raw(',');
+    w.key("perimeter");
+    w.num(m.perimeter);
+    w.raw(',');
+    w.key("pieces");
+    detail::write_pieces(w, cell);
+    w.raw(',');
+    w.key("radius");
+    w.num(cell.radius);
+    w.raw('}');
+    return w.take();
+}
+
+/// One cell as a JSON document (see to_json_string(const LimitedCell&)).
+inline nlohmann::json to_json(const LimitedCell& cell) { return nlohmann::json::parse(to_json_string(cell)); }
 
 }  // namespace dvoronoi::io

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
+#include <exception>
 #include <functional>
 #include <numeric>
 #include <string>
@@ -26,6 +28,7 @@ namespace dvoronoi {
 /// Limited neighbours are the CSR pair (indptr, indices), ascending per agent (scipy's layout).
 struct LimitedPartition {
     double radius = 0.0;
+    Method method = Method::Scan;
     Points points;  ///< the agents, as given
     std::vector<Index> piece_ptr{0};
     std::vector<Index> piece_neighbor;
@@ -92,13 +95,14 @@ inline void require_distinct(PointsRef pts) {
             if (best_i < 0 || a < best_i || (a == best_i && b < best_j)) { best_i = a; best_j = b; }
         }
     }
-    if (best_i >= 0)
+    if (best_i >= 0) {
+        char at[64];
+        std::snprintf(at, sizeof at, "(%.17g, %.17g)", pts(best_i, 0), pts(best_i, 1));
         throw CoincidentError("points[" + std::to_string(best_i) + "] and points[" +
-                                  std::to_string(best_j) + "] coincide at (" +
-                                  std::to_string(pts(best_i, 0)) + ", " +
-                                  std::to_string(pts(best_i, 1)) +
-                                  "); their Voronoi cells are undefined",
+                                  std::to_string(best_j) + "] coincide at " + at +
+                                  "; their Voronoi cells are undefined",
                               best_i, best_j);
+    }
 }
 
 }  // namespace detail
@@ -119,6 +123,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     const Index n = points.rows();
     LimitedPartition out;
     out.radius = radius;
+    out.method = method;
     out.points = points;
     out.areas.assign(static_cast<std::size_t>(n), 0.0);
     out.perimeters.assign(static_cast<std::size_t>(n), 0.0);
@@ -145,6 +150,10 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     std::vector<Block> blocks(static_cast<std::size_t>(nblocks));
     std::vector<Index> count(static_cast<std::size_t>(n)), nb_count(static_cast<std::size_t>(n));
     std::atomic<Index> done{0};
+    // A progress callback may throw (e.g. a Python KeyboardInterrupt): the exception is carried out
+    // of the parallel region, the remaining blocks are skipped, and it is rethrown here.
+    std::exception_ptr failure;
+    std::atomic<bool> cancelled{false};
 
 #pragma omp parallel num_threads(nthreads)
     {
@@ -153,6 +162,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         detail::CellWorkspace ws;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
+            if (cancelled.load(std::memory_order_relaxed)) continue;
             Block& blk = blocks[static_cast<std::size_t>(b)];
             const Index lo = b * block, hi = std::min(n, lo + block);
             for (Index pos = lo; pos < hi; ++pos) {
@@ -179,12 +189,21 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
             }
             const Index now = done.fetch_add(hi - lo) + (hi - lo);
 #ifdef _OPENMP
-            if (progress && omp_get_thread_num() == 0) progress(now, n);
+            const bool caller = omp_get_thread_num() == 0;
 #else
-            if (progress) progress(now, n);
+            const bool caller = true;
 #endif
+            if (progress && caller) {
+                try {
+                    progress(now, n);
+                } catch (...) {
+                    failure = std::current_exception();
+                    cancelled = true;
+                }
+            }
         }
     }
+    if (failure) std::rethrow_exception(failure);
 
     // Lay out the pieces and the neighbour CSR in input order.
     out.piece_ptr.resize(static_cast<std::size_t>(n) + 1);
