@@ -50,6 +50,13 @@ inline py::array as_array(py::handle obj, const char* name, const char* what) {
     return arr;
 }
 
+/// True for native-byte-order float64, the dtype that binds without a copy.
+inline bool is_float64(const py::array& arr) {
+    // Created once and never destroyed (no Python object may be released after the interpreter).
+    static const py::dtype* f64 = new py::dtype(py::dtype::of<double>());
+    return arr.dtype().equal(*f64);
+}
+
 /// Numeric dtypes are converted to float64; anything else is a TypeError naming the argument.
 inline py::array to_float64(const py::array& arr, const char* name, const char* what) {
     const char kind = arr.dtype().kind();
@@ -93,7 +100,7 @@ inline PointsArg points_arg(py::handle obj, const char* name) {
     if (arr.ndim() != 2 || arr.shape(1) != 2)
         throw py::value_error(std::string(name) + " must be an (n, 2) array, got shape " +
                               shape_str(arr));
-    if (!arr.dtype().equal(py::dtype::of<double>())) arr = to_float64(arr, name, what);
+    if (!is_float64(arr)) arr = to_float64(arr, name, what);
 
     const auto* ptr = static_cast<const double*>(arr.data());
     py::ssize_t s0 = arr.strides(0), s1 = arr.strides(1);
@@ -136,7 +143,7 @@ inline Vec2 point_arg(py::handle obj, const char* name) {
     if (!ok_shape)
         throw py::value_error(std::string(name) + " must be a point (x, y) of shape (2,), got shape " +
                               shape_str(arr));
-    if (!arr.dtype().equal(py::dtype::of<double>())) arr = to_float64(arr, name, what);
+    if (!is_float64(arr)) arr = to_float64(arr, name, what);
     const auto* ptr = static_cast<const char*>(arr.data());
     const py::ssize_t step = arr.ndim() == 1 ? arr.strides(0) : arr.strides(1);
     double x, y;

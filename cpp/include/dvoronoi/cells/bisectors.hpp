@@ -77,9 +77,9 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
     std::size_t best = 0;
     double best_d2 = (cand[0].p - c).squaredNorm();
     for (std::size_t j = 0; j < cand.size(); ++j) {
-        if (cand[j].p == c)
-            throw CoincidentError("agent " + std::to_string(cand[j].id) +
-                                      " coincides with the center; its Voronoi cell is undefined",
+        if (cand[j].p == c)  // only the one-agent call gets here (limited_cells checks all pairs)
+            throw CoincidentError("others[" + std::to_string(cand[j].id) +
+                                      "] coincides with center; its Voronoi cell is undefined",
                                   cand[j].id, cand[j].id);
         if (j == 0) continue;
         const double d2 = (cand[j].p - c).squaredNorm();
@@ -147,9 +147,9 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
         // Same direction: nearer first; equal distance means the agents coincide.
         const int d = pred::compare_distance(c, x.p, y.p);
         if (d == 0)
-            throw CoincidentError("agents " + std::to_string(std::min(x.id, y.id)) + " and " +
+            throw CoincidentError("others[" + std::to_string(std::min(x.id, y.id)) + "] and others[" +
                                       std::to_string(std::max(x.id, y.id)) +
-                                      " coincide; their Voronoi cells are undefined",
+                                      "] coincide; their Voronoi cells are undefined",
                                   std::min(x.id, y.id), std::max(x.id, y.id));
         return d < 0;
     };
@@ -220,12 +220,12 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
     out.center = c;
     out.radius = radius;
     const std::size_t s = cycle.size();
+    // Pieces are assembled relative to c, measured there, then moved to the caller's frame.
     if (s == 0) {
         Piece arc;
-        arc.start = c + Vec2(radius, 0.0);
+        arc.start = Vec2(radius, 0.0);
         arc.arc_span = kTwoPi;
         out.pieces.push_back(arc);
-        return;
     }
     for (std::size_t t = 0; t < s; ++t) {
         const Line& j = L[static_cast<std::size_t>(cycle[t])];
@@ -233,13 +233,13 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
         const Line& i = L[static_cast<std::size_t>(cycle[tp])];
         Piece edge;
         edge.neighbor = j.id;
-        edge.start = c + (meets[tp] ? vertex(i.a, j.a) : chord_end(j.a, radius, -1));
+        edge.start = meets[tp] ? vertex(i.a, j.a) : chord_end(j.a, radius, -1);
         out.pieces.push_back(edge);
         if (!meets[t]) {
             const Line& k = L[static_cast<std::size_t>(cycle[(t + 1) % s])];
             Piece arc;
             const Vec2 e = chord_end(j.a, radius, +1), sk = chord_end(k.a, radius, -1);
-            arc.start = c + e;
+            arc.start = e;
             // The span from the combinatorial gap, refined by the direct angle between the
             // endpoints when both agree on the branch (tiny arcs never become full turns).
             const double approx = ccw_gap(c, j, s == 1 ? j : k) - chord_half_angle(j.a, radius) -
@@ -252,6 +252,8 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
             out.pieces.push_back(arc);
         }
     }
+    out.measures_ = measure_local(out.pieces, radius, c);
+    for (Piece& p : out.pieces) p.start += c;
 }
 
 /// The predicates on bisectors (indices into ws.lines) around c: a floating-point fast path on the

@@ -48,6 +48,11 @@ struct LimitedPartition {
         c.center = points.row(i).transpose();
         c.radius = radius;
         c.candidates = candidates[static_cast<std::size_t>(i)];
+        c.chords_after_check = -1;
+        const auto ii = static_cast<std::size_t>(i);
+        c.measures_.area = areas[ii];
+        c.measures_.perimeter = perimeters[ii];
+        c.measures_.centroid = centroids.row(i).transpose();
         for (Index k = piece_ptr[i]; k < piece_ptr[i + 1]; ++k) {
             const auto kk = static_cast<std::size_t>(k);
             Piece p;

@@ -1,0 +1,399 @@
+// Range-limited Voronoi cells in Python: limited_cell (one agent) and limited_cells (all agents).
+//
+// limited_cell is meant to be called once per robot per control step, so its binding does no more
+// than convert the arguments (no copy for float64 arrays of any stride), run the algorithm and wrap
+// the result; measures and arrays of the returned LimitedCell are computed on first access.
+// limited_cells releases the GIL for the whole computation; its arrays are zero-copy read-only views
+// into the bound LimitedPartition.
+#include "arrays.hpp"
+
+#include "dvoronoi/cells/limited_cell.hpp"
+#include "dvoronoi/partition/limited_partition.hpp"
+
+// JSON and GeoJSON: the CLI's writers (io/), so Python writes exactly what `dvoronoi` writes.
+#include "dvoronoi/io/geojson.hpp"
+#include "dvoronoi/io/json.hpp"
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace py = pybind11;
+using namespace dvoronoi_bindings;
+using dvoronoi::CellMeasures;
+using dvoronoi::LimitedCell;
+using dvoronoi::LimitedPartition;
+using dvoronoi::Method;
+using dvoronoi::Piece;
+
+namespace {
+
+/// Above this many `others`, limited_cell releases the GIL (below it, releasing costs more than the
+/// call).
+constexpr Eigen::Index kReleaseGilAbove = 4096;
+
+/// A LimitedCell with its measures computed on first use.
+struct PyCell {
+    LimitedCell cell;
+    std::optional<CellMeasures> m;
+
+    const CellMeasures& measures() {
+        if (!m) m = cell.measures();
+        return *m;
+    }
+};
+
+/// One boundary piece, as Python sees it.
+struct PyPiece {
+    Index neighbor;
+    Vec2 start, end, center;
+    double span, radius;
+};
+
+/// The partition and the method that made it (the JSON names it).
+struct PyPartition {
+    LimitedPartition part;
+    Method method;
+};
+
+py::array vec2_array(const Vec2& v) {
+    py::array_t<double> a(2);
+    a.mutable_at(0) = v.x();
+    a.mutable_at(1) = v.y();
+    return a;
+}
+
+py::tuple vec2_tuple(const Vec2& v) { return py::make_tuple(v.x(), v.y()); }
+
+std::string fmt(double x) {
+    std::ostringstream s;
+    s.precision(6);
+    s << x;
+    return s.str();
+}
+
+std::vector<PyPiece> pieces_of(const LimitedCell& c) {
+    std::vector<PyPiece> out;
+    out.reserve(c.pieces.size());
+    for (std::size_t k = 0; k < c.pieces.size(); ++k) {
+        const Piece& p = c.pieces[k];
+        out.push_back({p.neighbor, p.start, c.piece_end(k), c.center, p.arc_span, c.radius});
+    }
+    return out;
+}
+
+py::array neighbors_array(const LimitedCell& c) {
+    const std::vector<Index> nb = c.neighbors();
+    py::array_t<Index> a(static_cast<py::ssize_t>(nb.size()));
+    std::copy(nb.begin(), nb.end(), a.mutable_data());
+    return a;
+}
+
+py::array vertices_array(const LimitedCell& c) {
+    const std::vector<Vec2> v = c.vertices();
+    py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{2}});
+    double* out = a.mutable_data();
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        out[2 * k] = v[k].x();
+        out[2 * k + 1] = v[k].y();
+    }
+    return a;
+}
+
+template <class F>
+py::array piece_array(const LimitedCell& c, F f) {
+    using T = decltype(f(c.pieces[0]));
+    py::array_t<T> a(static_cast<py::ssize_t>(c.pieces.size()));
+    T* out = a.mutable_data();
+    for (std::size_t k = 0; k < c.pieces.size(); ++k) out[k] = f(c.pieces[k]);
+    return a;
+}
+
+py::object cell_object(LimitedCell&& c) { return py::cast(PyCell{std::move(c), std::nullopt}); }
+
+const LimitedPartition& part_of(const py::object& self) { return self.cast<const PyPartition&>().part; }
+
+Index checked_index(const LimitedPartition& p, Index i) {
+    if (i < 0 || i >= p.size())
+        throw py::index_error("agent index " + std::to_string(i) + " out of range [0, " +
+                              std::to_string(p.size()) + ")");
+    return i;
+}
+
+std::string partition_json(const PyPartition& p, int indent) {
+    py::gil_scoped_release release;
+    if (indent < 0) return dvoronoi::io::to_json_string(p.part, p.method);  // streamed, == dump()
+    return dvoronoi::io::to_json(p.part, p.method).dump(indent);
+}
+
+/// None -> 0, which io/geojson.hpp reads as its default (radius / 1000).
+double tolerance_arg(const py::object& tolerance) {
+    if (tolerance.is_none()) return 0.0;
+    const double t = py::float_(tolerance);  // TypeError for non-numbers
+    if (!(t > 0.0) || !std::isfinite(t))
+        throw py::value_error("tolerance must be a positive finite number, got " + std::string(py::repr(tolerance)));
+    return t;
+}
+
+const char* kLimitedCellDoc = R"doc(limited_cell(center, others, radius, method="scan") -> LimitedCell
+
+The range-limited Voronoi cell V ∩ B(center, radius) of the agent at `center` among `others`, as a
+robot computes it from the positions it knows.
+
+Parameters
+----------
+center : (2,) array-like of float
+    The agent's position.
+others : (m, 2) array-like of float
+    Positions of the other agents, any memory layout (float64 arrays are not copied). Agents
+    farther than 2 * radius are ignored.
+radius : float
+    The cell radius R > 0.
+method : {"scan", "chords"}
+    "scan": Boundary Scan (He, Feng & Ren 2018), O(m log m). "chords": RCVC (Guruprasad &
+    Dasgupta 2012), O(m^2) worst case. Both return the same cell.
+
+Returns
+-------
+LimitedCell
+    Edge pieces name their neighbour by its row in `others`.
+
+Raises
+------
+ValueError
+    A wrong shape, a NaN/inf coordinate, a radius that is not positive and finite, an unknown
+    method, or an agent of `others` at `center` (CoincidentError, a ValueError).
+TypeError
+    Non-numeric input.
+
+Notes
+-----
+Neighbour sets and the order of pieces are decided with exact predicates; vertex coordinates and
+measures carry floating-point rounding. Thread-safe; the GIL is released for large `others`.
+)doc";
+
+const char* kLimitedCellsDoc = R"doc(limited_cells(points, radius, method="scan", threads=0, progress=None) -> LimitedPartition
+
+Every agent's range-limited Voronoi cell (the compiled core; `dvoronoi.limited_cells` wraps it with a
+progress bar and the shared result surface).
+
+`threads` = 0 uses every core; results do not depend on it. `progress(done, total)` is called from
+the calling thread with the GIL held; an exception it raises stops further calls and is re-raised
+when the computation ends (the computation itself cannot be interrupted). The GIL is released
+during the computation.
+)doc";
+
+}  // namespace
+
+void bind_cells(py::module_& m) {
+    // The docstrings below start with their own Python signatures (pybind11's would say `object`).
+    py::options options;
+    options.disable_function_signatures();
+
+    // ------------------------------------------------------------------ Piece
+    py::class_<PyPiece>(m, "Piece", "One piece of a cell boundary: a straight edge on the bisector "
+                                    "with one neighbour, or an arc of the cell's circle.")
+        .def_property_readonly("kind", [](const PyPiece& p) { return p.neighbor < 0 ? "arc" : "edge"; },
+                               "\"edge\" or \"arc\".")
+        .def_property_readonly("is_arc", [](const PyPiece& p) { return p.neighbor < 0; })
+        .def_property_readonly("neighbor", [](const PyPiece& p) { return p.neighbor; },
+                               "Edges: index of the agent across the edge. Arcs: -1.")
+        .def_property_readonly("start", [](const PyPiece& p) { return vec2_tuple(p.start); },
+                               "Start point (x, y).")
+        .def_property_readonly("end", [](const PyPiece& p) { return vec2_tuple(p.end); },
+                               "End point (x, y): the start of the next piece.")
+        .def_property_readonly("span", [](const PyPiece& p) { return p.span; },
+                               "Arcs: counter-clockwise angle swept, in (0, 2*pi]. Edges: 0.")
+        .def_property_readonly("center", [](const PyPiece& p) { return vec2_tuple(p.center); },
+                               "Centre of the cell's circle (the agent).")
+        .def_property_readonly("radius", [](const PyPiece& p) { return p.radius; })
+        .def("__repr__", [](const PyPiece& p) {
+            std::string s = p.neighbor < 0 ? "Piece(arc" : "Piece(edge, neighbor=" + std::to_string(p.neighbor);
+            s += ", start=(" + fmt(p.start.x()) + ", " + fmt(p.start.y()) + "), end=(" + fmt(p.end.x()) +
+                 ", " + fmt(p.end.y()) + ")";
+            if (p.neighbor < 0) s += ", span=" + fmt(p.span);
+            return s + ")";
+        });
+
+    // ------------------------------------------------------------------ LimitedCell
+    py::class_<PyCell>(m, "LimitedCell",
+                       "A range-limited Voronoi cell V_i ∩ B(p_i, R): a closed counter-clockwise cycle "
+                       "of pieces (edges and arcs). Measures are exact for the arcs (circular segments "
+                       "included) and computed on first access.")
+        .def_property_readonly("center", [](const PyCell& c) { return vec2_array(c.cell.center); },
+                               "The agent's position, shape (2,).")
+        .def_property_readonly("radius", [](const PyCell& c) { return c.cell.radius; })
+        .def_property_readonly("pieces", [](const PyCell& c) { return pieces_of(c.cell); },
+                               "The boundary pieces, counter-clockwise.")
+        .def_property_readonly("vertices", [](const PyCell& c) { return vertices_array(c.cell); },
+                               "Counter-clockwise vertices (the piece start points), shape (k, 2); "
+                               "empty for a full disk.")
+        .def_property_readonly("neighbors", [](const PyCell& c) { return neighbors_array(c.cell); },
+                               "Limited neighbours (int64, ascending): agents sharing an edge of "
+                               "positive length.")
+        .def_property_readonly("piece_neighbor",
+                               [](const PyCell& c) { return piece_array(c.cell, [](const Piece& p) { return p.neighbor; }); },
+                               "Per piece: neighbour index (edges) or -1 (arcs), int64.")
+        .def_property_readonly("piece_x",
+                               [](const PyCell& c) { return piece_array(c.cell, [](const Piece& p) { return p.start.x(); }); },
+                               "Per piece: x of the start point.")
+        .def_property_readonly("piece_y",
+                               [](const PyCell& c) { return piece_array(c.cell, [](const Piece& p) { return p.start.y(); }); },
+                               "Per piece: y of the start point.")
+        .def_property_readonly("piece_span",
+                               [](const PyCell& c) { return piece_array(c.cell, [](const Piece& p) { return p.arc_span; }); },
+                               "Per piece: arc angle in (0, 2*pi] for arcs, 0 for edges.")
+        .def_property_readonly("area", [](PyCell& c) { return c.measures().area; })
+        .def_property_readonly("centroid", [](PyCell& c) { return vec2_array(c.measures().centroid); },
+                               "Centroid, shape (2,).")
+        .def_property_readonly("perimeter", [](PyCell& c) { return c.measures().perimeter; })
+        .def_property_readonly("candidates", [](const PyCell& c) { return c.cell.candidates; },
+                               "Agents within 2R the algorithm examined (m in the papers).")
+        .def_property_readonly("chords_after_check", [](const PyCell& c) { return c.cell.chords_after_check; },
+                               "RCVC only: chords left after checkChords (M'); -1 otherwise.")
+        .def_property_readonly("is_full_disk",
+                               [](const PyCell& c) { return c.cell.pieces.size() == 1 && c.cell.pieces[0].is_arc(); },
+                               "True when no agent shapes the cell.")
+        .def("__len__", [](const PyCell& c) { return c.cell.pieces.size(); }, "Number of pieces.")
+        .def("to_json", [](const PyCell& c, int indent) {
+                 return indent < 0 ? dvoronoi::io::to_json_string(c.cell) : dvoronoi::io::to_json(c.cell).dump(indent);
+             },
+             py::arg("indent") = -1,
+             "to_json(indent=-1) -> str\n\nThe cell as JSON text (io/json.hpp's limited_cell schema).")
+        .def("to_geojson",
+             [](const PyCell& c, const py::object& tolerance) {
+                 return dvoronoi::io::to_geojson(c.cell, tolerance_arg(tolerance)).dump();
+             },
+             py::arg("tolerance") = py::none(),
+             "to_geojson(tolerance=None) -> str\n\nThe cell as a GeoJSON Feature text; arcs become chords within `tolerance` of the arc "
+             "(default radius / 1000).")
+        .def("__repr__", [](PyCell& c) {
+            std::string nb;
+            for (Index j : c.cell.neighbors()) nb += (nb.empty() ? "" : ", ") + std::to_string(j);
+            return "LimitedCell(center=(" + fmt(c.cell.center.x()) + ", " + fmt(c.cell.center.y()) +
+                   "), radius=" + fmt(c.cell.radius) + ", pieces=" + std::to_string(c.cell.pieces.size()) +
+                   ", neighbors=[" + nb + "], area=" + fmt(c.measures().area) + ")";
+        });
+
+    m.def(
+        "limited_cell",
+        [](py::handle center, py::handle others, double radius, const std::string& method) {
+            const Vec2 c = point_arg(center, "center");
+            const PointsArg o = points_arg(others, "others");
+            const Method meth = dvoronoi::parse_method(method);
+            if (o.rows > kReleaseGilAbove) {
+                LimitedCell cell;
+                {
+                    py::gil_scoped_release release;
+                    cell = dvoronoi::limited_cell(c, o.ref(), radius, meth);
+                }
+                return cell_object(std::move(cell));
+            }
+            return cell_object(dvoronoi::limited_cell(c, o.ref(), radius, meth));
+        },
+        py::arg("center"), py::arg("others"), py::arg("radius"), py::arg("method") = "scan",
+        kLimitedCellDoc);
+
+    // ------------------------------------------------------------------ LimitedPartition
+    using Self = py::object;
+
+    py::class_<PyPartition>(m, "LimitedPartition",
+                            "The range-limited Voronoi partition of n agents (compiled core). Arrays "
+                            "are read-only views that keep this object alive.")
+        .def_property_readonly("radius", [](const PyPartition& p) { return p.part.radius; })
+        .def_property_readonly("method", [](const PyPartition& p) { return dvoronoi::method_name(p.method); })
+        .def_property_readonly("points", [](const Self& s) { return view(part_of(s).points, s); },
+                               "The agents, shape (n, 2).")
+        .def_property_readonly("indptr", [](const Self& s) { return view(part_of(s).indptr, s); },
+                               "CSR row pointer of the limited-neighbour relation, int64, shape (n+1,).")
+        .def_property_readonly("indices", [](const Self& s) { return view(part_of(s).indices, s); },
+                               "CSR column indices (ascending per agent), int64.")
+        .def_property_readonly("areas", [](const Self& s) { return view(part_of(s).areas, s); })
+        .def_property_readonly("perimeters", [](const Self& s) { return view(part_of(s).perimeters, s); })
+        .def_property_readonly("centroids", [](const Self& s) { return view(part_of(s).centroids, s); },
+                               "Shape (n, 2).")
+        .def_property_readonly("candidates", [](const Self& s) { return view(part_of(s).candidates, s); },
+                               "Agents within 2R examined per agent, int64.")
+        .def_property_readonly("piece_ptr", [](const Self& s) { return view(part_of(s).piece_ptr, s); },
+                               "Agent i owns pieces [piece_ptr[i], piece_ptr[i+1]), int64.")
+        .def_property_readonly("piece_neighbor", [](const Self& s) { return view(part_of(s).piece_neighbor, s); },
+                               "Per piece: neighbour index (edges) or -1 (arcs), int64.")
+        .def_property_readonly("piece_x", [](const Self& s) { return view(part_of(s).piece_x, s); })
+        .def_property_readonly("piece_y", [](const Self& s) { return view(part_of(s).piece_y, s); })
+        .def_property_readonly("piece_span", [](const Self& s) { return view(part_of(s).piece_span, s); },
+                               "Per piece: arc angle in (0, 2*pi] for arcs, 0 for edges.")
+        .def("__len__", [](const PyPartition& p) { return p.part.size(); })
+        .def("cell", [](const PyPartition& p, Index i) { return cell_object(p.part.cell(checked_index(p.part, i))); },
+             py::arg("i"), "cell(i) -> LimitedCell\n\nAgent i's cell (neighbours in the partition's indexing).")
+        .def("neighbors",
+             [](const Self& s, Index i) {
+                 const LimitedPartition& p = part_of(s);
+                 checked_index(p, i);
+                 const auto ii = static_cast<std::size_t>(i);
+                 return view(p.indices.data() + p.indptr[ii], {static_cast<py::ssize_t>(p.indptr[ii + 1] - p.indptr[ii])},
+                             {static_cast<py::ssize_t>(sizeof(Index))}, s);
+             },
+             py::arg("i"), "neighbors(i) -> numpy.ndarray\n\nLimited neighbours of agent i: int64, ascending (a view into `indices`).")
+        .def("to_json", [](const PyPartition& p, int indent) { return partition_json(p, indent); },
+             py::arg("indent") = -1,
+             "to_json(indent=-1) -> str\n\nThe partition as JSON text, exactly what the CLI writes (compact for indent < 0).")
+        .def("to_geojson",
+             [](const PyPartition& p, const py::object& tolerance) {
+                 const double tol = tolerance_arg(tolerance);
+                 py::gil_scoped_release release;
+                 return dvoronoi::io::to_geojson_string(p.part, tol);
+             },
+             py::arg("tolerance") = py::none(),
+             "to_geojson(tolerance=None) -> str\n\nThe cells as a GeoJSON FeatureCollection text, exactly what the CLI writes; arcs become "
+             "chords within `tolerance` of the arc (default radius / 1000).")
+        .def("__repr__", [](const PyPartition& p) {
+            return "LimitedPartition(n=" + std::to_string(p.part.size()) + ", radius=" + fmt(p.part.radius) +
+                   ", method=\"" + dvoronoi::method_name(p.method) + "\")";
+        });
+
+    m.def(
+        "limited_cells",
+        [](py::handle points, double radius, const std::string& method, int threads, py::object progress) {
+            const PointsArg pts = points_arg(points, "points");
+            const Method meth = dvoronoi::parse_method(method);
+            if (threads < 0)
+                throw py::value_error("threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
+
+            // The callback runs with the GIL re-acquired. A Python exception must not unwind through
+            // the library's OpenMP region, so it is kept and re-raised after the computation.
+            std::optional<py::error_already_set> failure;
+            dvoronoi::ProgressFn fn;
+            if (!progress.is_none()) {
+                fn = [&progress, &failure](Index done, Index total) {
+                    py::gil_scoped_acquire gil;
+                    if (failure) return;
+                    try {
+                        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+                        progress(done, total);
+                    } catch (py::error_already_set& e) {
+                        failure.emplace(std::move(e));
+                    } catch (const std::exception& e) {
+                        PyErr_SetString(PyExc_RuntimeError, e.what());
+                        failure.emplace();
+                    }
+                };
+            }
+            auto result = std::make_unique<PyPartition>();
+            result->method = meth;
+            {
+                py::gil_scoped_release release;
+                result->part = dvoronoi::limited_cells(pts.ref(), radius, meth, threads, fn);
+            }
+            if (failure) throw std::move(*failure);
+            return result;
+        },
+        py::arg("points"), py::arg("radius"), py::arg("method") = "scan", py::arg("threads") = 0,
+        py::arg("progress") = py::none(), kLimitedCellsDoc);
+}

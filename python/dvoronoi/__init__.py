@@ -1,0 +1,28 @@
+"""dvoronoi: exact range-limited Voronoi cells for multi-robot systems.
+
+>>> import dvoronoi as dv
+>>> part = dv.limited_cells(dv.datasets.intel_lab(), radius=3.0)
+>>> part.neighbors(0), part.areas[0], part.cell(0).pieces
+
+One agent's cell from the positions it knows (a robot's control step):
+
+>>> cell = dv.limited_cell(center, others, radius)
+>>> cell.neighbors, cell.area, cell.centroid
+
+Every result answers in the same shape: ``neighbors(i)``, CSR ``indptr``/``indices``, ``areas``,
+``centroids``, ``cell(i)``, ``to_json()``, ``to_geojson()``, ``plot()``.
+"""
+from ._core import CoincidentError, LimitedCell, Piece, __version__, limited_cell
+from ._partition import LimitedPartition, limited_cells
+from . import datasets
+
+__all__ = [
+    "limited_cell",
+    "limited_cells",
+    "LimitedCell",
+    "LimitedPartition",
+    "Piece",
+    "CoincidentError",
+    "datasets",
+    "__version__",
+]

@@ -1,0 +1,200 @@
+"""All agents' range-limited Voronoi cells: :func:`limited_cells` and :class:`LimitedPartition`."""
+from __future__ import annotations
+
+from functools import cached_property
+from typing import Any, Callable, Optional, Union
+
+import numpy as np
+
+from . import _core
+from ._result import CellResult
+
+#: From this many agents on, ``limited_cells(progress=None)`` shows a tqdm progress bar.
+PROGRESS_BAR_FROM = 200_000
+
+ProgressArg = Union[None, bool, Callable[[int, int], Any]]
+
+
+class LimitedPartition(CellResult):
+    """The range-limited Voronoi partition of n agents: cell ``i`` is ``V_i ∩ B(p_i, R)``.
+
+    Arrays are read-only numpy views into the compiled result (no copies); they keep it alive.
+
+    Attributes
+    ----------
+    points : (n, 2) float64
+        The agents, in input order.
+    radius : float
+        The cell radius R.
+    method : str
+        ``"scan"`` or ``"chords"``.
+    indptr, indices : int64
+        Limited neighbours in scipy's CSR layout (ascending per agent).
+    areas, perimeters : (n,) float64
+        Exact (circular segments included).
+    centroids : (n, 2) float64
+    candidates : (n,) int64
+        Agents within 2R each cell's computation examined.
+    piece_ptr, piece_neighbor, piece_x, piece_y, piece_span
+        The flat boundary pieces: agent ``i`` owns pieces ``piece_ptr[i]:piece_ptr[i+1]``, each starting
+        at ``(piece_x, piece_y)``; an edge has ``piece_neighbor >= 0``, an arc has ``-1`` and sweeps
+        ``piece_span`` radians counter-clockwise.
+    """
+
+    def __init__(self, core: "_core.LimitedPartition") -> None:
+        if not isinstance(core, _core.LimitedPartition):
+            raise TypeError("LimitedPartition wraps the result of dvoronoi.limited_cells(); "
+                            "call limited_cells(points, radius) instead")
+        self._core = core
+
+    # -- arrays (views, cached so repeated access is free)
+    @cached_property
+    def points(self) -> np.ndarray:
+        return self._core.points
+
+    @property
+    def radius(self) -> float:
+        return self._core.radius
+
+    @property
+    def method(self) -> str:
+        return self._core.method
+
+    @cached_property
+    def indptr(self) -> np.ndarray:
+        return self._core.indptr
+
+    @cached_property
+    def indices(self) -> np.ndarray:
+        return self._core.indices
+
+    @cached_property
+    def areas(self) -> np.ndarray:
+        return self._core.areas
+
+    @cached_property
+    def perimeters(self) -> np.ndarray:
+        return self._core.perimeters
+
+    @cached_property
+    def centroids(self) -> np.ndarray:
+        return self._core.centroids
+
+    @cached_property
+    def candidates(self) -> np.ndarray:
+        return self._core.candidates
+
+    @cached_property
+    def piece_ptr(self) -> np.ndarray:
+        return self._core.piece_ptr
+
+    @cached_property
+    def piece_neighbor(self) -> np.ndarray:
+        return self._core.piece_neighbor
+
+    @cached_property
+    def piece_x(self) -> np.ndarray:
+        return self._core.piece_x
+
+    @cached_property
+    def piece_y(self) -> np.ndarray:
+        return self._core.piece_y
+
+    @cached_property
+    def piece_span(self) -> np.ndarray:
+        return self._core.piece_span
+
+    # -- the shared surface
+    def __len__(self) -> int:
+        return len(self._core)
+
+    def neighbors(self, i: int) -> np.ndarray:
+        """Limited neighbours of agent `i`: int64, ascending (a read-only view into ``indices``)."""
+        return self._core.neighbors(self._index(i))
+
+    def cell(self, i: int) -> "_core.LimitedCell":
+        """Agent `i`'s cell; edge pieces name neighbours by their index in ``points``."""
+        return self._core.cell(self._index(i))
+
+    def _json_text(self, indent: Optional[int]) -> str:
+        return self._core.to_json(-1 if indent is None else int(indent))
+
+    def _geojson_text(self, tolerance: Optional[float]) -> str:
+        return self._core.to_geojson(tolerance)
+
+    def __repr__(self) -> str:
+        n = len(self)
+        mean = (len(self.indices) / n) if n else 0.0
+        return (f"LimitedPartition(n={n}, radius={self.radius:g}, method={self.method!r}, "
+                f"mean_neighbors={mean:.3g}, total_area={float(np.sum(self.areas)):.6g})")
+
+
+def _agent_count(points: Any) -> Optional[int]:
+    shape = getattr(points, "shape", None)
+    if shape is not None and len(shape) >= 1:
+        return int(shape[0])
+    try:
+        return len(points)
+    except TypeError:
+        return None
+
+
+def limited_cells(points: Any, radius: float, method: str = "scan", threads: Optional[int] = None,
+                  progress: ProgressArg = None) -> LimitedPartition:
+    """Every agent's range-limited Voronoi cell ``V_i ∩ B(p_i, radius)``.
+
+    Parameters
+    ----------
+    points : (n, 2) array-like of float
+        Agent positions, any memory layout (C-contiguous float64 is not copied). Empty input gives an
+        empty partition; one agent gets the full disk.
+    radius : float
+        The cell radius R > 0 (only agents closer than 2R shape a cell).
+    method : {"scan", "chords"}
+        Boundary Scan (O(m log m) per agent) or RCVC chords (O(m^2) worst case); same result.
+    threads : int, optional
+        Worker threads; None or 0 uses every core. The result does not depend on it.
+    progress : bool or callable, optional
+        None: a tqdm progress bar from ``PROGRESS_BAR_FROM`` (200 000) agents on. True/False: always/never.
+        A callable is called as ``progress(done, total)`` instead.
+
+    Returns
+    -------
+    LimitedPartition
+
+    Raises
+    ------
+    ValueError
+        A wrong shape, NaN/inf coordinates (the message names the index), a radius that is not
+        positive and finite, an unknown method, or coinciding agents (:class:`CoincidentError`, which
+        names the first pair).
+    TypeError
+        Non-numeric input.
+
+    Notes
+    -----
+    The GIL is released during the computation. Limited-neighbour sets are exact (exact predicates);
+    vertices, areas and centroids carry floating-point rounding.
+    """
+    threads = 0 if threads is None else int(threads)
+    bar = None
+    callback: Optional[Callable[[int, int], Any]] = None
+    if callable(progress) and not isinstance(progress, bool):
+        callback = progress
+    else:
+        n = _agent_count(points)
+        show = bool(progress) if progress is not None else (n is not None and n >= PROGRESS_BAR_FROM)
+        if show and n:
+            from tqdm.auto import tqdm
+
+            bar = tqdm(total=n, unit="agents", desc="limited cells")
+
+            def callback(done: int, total: int) -> None:
+                bar.update(done - bar.n)
+
+    try:
+        core = _core.limited_cells(points, radius, method, threads, callback)
+    finally:
+        if bar is not None:
+            bar.close()
+    return LimitedPartition(core)

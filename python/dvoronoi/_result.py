@@ -1,0 +1,119 @@
+"""The result surface every dvoronoi result shares (SPEC "One surface for every result").
+
+A result that relates agents has ``neighbors(i)`` (int64, ascending unless the result defines an
+order), the relation as CSR arrays ``indptr``/``indices`` (scipy's layout, input order), ``to_csr()``,
+``to_json(path=None)`` and ``plot(ax=None, ...)``. A result with cells adds ``areas``, ``centroids``,
+``cell(i)`` and ``to_geojson(path=None, tolerance=None)``.
+
+Subclasses provide the arrays and ``_json_text(indent)``; cell results also provide the flat piece
+arrays (``piece_ptr``, ``piece_neighbor``, ``piece_x``, ``piece_y``, ``piece_span``), ``points`` and
+``radius`` from which plots are drawn, and ``_geojson_text(tolerance)``.
+"""
+from __future__ import annotations
+
+import operator
+from typing import TYPE_CHECKING, Any, Optional
+
+import numpy as np
+
+from ._io import PathLike, atomic_write_text
+
+if TYPE_CHECKING:  # pragma: no cover
+    import matplotlib.axes
+    import scipy.sparse
+
+
+class Result:
+    """Base of every result that relates agents (neighbour relation as CSR arrays)."""
+
+    indptr: np.ndarray
+    indices: np.ndarray
+
+    def __len__(self) -> int:
+        return int(len(self.indptr) - 1)
+
+    def _index(self, i: Any) -> int:
+        i = operator.index(i)
+        n = len(self)
+        if not 0 <= i < n:
+            raise IndexError(f"agent index {i} out of range [0, {n})")
+        return i
+
+    def neighbors(self, i: int) -> np.ndarray:
+        """Neighbours of agent `i` as an int64 array (ascending unless the result defines an order)."""
+        i = self._index(i)
+        return self.indices[self.indptr[i] : self.indptr[i + 1]]
+
+    def to_csr(self) -> "scipy.sparse.csr_matrix":
+        """The neighbour relation as an ``n x n`` ``scipy.sparse.csr_matrix`` of ones (needs scipy)."""
+        try:
+            import scipy.sparse
+        except ImportError as e:  # pragma: no cover - scipy is a test dependency
+            raise ImportError("to_csr() needs scipy: pip install scipy") from e
+        n = len(self)
+        data = np.ones(len(self.indices), dtype=np.float64)
+        return scipy.sparse.csr_matrix(
+            (data, np.array(self.indices), np.array(self.indptr)), shape=(n, n)
+        )
+
+    def _json_text(self, indent: Optional[int]) -> str:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def to_json(self, path: Optional[PathLike] = None, *, indent: Optional[int] = None) -> Optional[str]:
+        """The result as JSON, with the field names the ``dvoronoi`` CLI writes.
+
+        Returns the text when `path` is None; otherwise writes it to `path` atomically and returns None.
+        """
+        text = self._json_text(indent)
+        if path is None:
+            return text
+        atomic_write_text(path, text if text.endswith("\n") else text + "\n")
+        return None
+
+    def plot(self, ax: "Optional[matplotlib.axes.Axes]" = None, **kwargs: Any) -> "matplotlib.axes.Axes":
+        """Draw the result with matplotlib and return the axes (see :mod:`dvoronoi.plotting`)."""
+        from . import plotting
+
+        return plotting.plot(self, ax=ax, **kwargs)
+
+
+class CellResult(Result):
+    """Base of every result with cells: ``areas``, ``centroids``, ``cell(i)``, GeoJSON export."""
+
+    areas: np.ndarray
+    centroids: np.ndarray
+    points: np.ndarray
+    radius: float
+    piece_ptr: np.ndarray
+    piece_neighbor: np.ndarray
+    piece_x: np.ndarray
+    piece_y: np.ndarray
+    piece_span: np.ndarray
+
+    def cell(self, i: int) -> Any:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def cells(self):
+        """Iterate over the cells in input order."""
+        for i in range(len(self)):
+            yield self.cell(i)
+
+    def to_geojson(self, path: Optional[PathLike] = None, tolerance: Optional[float] = None) -> Optional[str]:
+        """The cells as a GeoJSON FeatureCollection of polygons, one Feature per agent in input order
+        (exactly what the CLI writes).
+
+        GeoJSON has no arcs: each arc is replaced by inscribed chords no farther than `tolerance`
+        from it (default ``radius / 1000``), so a polygon's area is below the exact ``areas[i]`` by
+        at most ``tolerance`` times the cell's arc length. Each Feature's properties are ``agent``,
+        the exact ``area`` and the ``neighbors``; rings are closed and counter-clockwise.
+
+        Returns the text when `path` is None; otherwise writes it atomically and returns None.
+        """
+        text = self._geojson_text(tolerance)
+        if path is None:
+            return text
+        atomic_write_text(path, text + "\n")
+        return None
+
+    def _geojson_text(self, tolerance: Optional[float]) -> str:  # pragma: no cover - abstract
+        raise NotImplementedError
