@@ -1,0 +1,413 @@
+// bench_limited_cgal: dvoronoi's range-limited cells against CGAL's Delaunay triangulation, on the same
+// uniform random points, in one process.
+//
+// What is timed (best of --reps runs each, destruction of the result excluded):
+//   (a) CGAL: Delaunay_triangulation_2 with Exact_predicates_inexact_constructions_kernel, built by a
+//       range insert of (point, index) pairs (CGAL spatially sorts them), then a neighbour walk: for
+//       every agent, circulate its incident vertices and write the neighbour indices into CSR arrays
+//       (input order, ascending per agent, like dvoronoi's). This is the full, unlimited Delaunay
+//       graph: no cell geometry, no areas.
+//   (b) dvoronoi::limited_cells(Method::Scan, 1 thread): limited neighbours (CSR) and every cell's
+//       boundary pieces, area, perimeter and centroid, exact combinatorics.
+//   (c) the same with --threads threads (default 2).
+//   (d) dvoronoi::limited_cells(Method::Chords, 1 thread): RCVC, same output.
+// The two do different work: CGAL answers "who are the Voronoi neighbours" for the whole plane;
+// dvoronoi answers "what is each agent's cell within R" (which a robot needs) and never builds a global
+// structure. The ratio says what a user pays for one answer or the other on the same input.
+//
+// Points: n uniform in [0,1)^2 (std::mt19937_64, --seed). R = sqrt(k / (4 pi n)) so that about k agents
+// (--k, default 30) lie within 2R of each agent.
+//
+// Sanity (outside the timings): Scan, Chords, 1 and T threads give identical neighbour CSR, and every
+// limited neighbour is a Delaunay neighbour. A mismatch is printed and the exit code is 2.
+//
+// Usage:
+//   bench_limited_cgal [--n 1e6] [--k 30] [--reps 3] [--threads 2] [--seed 1] [--json]
+//   bench_limited_cgal --sizes 1e4,1e5,1e6      time per agent for each size (flatness check)
+
+#include <dvoronoi/partition/limited_partition.hpp>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/version.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace {
+
+using dvoronoi::Index;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Csr {
+    std::vector<Index> indptr, indices;
+};
+
+/// CGAL's answer: the triangulation (kept alive so its destruction is not timed) and the CSR graph.
+struct CgalResult {
+    std::unique_ptr<Delaunay> dt;
+    Csr graph;
+};
+
+CgalResult cgal_delaunay_neighbors(const dvoronoi::Points& pts) {
+    const Index n = pts.rows();
+    CgalResult r;
+    std::vector<std::pair<K::Point_2, Index>> input;
+    input.reserve(static_cast<std::size_t>(n));
+    for (Index i = 0; i < n; ++i) input.emplace_back(K::Point_2(pts(i, 0), pts(i, 1)), i);
+    r.dt = std::make_unique<Delaunay>();
+    r.dt->insert(input.begin(), input.end());  // spatial sort + insertion
+
+    std::vector<Delaunay::Vertex_handle> handle(static_cast<std::size_t>(n));
+    for (auto v : r.dt->finite_vertex_handles()) handle[static_cast<std::size_t>(v->info())] = v;
+    Csr& g = r.graph;
+    g.indptr.assign(static_cast<std::size_t>(n) + 1, 0);
+    g.indices.reserve(static_cast<std::size_t>(n) * 6 + 16);
+    for (Index i = 0; i < n; ++i) {
+        const std::size_t begin = g.indices.size();
+        auto c = r.dt->incident_vertices(handle[static_cast<std::size_t>(i)]);
+        const auto done = c;
+        if (c != nullptr) {
+            do {
+                if (!r.dt->is_infinite(c)) g.indices.push_back(c->info());
+            } while (++c != done);
+        }
+        std::sort(g.indices.begin() + static_cast<std::ptrdiff_t>(begin), g.indices.end());
+        g.indptr[static_cast<std::size_t>(i) + 1] = static_cast<Index>(g.indices.size());
+    }
+    return r;
+}
+
+double now_seconds() {
+    using clock = std::chrono::steady_clock;
+    return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+/// Best of `reps` runs of f(), which returns a result; the result of the last run is kept in `keep`
+/// and every other result is destroyed outside the timed region.
+template <class F, class R>
+double best_of(int reps, F&& f, R& keep) {
+    double best = 1e300;
+    for (int r = 0; r < reps; ++r) {
+        R tmp;
+        const double t0 = now_seconds();
+        tmp = f();
+        const double t1 = now_seconds();
+        best = std::min(best, t1 - t0);
+        if (r + 1 == reps) keep = std::move(tmp);
+    }
+    return best;
+}
+
+struct Timing {
+    Index n = 0;
+    double radius = 0.0;
+    double mean_candidates = 0.0;      // agents within 2R
+    double mean_limited = 0.0;         // limited neighbours
+    double mean_delaunay = 0.0;        // Delaunay neighbours (CGAL)
+    double cgal = 0.0, scan1 = 0.0, scant = 0.0, chords1 = 0.0;
+    int threads = 2;
+    bool ok = true;
+    std::string problem;
+};
+
+dvoronoi::Points uniform_points(Index n, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    dvoronoi::Points p(n, 2);
+    for (Index i = 0; i < n; ++i) {
+        p(i, 0) = u(rng);
+        p(i, 1) = u(rng);
+    }
+    return p;
+}
+
+Timing run(Index n, double k, int reps, int threads, std::uint64_t seed, bool verbose) {
+    Timing t;
+    t.n = n;
+    t.threads = threads;
+    t.radius = std::sqrt(k / (4.0 * kPi * static_cast<double>(n)));
+    const dvoronoi::Points pts = uniform_points(n, seed);
+    auto note = [&](const char* what) {
+        if (verbose) std::fprintf(stderr, "  n = %lld: %s ...\n", static_cast<long long>(n), what);
+    };
+
+    CgalResult cg;
+    note("CGAL Delaunay_triangulation_2 + neighbour walk");
+    t.cgal = best_of(reps, [&] { return cgal_delaunay_neighbors(pts); }, cg);
+    cg.dt.reset();  // untimed; only the neighbour CSR is needed from here on
+
+    // Only the neighbour CSR (and the candidate counts) are kept for the checks: four partitions of
+    // 1e6 agents alive at once would measure the allocator, not the algorithms.
+    struct Kept {
+        Csr graph;
+        std::vector<Index> candidates;
+    };
+    auto keep = [](dvoronoi::LimitedPartition&& p) {
+        Kept k;
+        k.graph.indptr = std::move(p.indptr);
+        k.graph.indices = std::move(p.indices);
+        k.candidates = std::move(p.candidates);
+        return k;
+    };
+    auto dv_run = [&](dvoronoi::Method m, int nthreads, double& seconds) {
+        dvoronoi::LimitedPartition p;
+        seconds = best_of(reps, [&] { return dvoronoi::limited_cells(pts, t.radius, m, nthreads); }, p);
+        return keep(std::move(p));
+    };
+    note("dvoronoi Scan, 1 thread");
+    const Kept scan1 = dv_run(dvoronoi::Method::Scan, 1, t.scan1);
+    note("dvoronoi Scan, T threads");
+    const Kept scant = dv_run(dvoronoi::Method::Scan, threads, t.scant);
+    note("dvoronoi Chords, 1 thread");
+    const Kept chords1 = dv_run(dvoronoi::Method::Chords, 1, t.chords1);
+
+    // Sanity, untimed.
+    double cand = 0.0;
+    for (Index c : scan1.candidates) cand += static_cast<double>(c);
+    t.mean_candidates = n ? cand / static_cast<double>(n) : 0.0;
+    t.mean_limited = n ? static_cast<double>(scan1.graph.indices.size()) / static_cast<double>(n) : 0.0;
+    t.mean_delaunay = n ? static_cast<double>(cg.graph.indices.size()) / static_cast<double>(n) : 0.0;
+    auto same = [](const Kept& a, const Kept& b) {
+        return a.graph.indptr == b.graph.indptr && a.graph.indices == b.graph.indices;
+    };
+    if (!same(scan1, scant)) { t.ok = false; t.problem += " scan(1 thread) != scan(T threads);"; }
+    if (!same(scan1, chords1)) { t.ok = false; t.problem += " scan != chords;"; }
+    Index bad = -1;
+    for (Index i = 0; i < n && bad < 0; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        const Index* lb = scan1.graph.indices.data() + scan1.graph.indptr[ii];
+        const Index* le = scan1.graph.indices.data() + scan1.graph.indptr[ii + 1];
+        const Index* db = cg.graph.indices.data() + cg.graph.indptr[ii];
+        const Index* de = cg.graph.indices.data() + cg.graph.indptr[ii + 1];
+        if (!std::includes(db, de, lb, le)) bad = i;
+    }
+    if (bad >= 0) {
+        t.ok = false;
+        t.problem += " agent " + std::to_string(bad) + " has a limited neighbour that is not a Delaunay neighbour;";
+    }
+    return t;
+}
+
+double ns_per_agent(double seconds, Index n) { return n ? seconds * 1e9 / static_cast<double>(n) : 0.0; }
+
+std::vector<Index> parse_sizes(const std::string& s) {
+    std::vector<Index> out;
+    std::size_t pos = 0;
+    while (pos <= s.size()) {
+        const std::size_t comma = s.find(',', pos);
+        const std::string tok = s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+        if (!tok.empty()) out.push_back(static_cast<Index>(std::llround(std::stod(tok))));
+        if (comma == std::string::npos) break;
+        pos = comma + 1;
+    }
+    return out;
+}
+
+int hardware_threads() {
+#ifdef _OPENMP
+    return omp_get_num_procs();
+#else
+    return static_cast<int>(std::thread::hardware_concurrency());
+#endif
+}
+
+std::string cpu_model() {
+    std::ifstream f("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(f, line))
+        if (line.rfind("model name", 0) == 0) {
+            const auto colon = line.find(':');
+            if (colon != std::string::npos) return line.substr(colon + 2);
+        }
+    return "unknown";
+}
+
+void usage() {
+    std::puts(
+        "usage: bench_limited_cgal [--n N] [--k K] [--reps R] [--threads T] [--seed S] [--json]\n"
+        "       bench_limited_cgal --sizes N1,N2,... [--k K] [--reps R] [--threads T] [--seed S] [--json]\n"
+        "  --n        agents (default 1e6)\n"
+        "  --k        expected agents within 2R; R = sqrt(k / (4 pi n)) on the unit square (default 30)\n"
+        "  --reps     runs per method, the best is reported (default 3)\n"
+        "  --threads  threads of the multi-threaded dvoronoi run (default 2)\n"
+        "  --sizes    one row per size: time per agent (flatness check)\n"
+        "  --json     print one JSON object instead of the tables");
+}
+
+void print_json(const std::vector<Timing>& rows, double k, int reps) {
+    std::printf("{\"cgal_version\": \"%s\", \"cpu\": \"%s\", \"hardware_threads\": %d, \"openmp\": %s, "
+                "\"native\": %s, \"k\": %g, \"reps\": %d, \"rows\": [",
+                CGAL_VERSION_STR, cpu_model().c_str(), hardware_threads(),
+#ifdef _OPENMP
+                "true",
+#else
+                "false",
+#endif
+#ifdef DVORONOI_BENCH_NATIVE
+                "true",
+#else
+                "false",
+#endif
+                k, reps);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const Timing& t = rows[r];
+        std::printf("%s{\"n\": %lld, \"radius\": %.17g, \"threads\": %d, \"mean_candidates\": %.6g, "
+                    "\"mean_limited_neighbors\": %.6g, \"mean_delaunay_neighbors\": %.6g, "
+                    "\"cgal_s\": %.6g, \"scan1_s\": %.6g, \"scanT_s\": %.6g, \"chords1_s\": %.6g, "
+                    "\"ok\": %s, \"problem\": \"%s\"}",
+                    r ? ", " : "", static_cast<long long>(t.n), t.radius, t.threads, t.mean_candidates,
+                    t.mean_limited, t.mean_delaunay, t.cgal, t.scan1, t.scant, t.chords1,
+                    t.ok ? "true" : "false", t.problem.c_str());
+    }
+    std::printf("]}\n");
+}
+
+void print_header(double k, int reps) {
+    std::printf("dvoronoi limited_cells vs CGAL %s Delaunay_triangulation_2 (Epick) + neighbour walk\n",
+                CGAL_VERSION_STR);
+    std::printf("CPU: %s, %d hardware threads, OpenMP: %s, -march=native: %s; best of %d runs\n",
+                cpu_model().c_str(), hardware_threads(),
+#ifdef _OPENMP
+                "yes",
+#else
+                "no (the T-thread run is single-threaded)",
+#endif
+#ifdef DVORONOI_BENCH_NATIVE
+                "yes",
+#else
+                "no",
+#endif
+                reps);
+    std::printf("points: uniform in [0,1)^2, R = sqrt(%g / (4 pi n)) (about %g agents within 2R)\n", k, k);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Index n = 1000000;
+    double k = 30.0;
+    int reps = 3, threads = 2;
+    std::uint64_t seed = 1;
+    bool json = false;
+    std::string sizes;
+    for (int a = 1; a < argc; ++a) {
+        const std::string arg = argv[a];
+        auto value = [&]() -> std::string {
+            if (a + 1 >= argc) {
+                std::fprintf(stderr, "bench_limited_cgal: %s needs a value\n", arg.c_str());
+                std::exit(1);
+            }
+            return argv[++a];
+        };
+        try {
+            if (arg == "--n") n = static_cast<Index>(std::llround(std::stod(value())));
+            else if (arg == "--k") k = std::stod(value());
+            else if (arg == "--reps") reps = std::stoi(value());
+            else if (arg == "--threads") threads = std::stoi(value());
+            else if (arg == "--seed") seed = static_cast<std::uint64_t>(std::stoull(value()));
+            else if (arg == "--sizes") sizes = value();
+            else if (arg == "--json") json = true;
+            else if (arg == "-h" || arg == "--help") { usage(); return 0; }
+            else {
+                std::fprintf(stderr, "bench_limited_cgal: unknown argument %s\n", arg.c_str());
+                usage();
+                return 1;
+            }
+        } catch (const std::exception&) {
+            std::fprintf(stderr, "bench_limited_cgal: bad value for %s\n", arg.c_str());
+            return 1;
+        }
+    }
+    if (n < 1 || reps < 1 || threads < 1 || !(k > 0.0)) {
+        std::fprintf(stderr, "bench_limited_cgal: --n, --reps, --threads and --k must be positive\n");
+        return 1;
+    }
+#ifndef _OPENMP
+    threads = 1;
+#endif
+
+    std::vector<Timing> rows;
+    try {
+        if (!sizes.empty()) {
+            for (Index s : parse_sizes(sizes)) rows.push_back(run(s, k, reps, threads, seed, !json));
+        } else {
+            rows.push_back(run(n, k, reps, threads, seed, !json));
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_limited_cgal: %s\n", e.what());
+        return 1;
+    }
+    bool ok = true;
+    for (const Timing& t : rows) ok = ok && t.ok;
+
+    if (json) {
+        print_json(rows, k, reps);
+        return ok ? 0 : 2;
+    }
+    print_header(k, reps);
+    if (sizes.empty()) {
+        const Timing& t = rows[0];
+        std::printf("n = %lld, seed %llu, R = %.6g; per agent: %.2f agents within 2R, %.2f limited neighbours, "
+                    "%.2f Delaunay neighbours\n\n",
+                    static_cast<long long>(t.n), static_cast<unsigned long long>(seed), t.radius,
+                    t.mean_candidates, t.mean_limited, t.mean_delaunay);
+        std::printf("| %-46s | %9s | %9s | %-26s |\n", "what", "time (s)", "ns/agent", "ratio");
+        std::printf("|%s|%s|%s|%s|\n", std::string(48, '-').c_str(), std::string(11, '-').c_str(),
+                    std::string(11, '-').c_str(), std::string(28, '-').c_str());
+        auto row = [&](const char* what, double s, const std::string& ratio) {
+            std::printf("| %-46s | %9.3f | %9.0f | %-26s |\n", what, s, ns_per_agent(s, t.n), ratio.c_str());
+        };
+        char buf[128];
+        row("(a) CGAL Delaunay + neighbour walk, 1 thread", t.cgal, "1 (reference)");
+        std::snprintf(buf, sizeof buf, "%.2f x CGAL time", t.scan1 / t.cgal);
+        row("(b) dvoronoi Scan, 1 thread", t.scan1, buf);
+        char what[64];
+        std::snprintf(what, sizeof what, "(c) dvoronoi Scan, %d threads", t.threads);
+        std::snprintf(buf, sizeof buf, "%.2f x speed-up over (b)", t.scan1 / t.scant);
+        row(what, t.scant, buf);
+        std::snprintf(buf, sizeof buf, "%.2f x CGAL, %.2f x Scan", t.chords1 / t.cgal, t.chords1 / t.scan1);
+        row("(d) dvoronoi Chords (RCVC), 1 thread", t.chords1, buf);
+        std::printf("\n(a) gives the full Delaunay graph only; (b)-(d) give limited neighbours plus every cell's\n"
+                    "pieces, area, perimeter and centroid. Checks: %s\n",
+                    t.ok ? "Scan = Chords = multi-threaded, limited neighbours within Delaunay ones: ok"
+                         : ("FAILED:" + t.problem).c_str());
+    } else {
+        std::printf("seed %llu; time per agent in ns (flat = linear scaling)\n\n",
+                    static_cast<unsigned long long>(seed));
+        std::printf("| %10s | %10s | %8s | %10s | %12s | %12s | %12s | %13s |\n", "n", "R", "in 2R",
+                    "CGAL", "Scan 1 thr", "Scan T thr", "Chords 1 thr", "Scan1 / CGAL");
+        std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|\n", std::string(12, '-').c_str(), std::string(12, '-').c_str(),
+                    std::string(10, '-').c_str(), std::string(12, '-').c_str(), std::string(14, '-').c_str(),
+                    std::string(14, '-').c_str(), std::string(14, '-').c_str(), std::string(15, '-').c_str());
+        for (const Timing& t : rows)
+            std::printf("| %10lld | %10.4g | %8.2f | %10.0f | %12.0f | %12.0f | %12.0f | %13.2f |\n",
+                        static_cast<long long>(t.n), t.radius, t.mean_candidates, ns_per_agent(t.cgal, t.n),
+                        ns_per_agent(t.scan1, t.n), ns_per_agent(t.scant, t.n), ns_per_agent(t.chords1, t.n),
+                        t.scan1 / t.cgal);
+        std::printf("\nT = %d threads. Checks: %s\n", rows.empty() ? threads : rows[0].threads,
+                    ok ? "ok" : "FAILED (see --json)");
+    }
+    return ok ? 0 : 2;
+}

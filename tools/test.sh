@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Fresh machine -> every test: system packages, the Python package with its test extras, the C++
+# tests (unit tests and the CGAL oracle target) under ctest, then pytest (API, CLI, oracle).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash tools/install_system_deps.sh
+python3 -m pip install --quiet ".[test]"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDVORONOI_BUILD_TESTS=ON -DDVORONOI_BUILD_CLI=ON
+cmake --build build -j "$(nproc)"
+ctest --test-dir build --output-on-failure
+DVORONOI_CGAL_ORACLE="$PWD/build/tests/oracle/dvoronoi_cgal_oracle" \
+DVORONOI_CLI="$PWD/build/cpp/cli/dvoronoi" \
+  python3 -m pytest tests/python -q
