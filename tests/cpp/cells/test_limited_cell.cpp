@@ -128,6 +128,18 @@ TEST_CASE("bad input: clear errors naming the argument") {
         CHECK(e.second() == 7);
         CHECK(std::string(e.what()).find("points[2] and points[7]") != std::string::npos);
     }
+    // One crowded grid cell (radius much larger than the spread): the lowest pair is named.
+    Points crowd(100, 2);
+    for (Index i = 0; i < 100; ++i) crowd.row(i) << static_cast<double>(i) * 1e-3, 0.0;
+    crowd.row(9) = crowd.row(5);
+    crowd.row(40) = crowd.row(3);
+    try {
+        limited_cells(crowd, 10.0);
+        FAIL("coinciding agents must throw");
+    } catch (const CoincidentError& e) {
+        CHECK(e.first() == 3);
+        CHECK(e.second() == 40);
+    }
     // Empty input and one agent work.
     CHECK(limited_cells(Points(0, 2), 1.0).size() == 0);
     const LimitedPartition one = limited_cells(Points::Constant(1, 2, 5.0), 1.0);

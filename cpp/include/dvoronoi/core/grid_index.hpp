@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 namespace dvoronoi {
@@ -67,6 +68,48 @@ public:
             xs_[s] = pts(order_[s], 0);
             ys_[s] = pts(order_[s], 1);
         }
+    }
+
+    /// The lowest pair (i, j), i < j in lexicographic order, of agents with identical coordinates, or
+    /// (-1, -1). Identical points share a grid cell, so only runs of one cell are compared: O(n)
+    /// expected, O(k log k) for a crowded cell of k agents.
+    std::pair<Index, Index> first_duplicate() const {
+        std::pair<Index, Index> best{-1, -1};
+        const auto consider = [&](Index a, Index b) {
+            if (a > b) std::swap(a, b);
+            if (best.first < 0 || a < best.first || (a == best.first && b < best.second)) best = {a, b};
+        };
+        std::vector<std::size_t> run;
+        const std::size_t n = order_.size();
+        std::size_t lo = 0;
+        while (lo < n) {
+            std::size_t hi = lo + 1;
+            const Key k0 = keys_[static_cast<std::size_t>(order_[lo])];
+            while (hi < n) {
+                const Key& k = keys_[static_cast<std::size_t>(order_[hi])];
+                if (k.cx != k0.cx || k.cy != k0.cy) break;
+                ++hi;
+            }
+            if (hi - lo <= 32) {
+                for (std::size_t a = lo; a < hi; ++a)
+                    for (std::size_t b = a + 1; b < hi; ++b)
+                        if (xs_[a] == xs_[b] && ys_[a] == ys_[b]) consider(order_[a], order_[b]);
+            } else {
+                run.resize(hi - lo);
+                std::iota(run.begin(), run.end(), lo);
+                std::sort(run.begin(), run.end(), [&](std::size_t a, std::size_t b) {
+                    if (xs_[a] != xs_[b]) return xs_[a] < xs_[b];
+                    if (ys_[a] != ys_[b]) return ys_[a] < ys_[b];
+                    return order_[a] < order_[b];
+                });
+                for (std::size_t t = 0; t + 1 < run.size(); ++t) {
+                    const std::size_t a = run[t], b = run[t + 1];
+                    if (xs_[a] == xs_[b] && ys_[a] == ys_[b]) consider(order_[a], order_[b]);
+                }
+            }
+            lo = hi;
+        }
+        return best;
     }
 
     /// The agents in grid order: processing agents in this order keeps queries cache-friendly.

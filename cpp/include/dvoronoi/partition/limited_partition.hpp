@@ -82,32 +82,15 @@ using ProgressFn = std::function<void(Index, Index)>;
 
 namespace detail {
 
-/// Throws CoincidentError naming the lowest-index pair (i, j), i < j, of coinciding agents.
-inline void require_distinct(PointsRef pts) {
-    const Index n = pts.rows();
-    std::vector<Index> order(static_cast<std::size_t>(n));
-    std::iota(order.begin(), order.end(), Index{0});
-    std::sort(order.begin(), order.end(), [&](Index a, Index b) {
-        if (pts(a, 0) != pts(b, 0)) return pts(a, 0) < pts(b, 0);
-        if (pts(a, 1) != pts(b, 1)) return pts(a, 1) < pts(b, 1);
-        return a < b;
-    });
-    Index best_i = -1, best_j = -1;
-    for (std::size_t k = 0; k + 1 < order.size(); ++k) {
-        const Index a = order[k], b = order[k + 1];
-        if (pts(a, 0) == pts(b, 0) && pts(a, 1) == pts(b, 1)) {
-            // a < b within a run of equal points; the run's first index pairs with its second.
-            if (best_i < 0 || a < best_i || (a == best_i && b < best_j)) { best_i = a; best_j = b; }
-        }
-    }
-    if (best_i >= 0) {
-        char at[64];
-        std::snprintf(at, sizeof at, "(%.17g, %.17g)", pts(best_i, 0), pts(best_i, 1));
-        throw CoincidentError("points[" + std::to_string(best_i) + "] and points[" +
-                                  std::to_string(best_j) + "] coincide at " + at +
-                                  "; their Voronoi cells are undefined",
-                              best_i, best_j);
-    }
+/// Throws CoincidentError naming the lowest pair (i, j), i < j, of coinciding agents.
+inline void require_distinct(const GridIndex& index, const Points& pts) {
+    const auto [i, j] = index.first_duplicate();
+    if (i < 0) return;
+    char at[64];
+    std::snprintf(at, sizeof at, "(%.17g, %.17g)", pts(i, 0), pts(i, 1));
+    throw CoincidentError("points[" + std::to_string(i) + "] and points[" + std::to_string(j) +
+                              "] coincide at " + at + "; their Voronoi cells are undefined",
+                          i, j);
 }
 
 }  // namespace detail
@@ -118,13 +101,13 @@ inline void require_distinct(PointsRef pts) {
 /// \param progress optional callback (done, total), called from the calling thread.
 /// \throws InputError for a bad radius or non-finite coordinates; CoincidentError for coinciding
 ///         agents (lowest pair named).
-/// \note Complexity O(n m log m) for Scan (m agents within 2R per agent) plus O(n log n) for the
-///       duplicate check; memory O(n m). Thread-safe.
+/// \note Complexity O(n m log m) for Scan (m agents within 2R per agent), O(n m^2) worst case for
+///       Chords; the duplicate check is O(n) expected (identical points share a grid cell).
+///       Memory O(n m). Thread-safe.
 inline LimitedPartition limited_cells(PointsRef points, double radius, Method method = Method::Scan,
                                       int threads = 0, const ProgressFn& progress = nullptr) {
     detail::require_finite_radius(radius);
     detail::require_finite_points(points, "points");
-    detail::require_distinct(points);
     const Index n = points.rows();
     LimitedPartition out;
     out.radius = radius;
@@ -137,6 +120,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     if (n == 0) return out;
 
     const GridIndex index(out.points, 2.0 * radius);
+    detail::require_distinct(index, out.points);
     const std::vector<Index>& order = index.grid_order();
 #ifdef _OPENMP
     const int nthreads = threads > 0 ? threads : omp_get_max_threads();
