@@ -1,0 +1,72 @@
+// limited_cells: results independent of the thread count, equal to the per-agent call, progress
+// reported and a throwing progress callback carried out of the parallel region.
+#include "dvoronoi/partition/limited_partition.hpp"
+
+#include <doctest/doctest.h>
+
+#include <random>
+#include <stdexcept>
+
+using namespace dvoronoi;
+
+namespace {
+Points random_points(int n, unsigned seed, double side) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, side);
+    Points P(n, 2);
+    for (int i = 0; i < n; ++i) P.row(i) << u(rng), u(rng);
+    return P;
+}
+}  // namespace
+
+TEST_CASE("thread count does not change the result") {
+    const Points P = random_points(20000, 3, 100.0);
+    for (Method m : {Method::Scan, Method::Chords}) {
+        const LimitedPartition a = limited_cells(P, 0.6, m, 1);
+        const LimitedPartition b = limited_cells(P, 0.6, m, 2);
+        CHECK(a.indptr == b.indptr);
+        CHECK(a.indices == b.indices);
+        CHECK(a.piece_ptr == b.piece_ptr);
+        CHECK(a.piece_neighbor == b.piece_neighbor);
+        CHECK(a.piece_x == b.piece_x);
+        CHECK(a.areas == b.areas);
+        CHECK(a.method == m);
+    }
+}
+
+TEST_CASE("the partition's cells equal the per-agent call") {
+    const Points P = random_points(600, 5, 10.0);
+    const double R = 0.45;
+    const LimitedPartition part = limited_cells(P, R);
+    for (Index i = 0; i < P.rows(); i += 7) {
+        Points others(P.rows() - 1, 2);
+        for (Index j = 0, k = 0; j < P.rows(); ++j)
+            if (j != i) others.row(k++) = P.row(j);
+        const LimitedCell one = limited_cell(P.row(i).transpose(), others, R);
+        const LimitedCell mine = part.cell(i);
+        REQUIRE(one.size() == mine.size());
+        for (std::size_t k = 0; k < one.size(); ++k) {
+            const Index nb = one.pieces[k].neighbor;
+            CHECK(mine.pieces[k].neighbor == (nb < 0 ? nb : (nb < i ? nb : nb + 1)));
+            CHECK((mine.pieces[k].start - one.pieces[k].start).norm() <= 1e-12);
+        }
+        CHECK(mine.measures().area == doctest::Approx(one.measures().area).epsilon(1e-13));
+        CHECK(part.candidates[static_cast<std::size_t>(i)] == one.candidates);
+    }
+}
+
+TEST_CASE("progress is reported to the end, and a throwing callback stops the run") {
+    const Points P = random_points(50000, 9, 200.0);
+    Index last = -1, calls = 0;
+    limited_cells(P, 0.5, Method::Scan, 2, [&](Index done, Index total) {
+        CHECK(total == 50000);
+        CHECK(done >= last);
+        last = done;
+        ++calls;
+    });
+    CHECK(last == 50000);
+    CHECK(calls >= 2);
+    CHECK_THROWS_WITH_AS(limited_cells(P, 0.5, Method::Scan, 2,
+                                       [](Index, Index) { throw std::runtime_error("stop"); }),
+                         "stop", std::runtime_error);
+}
