@@ -17,7 +17,8 @@ Families: square lattices (spacings 1, 2, 0.1) at radii where neighbours sit exa
 points on one circle (floating-point and exactly cocircular Pythagorean points, with and without
 the centre); regular polygons with their centre; exactly and nearly collinear points; lattices and
 random points near 1e7 with unit spacing; spacings near 1e-9; random subsets of an integer grid
-(many exact cocircularities and exact 2R distances); the Intel lab motes; and tiny inputs.
+(many exact cocircularities and exact 2R distances); unit lattices jittered by a few units in the
+last place; the Intel lab motes; and tiny inputs.
 
 Usage: python tools/make_degenerate_corpus.py [OUTPUT]   (default: tests/data/degenerate_corpus.txt)
 """
@@ -166,6 +167,12 @@ def cases():
     pts = square_lattice(15, 15)
     pts = pts[rng.random(len(pts)) < 0.4] * 0.5
     add("half_grid_subset", pts, [0.25, 0.5, 0.75, 1.25])
+
+    # Unit lattices moved by a few units in the last place: the exact ties above become near-ties.
+    rng = np.random.default_rng(1005)
+    for jitter in (2.0 ** -50, 2.0 ** -40, 1e-12):
+        pts = square_lattice(9, 9) + jitter * 0.5 * rng.integers(-2, 3, size=(81, 2))
+        add(f"jittered_lattice_9x9_{jitter:.3g}", pts, [0.5, 0.7071067811865476, 1.0, 1.5])
 
     # Intel Berkeley lab motes (half-integer metres: many exact ties).
     add("intel_lab_motes", intel_motes(), [2.0, 3.0, 5.0, 8.0])

@@ -23,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -41,6 +42,9 @@ using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
 
 using XY = std::array<double, 2>;
 
+/// Marker for an arc in OracleResult::limited_pieces.
+inline constexpr long kArcPiece = -1;
+
 /// Everything the oracle knows about n agents and a cell radius R, in input order.
 struct OracleResult {
     int dimension = -1;  ///< of the Delaunay triangulation: -1 (n=0), 0 (n=1), 1 (collinear), 2
@@ -49,9 +53,17 @@ struct OracleResult {
     std::vector<bool> on_hull;
     std::vector<double> limited_areas;      ///< area of V_i ∩ B(p_i, R)
     std::vector<XY> limited_centroids;      ///< centroid of V_i ∩ B(p_i, R)
+    /// The boundary of V_i ∩ B(p_i, R) as a counter-clockwise cycle of pieces: a limited neighbour's
+    /// index for an edge, kArcPiece for an arc, starting at the smallest neighbour ([kArcPiece]
+    /// for a full disk). Two consecutive edges meet (no arc between) when their common Voronoi
+    /// vertex lies in the closed disk; a vertex exactly on the circle gives no zero-length arc.
+    std::vector<std::vector<long>> limited_pieces;
     /// Limited neighbours found a second, independent way (edges of the exactly clipped cell that
     /// enter the open disk); filled only with self_check = true, must equal limited_neighbors.
     std::vector<std::vector<std::size_t>> limited_neighbors_by_clipping;
+    /// With self_check: a side of the box p_i ± 2R survives the clipping. For R beyond every
+    /// Voronoi vertex this is "V_i is unbounded", found independently of on_hull.
+    std::vector<bool> box_side_survives;
 };
 
 namespace detail {
@@ -107,12 +119,12 @@ inline void triangle_disk(const XY& a, const XY& b, double R, Moments& m) {
     if (t2 < 1.0) add_sector(q, b, R, m);
 }
 
-/// `v - p` rounded to double: from the interval approximation when it is tight, else exactly.
-inline double to_double_rel(const FT& v, const FT& p, double scale) {
-    const FT d = v - p;
-    const auto& ap = d.approx();
-    if (ap.sup() - ap.inf() <= 1e-15 * scale) return 0.5 * (ap.inf() + ap.sup());
-    return CGAL::to_double(d.exact());
+/// `v` rounded to double: from the interval approximation when it is narrower than 1e-14 * scale
+/// (the area tolerance of the tests is 1e-9 relative and 1e-12 R^2 absolute), else exactly.
+inline double to_double_tight(const FT& v, double scale) {
+    const auto& ap = v.approx();
+    if (ap.sup() - ap.inf() <= 1e-14 * scale) return 0.5 * (ap.inf() + ap.sup());
+    return CGAL::to_double(v.exact());
 }
 
 inline Point intersect(const Line& a, const Line& b) {
@@ -173,7 +185,7 @@ struct ClipPolygon {
 
 }  // namespace detail
 
-/// Runs the oracle. `self_check` also computes limited_neighbors_by_clipping.
+/// Runs the oracle. `self_check` also fills limited_neighbors_by_clipping and box_side_survives.
 ///
 /// \throws std::invalid_argument for a non-positive or non-finite radius, non-finite coordinates or
 ///         coinciding points (the oracle has no cells for them either).
@@ -189,7 +201,11 @@ inline OracleResult compute_oracle(const std::vector<XY>& pts, double R, bool se
     res.on_hull.assign(n, false);
     res.limited_areas.assign(n, 0.0);
     res.limited_centroids.assign(n, XY{0.0, 0.0});
-    if (self_check) res.limited_neighbors_by_clipping.assign(n, {});
+    res.limited_pieces.assign(n, std::vector<long>{kArcPiece});
+    if (self_check) {
+        res.limited_neighbors_by_clipping.assign(n, {});
+        res.box_side_survives.assign(n, true);
+    }
     if (n == 0) return res;
 
     std::vector<std::pair<Point, std::size_t>> input;
@@ -204,40 +220,42 @@ inline OracleResult compute_oracle(const std::vector<XY>& pts, double R, bool se
     const FT R_ft(R);
     const FT R2 = R_ft * R_ft;
     const FT four_R2 = FT(4) * R2;
-    const auto side_of_circle = K().side_of_oriented_circle_2_object();
 
-    // Voronoi and limited neighbours from the Delaunay edges.
+    // Voronoi and limited neighbours from the Delaunay edges. The Voronoi edge of a, b lies on
+    // their bisector between the circumcentres of the incident faces (a ray for a hull edge, the
+    // whole line for a collinear input). Along the bisector, the circumcentre of (a, b, c) lies on
+    // c's side of ab when the angle at c is acute, on ab when it is right, beyond when obtuse. So
+    // the edge meets the midpoint of ab (distance |ab|/2 from p_a) unless one incident angle is
+    // obtuse; then its point nearest p_a is that face's circumcentre, at distance its circumradius.
+    // Every test is an exact predicate or an exact comparison of lazily computed numbers.
+    const auto side_of_circle = K().side_of_oriented_circle_2_object();
+    const auto angle = K().angle_2_object();
+    const auto squared_radius = K().compute_squared_radius_2_object();
     for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
         const auto f = e->first;
         const int k = e->second;
         const auto va = f->vertex(DT::cw(k)), vb = f->vertex(DT::ccw(k));
         const std::size_t a = va->info(), b = vb->info();
-        bool positive = true;
+        const Point& pa = va->point();
+        const Point& pb = vb->point();
+        // Third vertices of the finite incident faces (none in dimension 1, one on the hull).
+        const Point* third[2] = {nullptr, nullptr};
         if (res.dimension == 2) {
             const auto g = f->neighbor(k);
-            if (!dt.is_infinite(f) && !dt.is_infinite(g)) {
-                const Point& d = dt.mirror_vertex(f, k)->point();
-                positive = side_of_circle(f->vertex(0)->point(), f->vertex(1)->point(),
-                                          f->vertex(2)->point(), d) != CGAL::ON_ORIENTED_BOUNDARY;
-            }
+            if (!dt.is_infinite(f)) third[0] = &f->vertex(k)->point();
+            if (!dt.is_infinite(g)) third[1] = &dt.mirror_vertex(f, k)->point();
+            if (third[0] && third[1] &&
+                side_of_circle(pa, pb, *third[0], *third[1]) == CGAL::ON_ORIENTED_BOUNDARY)
+                continue;  // both circumcentres coincide: the cells touch in a point
         }
-        if (!positive) continue;
         res.voronoi_neighbors[a].push_back(b);
         res.voronoi_neighbors[b].push_back(a);
-        // The Voronoi edge lies on the bisector; it can come within R only if |ab| < 2R.
-        if (CGAL::compare_squared_distance(va->point(), vb->point(), four_R2) != CGAL::SMALLER)
-            continue;
-        const CGAL::Object dual = dt.dual(*e);
-        FT d2;
-        if (const K::Segment_2* s = CGAL::object_cast<K::Segment_2>(&dual))
-            d2 = CGAL::squared_distance(va->point(), *s);
-        else if (const K::Ray_2* r = CGAL::object_cast<K::Ray_2>(&dual))
-            d2 = CGAL::squared_distance(va->point(), *r);
-        else if (const K::Line_2* l = CGAL::object_cast<K::Line_2>(&dual))
-            d2 = CGAL::squared_distance(va->point(), *l);
-        else
-            throw std::logic_error("cgal_oracle: unexpected dual of a Delaunay edge");
-        if (CGAL::compare(d2, R2) == CGAL::SMALLER) {
+        if (CGAL::compare_squared_distance(pa, pb, four_R2) != CGAL::SMALLER) continue;
+        bool limited = true;  // the edge passes through the midpoint, at |ab|/2 < R
+        for (const Point* c : third)
+            if (c && angle(pa, *c, pb) == CGAL::OBTUSE)
+                limited = CGAL::compare(squared_radius(pa, pb, *c), R2) == CGAL::SMALLER;
+        if (limited) {
             res.limited_neighbors[a].push_back(b);
             res.limited_neighbors[b].push_back(a);
         }
@@ -255,18 +273,22 @@ inline OracleResult compute_oracle(const std::vector<XY>& pts, double R, bool se
         } while (++c != done);
     }
 
-    // Limited areas: the box p_i ± 2R (it contains the disk) clipped exactly by the bisectors of
-    // the Delaunay neighbours closer than 2R (farther bisectors miss the disk), then ∩ disk.
+    // Limited areas, in the frame of p_i (q - p_i exact, as a lazy vector): the box ±2R (it
+    // contains the disk) clipped exactly by the bisectors of the Delaunay neighbours closer than 2R
+    // (farther bisectors miss the disk), its vertices rounded to double, then ∩ disk. In the local
+    // frame the interval approximations are tight at the scale of R, so exact evaluation is rare.
     const double pi = std::acos(-1.0);
+    const Point origin(0, 0);
+    const double two_R = 2.0 * R;
+    const Point c0(-two_R, -two_R), c1(two_R, -two_R), c2(two_R, two_R), c3(-two_R, two_R);
+    const Line box[4] = {Line(c0, c1), Line(c1, c2), Line(c2, c3), Line(c3, c0)};
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
         const std::size_t i = v->info();
         const Point& p = v->point();
         const double px = pts[i][0], py = pts[i][1];
         detail::ClipPolygon poly;
-        const double x0 = px - 2.0 * R, x1 = px + 2.0 * R, y0 = py - 2.0 * R, y1 = py + 2.0 * R;
-        const Point c0(x0, y0), c1(x1, y0), c2(x1, y1), c3(x0, y1);
         poly.verts = {c0, c1, c2, c3};
-        poly.lines = {Line(c0, c1), Line(c1, c2), Line(c2, c3), Line(c3, c0)};
+        poly.lines = {box[0], box[1], box[2], box[3]};
         poly.owner = {-1, -1, -1, -1};
         bool clipped = false;
         if (res.dimension >= 1) {
@@ -275,7 +297,10 @@ inline OracleResult compute_oracle(const std::vector<XY>& pts, double R, bool se
                 if (dt.is_infinite(c)) continue;
                 if (CGAL::compare_squared_distance(p, c->point(), four_R2) != CGAL::SMALLER)
                     continue;
-                poly.clip(CGAL::bisector(p, c->point()), static_cast<long>(c->info()));
+                // |x|^2 <= |x - d|^2  <=>  -2 d.x + |d|^2 >= 0: the positive side of this line.
+                const K::Vector_2 d = c->point() - p;
+                poly.clip(Line(FT(-2) * d.x(), FT(-2) * d.y(), d.squared_length()),
+                          static_cast<long>(c->info()));
                 clipped = true;
             } while (++c != done);
         }
@@ -286,27 +311,53 @@ inline OracleResult compute_oracle(const std::vector<XY>& pts, double R, bool se
         }
         std::vector<XY> rel(poly.verts.size());
         for (std::size_t k = 0; k < poly.verts.size(); ++k)
-            rel[k] = XY{detail::to_double_rel(poly.verts[k].x(), p.x(), R),
-                        detail::to_double_rel(poly.verts[k].y(), p.y(), R)};
+            rel[k] = XY{detail::to_double_tight(poly.verts[k].x(), R),
+                        detail::to_double_tight(poly.verts[k].y(), R)};
         detail::Moments m;
         for (std::size_t k = 0; k < rel.size(); ++k)
             detail::triangle_disk(rel[k], rel[(k + 1) % rel.size()], R, m);
         res.limited_areas[i] = m.area;
         res.limited_centroids[i] =
             m.area > 0.0 ? XY{px + m.mx / m.area, py + m.my / m.area} : XY{px, py};
+        // Edges of the clipped cell that enter the open disk, in counter-clockwise order.
+        const std::size_t nv = poly.verts.size();
+        std::vector<std::size_t> inside;
+        for (std::size_t k = 0; k < nv; ++k) {
+            if (poly.owner[k] < 0) continue;
+            const Point& s = poly.verts[k];
+            const Point& t = poly.verts[(k + 1) % nv];
+            if (s == t) continue;
+            if (CGAL::compare(CGAL::squared_distance(origin, K::Segment_2(s, t)), R2) ==
+                CGAL::SMALLER)
+                inside.push_back(k);
+        }
         if (self_check) {
+            res.box_side_survives[i] =
+                std::find(poly.owner.begin(), poly.owner.end(), -1L) != poly.owner.end();
             auto& out = res.limited_neighbors_by_clipping[i];
-            for (std::size_t k = 0; k < poly.verts.size(); ++k) {
-                if (poly.owner[k] < 0) continue;
-                const Point& s = poly.verts[k];
-                const Point& t = poly.verts[(k + 1) % poly.verts.size()];
-                if (s == t) continue;
-                if (CGAL::compare(CGAL::squared_distance(p, K::Segment_2(s, t)), R2) ==
-                    CGAL::SMALLER)
-                    out.push_back(static_cast<std::size_t>(poly.owner[k]));
-            }
+            for (const std::size_t k : inside) out.push_back(static_cast<std::size_t>(poly.owner[k]));
             std::sort(out.begin(), out.end());
             out.erase(std::unique(out.begin(), out.end()), out.end());
+        }
+        if (!inside.empty()) {
+            std::vector<long> pieces;
+            for (std::size_t t = 0; t < inside.size(); ++t) {
+                const std::size_t k1 = inside[t], k2 = inside[(t + 1) % inside.size()];
+                pieces.push_back(poly.owner[k1]);
+                // They meet when nothing but zero-length edges lies between them and their common
+                // vertex is in the closed disk.
+                const Point& end1 = poly.verts[(k1 + 1) % nv];
+                const bool meet = inside.size() > 1 && end1 == poly.verts[k2] &&
+                                  CGAL::compare(CGAL::squared_distance(origin, end1), R2) !=
+                                      CGAL::LARGER;
+                if (!meet) pieces.push_back(kArcPiece);
+            }
+            const auto first = std::min_element(pieces.begin(), pieces.end(), [](long a, long b) {
+                return (a < 0 ? std::numeric_limits<long>::max() : a) <
+                       (b < 0 ? std::numeric_limits<long>::max() : b);
+            });
+            std::rotate(pieces.begin(), first, pieces.end());
+            res.limited_pieces[i] = std::move(pieces);
         }
     }
     return res;

@@ -3,7 +3,8 @@
 // Runs the exact CGAL oracle (cgal_oracle.hpp) and prints JSON to stdout:
 //   {"n": ..., "radius": ..., "dimension": ...,
 //    "voronoi_neighbors": [[...], ...], "limited_neighbors": [[...], ...], "on_hull": [...],
-//    "limited_areas": [...], "limited_centroids": [[x, y], ...]}
+//    "limited_areas": [...], "limited_centroids": [[x, y], ...],
+//    "limited_pieces": [[neighbour or -1 for an arc, ...], ...]}   (ccw, from the smallest neighbour)
 // POINTS_FILE holds whitespace- (or comma-) separated `x y` per line; `#` starts a comment.
 // Doubles are printed so that they read back to the same double (shortest round-trip form).
 #include "cgal_oracle.hpp"
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
         j["on_hull"] = res.on_hull;
         j["limited_areas"] = res.limited_areas;
         j["limited_centroids"] = res.limited_centroids;
+        j["limited_pieces"] = res.limited_pieces;
         std::cout << j.dump() << '\n';
     } catch (const std::exception& e) {
         std::cerr << "dvoronoi_cgal_oracle: " << e.what() << '\n';

@@ -136,6 +136,8 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     };
     const Index block = 2048;
     const Index nblocks = (n + block - 1) / block;
+    // No thread team for small inputs: one thread per block at most.
+    const int team = static_cast<int>(std::min<Index>(nthreads, nblocks));
     std::vector<Block> blocks(static_cast<std::size_t>(nblocks));
     std::vector<Index> count(static_cast<std::size_t>(n)), nb_count(static_cast<std::size_t>(n));
     std::atomic<Index> done{0};
@@ -144,7 +146,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     std::exception_ptr failure;
     std::atomic<bool> cancelled{false};
 
-#pragma omp parallel num_threads(nthreads)
+#pragma omp parallel num_threads(team)
     {
         std::vector<detail::Candidate> cand;
         LimitedCell cell;
@@ -208,7 +210,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     out.piece_y.resize(total);
     out.piece_span.resize(total);
     out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
-#pragma omp parallel for num_threads(nthreads) schedule(static)
+#pragma omp parallel for num_threads(team) schedule(static)
     for (Index pos = 0; pos < n; ++pos) {
         const Index i = order[static_cast<std::size_t>(pos)];
         const auto ii = static_cast<std::size_t>(i);
