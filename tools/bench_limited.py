@@ -32,11 +32,13 @@ import os
 import platform
 import subprocess
 import sys
-import time
 import timeit
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from benchutil import best_of, git_describe  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
 DEFAULT_CPP = REPO / "build" / "tools" / "bench" / "bench_limited_cgal"
@@ -69,32 +71,7 @@ def versions() -> str:
             f"shapely {shapely.__version__}, Python {platform.python_version()}; git {git_describe()}")
 
 
-def git_describe() -> str:
-    """The checkout's commit (and whether it has local changes), so a number can be traced to code."""
-    import subprocess
-
-    root = Path(__file__).resolve().parent
-    try:
-        rev = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root, capture_output=True,
-                             text=True, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root,
-                               capture_output=True, text=True, check=True).stdout.strip()
-        return rev + (" + local changes" if dirty else "")
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
 # ---------------------------------------------------------------------------------------------- timing
-def best_of(reps: int, fn):
-    """(best wall time in seconds, result of the last run)."""
-    best, out = math.inf, None
-    for _ in range(reps):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
-
-
 def uniform_points(n: int, k: float, seed: int):
     rng = np.random.default_rng(seed)
     pts = rng.random((n, 2))

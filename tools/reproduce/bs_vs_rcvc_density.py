@@ -24,40 +24,17 @@ from __future__ import annotations
 
 import argparse
 import csv
-import math
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from benchutil import best_of, git_describe  # noqa: E402
+
 OUT = Path(__file__).resolve().parent / "out"
 
 PAPER = {"moderate": (3.0, 6.0), "low": 1.0, "highest": 70.0}
-
-
-def git_describe() -> str:
-    """The checkout's commit (and whether it has local changes), so a number can be traced to code."""
-    import subprocess
-
-    root = Path(__file__).resolve().parent
-    try:
-        rev = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root, capture_output=True,
-                             text=True, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root,
-                               capture_output=True, text=True, check=True).stdout.strip()
-        return rev + (" + local changes" if dirty else "")
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
-def best_time(fn, repeat: int):
-    best, res = math.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        res = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, res
 
 
 def main(argv=None) -> int:
@@ -92,10 +69,10 @@ def main(argv=None) -> int:
             order = ("scan", "chords") if c % 2 == 0 else ("chords", "scan")
             res = {}
             for m in order:
-                res[m] = best_time(lambda: dv.limited_cells(pts, R, method=m, threads=1, progress=False),
-                                   args.repeat)
-            t_fixed, _ = best_time(
-                lambda: dv.limited_cells(pts, 1e-9 * L, threads=1, progress=False), args.repeat)
+                res[m] = best_of(args.repeat,
+                                 lambda: dv.limited_cells(pts, R, method=m, threads=1, progress=False))
+            t_fixed, _ = best_of(args.repeat,
+                                 lambda: dv.limited_cells(pts, 1e-9 * L, threads=1, progress=False))
             scan, chords = res["scan"][1], res["chords"][1]
             if not (np.array_equal(scan.indptr, chords.indptr) and np.array_equal(scan.indices, chords.indices)):
                 raise SystemExit(f"L = {L}, configuration {c}: scan and chords disagree on the neighbours")
