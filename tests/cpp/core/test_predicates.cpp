@@ -8,7 +8,7 @@
 
 using dvoronoi::Vec2;
 namespace pred = dvoronoi::pred;
-using I = __int128;
+__extension__ typedef __int128 I;  // exact reference arithmetic (GCC/Clang)
 
 namespace {
 
