@@ -115,13 +115,33 @@ public:
     /// The agents in grid order: processing agents in this order keeps queries cache-friendly.
     const std::vector<Index>& grid_order() const noexcept { return order_; }
 
-    /// Agents j != i with |p_j - p_i| < 2*radius (exact), appended to `out` (cleared first) in
-    /// increasing index order of the grid traversal (deterministic).
+    /// Agents j != i with |p_j - p_i| < 2*radius (exact), appended to `out` (cleared first) in the
+    /// index's deterministic traversal order.
     void within(Index i, double radius, std::vector<detail::Candidate>& out) const {
+        within_impl(pts_(i, 0), pts_(i, 1), keys_[static_cast<std::size_t>(i)], i, radius, out);
+    }
+
+    /// The same for the agent at position `pos` of grid_order(): reads only the index's own
+    /// contiguous arrays (no scattered access to the input when agents are visited in grid order).
+    void within_at(std::size_t pos, double radius, std::vector<detail::Candidate>& out) const {
+        within_impl(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, out);
+    }
+
+private:
+    struct Key {
+        std::int64_t cx, cy;
+    };
+    Key key_at(double x, double y) const {
+        return {static_cast<std::int64_t>(std::floor((x - x0_) / cell_)),
+                static_cast<std::int64_t>(std::floor((y - y0_) / cell_))};
+    }
+    Key key_of(Index i) const { return key_at(pts_(i, 0), pts_(i, 1)); }
+
+    void within_impl(double x, double y, Key k, Index i, double radius,
+                     std::vector<detail::Candidate>& out) const {
         out.clear();
         if (pts_.rows() == 0) return;
-        const Vec2 c = pts_.row(i).transpose();
-        const Key k = keys_[static_cast<std::size_t>(i)];
+        const Vec2 c(x, y);
         for (std::int64_t cx = k.cx - 1; cx <= k.cx + 1; ++cx) {
             if (cx < 0 || cx >= nx_) continue;
             const std::int64_t cy0 = std::max<std::int64_t>(0, k.cy - 1);
@@ -150,14 +170,6 @@ public:
         }
     }
 
-private:
-    struct Key {
-        std::int64_t cx, cy;
-    };
-    Key key_of(Index i) const {
-        return {static_cast<std::int64_t>(std::floor((pts_(i, 0) - x0_) / cell_)),
-                static_cast<std::int64_t>(std::floor((pts_(i, 1) - y0_) / cell_))};
-    }
 
     const Points& pts_;
     double x0_ = 0.0, y0_ = 0.0, cell_ = 1.0;

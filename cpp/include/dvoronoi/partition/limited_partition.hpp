@@ -159,7 +159,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
             for (Index pos = lo; pos < hi; ++pos) {
                 const Index i = order[static_cast<std::size_t>(pos)];
                 const auto ii = static_cast<std::size_t>(i);
-                index.within(i, radius, cand);
+                index.within_at(static_cast<std::size_t>(pos), radius, cand);
                 const Vec2 c = out.points.row(i).transpose();
                 if (method == Method::Scan)
                     detail::boundary_scan(c, cand, radius, cell, ws);
