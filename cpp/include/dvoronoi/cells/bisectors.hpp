@@ -33,7 +33,6 @@ struct CellWorkspace {
     std::vector<int> bound;        // RCVC: kept chords
     std::vector<char> removed;     // RCVC: checkChords flags
     std::vector<char> start_is_vertex;
-    std::vector<std::pair<double, std::uint32_t>> order, order_sorted;
     std::vector<std::size_t> counts;
     std::vector<Line> unsorted;
 };
@@ -93,12 +92,11 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
     }
     const Vec2 p1 = cand[best].p;
     const Vec2 a1 = p1 - c;
-    // Lines with their exact half and pseudo-angle; sort (pseudo-angle, line) pairs, then lay the
-    // lines out in that order.
+    // Lines with their exact half and pseudo-angle, bucket-sorted by pseudo-angle (about one line per
+    // bucket) straight into place, then an insertion pass that only moves within buckets: linear
+    // expected time, few mispredicted branches.
     auto& tmp = ws.unsorted;
     tmp.clear();
-    auto& order = ws.order;
-    order.clear();
     bool keys_reliable = true;  // false when products underflow: then every pair is compared exactly
     for (std::size_t j = 0; j < cand.size(); ++j) {
         const Candidate& q = cand[j];
@@ -120,31 +118,25 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
         if (half == 0 && key >= 2.0) key = key > 3.0 ? 0.0 : 2.0;
         if (half == 1 && key < 2.0) key = key < 1.0 ? 4.0 : 2.0;
         tmp.push_back({q.p, a, a.squaredNorm(), q.id, key, half});
-        order.push_back({key, static_cast<std::uint32_t>(j)});
     }
-    // Bucket sort by pseudo-angle (about one line per bucket), then an insertion pass that only
-    // moves within buckets: linear expected time, few mispredicted branches.
-    const std::size_t m = order.size();
+    const std::size_t m = tmp.size();
     std::size_t nbuckets = 8;
     while (nbuckets < m) nbuckets *= 2;
     const double scale = static_cast<double>(nbuckets) / 4.0;
+    const auto bucket = [&](const Line& l) { return std::min(nbuckets - 1, static_cast<std::size_t>(l.key * scale)); };
     auto& counts = ws.counts;
     counts.assign(nbuckets + 1, 0);
-    for (const auto& kj : order)
-        ++counts[std::min(nbuckets - 1, static_cast<std::size_t>(kj.first * scale)) + 1];
+    for (const Line& l : tmp) ++counts[bucket(l) + 1];
     for (std::size_t b = 1; b <= nbuckets; ++b) counts[b] += counts[b - 1];
-    auto& sorted = ws.order_sorted;
-    sorted.resize(m);
-    for (const auto& kj : order)
-        sorted[counts[std::min(nbuckets - 1, static_cast<std::size_t>(kj.first * scale))]++] = kj;
-    for (std::size_t i = 1; i < m; ++i) {
-        const auto x = sorted[i];
-        std::size_t j = i;
-        for (; j > 0 && x.first < sorted[j - 1].first; --j) sorted[j] = sorted[j - 1];
-        sorted[j] = x;
-    }
-    L.reserve(cand.size());
-    for (const auto& kj : sorted) L.push_back(tmp[kj.second]);
+    L.resize(m);
+    for (const Line& l : tmp) L[counts[bucket(l)]++] = l;
+    for (std::size_t i = 1; i < m; ++i)
+        if (L[i].key < L[i - 1].key) {
+            const Line x = L[i];
+            std::size_t j = i;
+            for (; j > 0 && x.key < L[j - 1].key; --j) L[j] = L[j - 1];
+            L[j] = x;
+        }
     // Repair with the exact order (insertion sort: the floating-point order is already right except
     // among nearly parallel directions, so this pass is linear).
     const auto orient = [&](const Line& x, const Line& y) {
