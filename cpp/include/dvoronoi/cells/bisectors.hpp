@@ -27,8 +27,17 @@ struct Line {
 };
 
 /// Scratch buffers reused across the agents a thread processes (no allocation per agent).
+/// A bisector on Boundary Scan's stack, with what its predecessor (the entry below, fixed while this
+/// one is on the stack) decides about it, so each pair is classified once.
+struct ScanEntry {
+    int line;
+    int o_prev;    // orient(line, predecessor)
+    bool ok_prev;  // chord_bound_ok(line, predecessor)
+};
+
 struct CellWorkspace {
     std::vector<Line> lines;
+    std::vector<ScanEntry> scan;   // Boundary Scan's stack
     std::vector<int> stack;
     std::vector<int> bound;        // RCVC: kept chords
     std::vector<char> removed;     // RCVC: checkChords flags

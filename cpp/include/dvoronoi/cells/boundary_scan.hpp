@@ -24,24 +24,12 @@
 namespace dvoronoi {
 namespace detail {
 
-/// Does line j keep a boundary part of positive length inside the disk and the half-planes of the
-/// lines in `nb` (its stack neighbours)? Each neighbour bounds L_j from below (D < 0: the part after
-/// their vertex survives), from above (D > 0) or not at all (antiparallel, D = 0).
-inline bool keeps_positive_part(const LineGeometry& g, int j, const int* nb, int count) {
-    int lower[2], upper[2], nl = 0, nu = 0;
-    for (int t = 0; t < count; ++t) {
-        const int o = g.orient(j, nb[t]);
-        if (o > 0) upper[nu++] = nb[t];
-        else if (o < 0) lower[nl++] = nb[t];
-    }
-    // Every lower bound must lie strictly before every upper bound (chord ends included).
-    for (int u = 0; u < nu; ++u)
-        if (!g.after_chord_start(j, upper[u], 1)) return false;
-    for (int l = 0; l < nl; ++l)
-        if (!g.before_chord_end(j, lower[l], -1)) return false;
-    for (int l = 0; l < nl; ++l)
-        for (int u = 0; u < nu; ++u)
-            if (lower[l] != upper[u] && !g.vertex_before(j, lower[l], upper[u])) return false;
+/// Is the chord bound that line k puts on line j (o = orient(j, k)) compatible with j keeping a part
+/// of positive length? k bounds L_j from above (o > 0: the part before their vertex survives), from
+/// below (o < 0) or not at all (antiparallel, o = 0); the bound must leave part of the chord.
+inline bool chord_bound_ok(const LineGeometry& g, int j, int k, int o) {
+    if (o > 0) return g.after_chord_start(j, k, 1);
+    if (o < 0) return g.before_chord_end(j, k, -1);
     return true;
 }
 
@@ -54,33 +42,50 @@ inline void boundary_scan(const Vec2& c, const std::vector<Candidate>& cand, dou
     const auto& L = ws.lines;
     const int m = static_cast<int>(L.size());
     const LineGeometry g{c, L, radius};
-    auto& st = ws.stack;
+    auto& st = ws.scan;
     st.clear();
-    if (m > 0) st.push_back(0);
-    // Step 2: scan b_1 .. b_{m-1}, then b_0 again to close the loop (it only pops).
+    if (m > 0) st.push_back({0, 0, true});
+    // Step 2: scan b_1 .. b_{m-1}, then b_0 again to close the loop (it only pops). b_j on top keeps
+    // a part of positive length between its neighbours b_i (below) and b_k when both chord bounds
+    // leave part of the chord and, if one bounds from below and the other from above, the lower
+    // vertex comes first; otherwise it is cut away (case 4).
     for (int step = 1; step <= m && m > 1; ++step) {
         const int k = step % m;
+        int tested = -1, o_tested = 0;
         if (k != 0) {
-            const int top = st.back();
-            if (!keeps_positive_part(g, k, &top, 1)) continue;  // case (3): b_k outside b_j's half-plane
+            tested = st.back().line;
+            o_tested = g.orient(k, tested);
+            if (!chord_bound_ok(g, k, tested, o_tested)) continue;  // case (3): b_k outside b_j's half-plane
         }
         while (st.size() >= 2) {
-            const int nb[2] = {st[st.size() - 2], k};
-            if (keeps_positive_part(g, st.back(), nb, 2)) break;  // cases (1), (2), (5): b_j stays
-            st.pop_back();                                         // case (4): b_j is cut away
+            const ScanEntry& e = st.back();
+            const int j = e.line, i = st[st.size() - 2].line;
+            const int o = g.orient(j, k);
+            bool keep = e.ok_prev && chord_bound_ok(g, j, k, o);
+            if (keep && e.o_prev != 0 && o != 0 && (e.o_prev > 0) != (o > 0))
+                keep = e.o_prev < 0 ? g.vertex_before(j, i, k) : g.vertex_before(j, k, i);
+            if (keep) break;  // cases (1), (2), (5): b_j stays
+            st.pop_back();    // case (4): b_j is cut away
         }
-        if (k != 0) st.push_back(k);
+        if (k != 0) {
+            const int top = st.back().line;
+            const int o = top == tested ? o_tested : g.orient(k, top);
+            st.push_back({k, o, top == tested || chord_bound_ok(g, k, top, o)});
+        }
     }
+    auto& cycle = ws.stack;
+    cycle.clear();
+    for (const ScanEntry& e : st) cycle.push_back(e.line);
     // Step 3: label the joints: a vertex when consecutive boundaries meet inside the closed disk.
-    const std::size_t s = st.size();
+    const std::size_t s = cycle.size();
     std::vector<char>& meets = ws.start_is_vertex;
     meets.assign(s, 0);
     if (s >= 2)
         for (std::size_t t = 0; t < s; ++t) {
-            const int j = st[t], k = st[(t + 1) % s];
+            const int j = cycle[t], k = cycle[(t + 1) % s];
             meets[t] = g.orient(j, k) > 0 && g.vertex_in_closed_disk(j, k);
         }
-    emit_cell(c, radius, L, st, meets, out);
+    emit_cell(c, radius, L, cycle, meets, out);
 }
 
 }  // namespace detail
