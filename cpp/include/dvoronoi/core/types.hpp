@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -61,9 +62,11 @@ struct Candidate {
 };
 
 inline void require_finite_radius(double radius, const char* name = "radius") {
-    if (!std::isfinite(radius) || !(radius > 0.0))
-        throw InputError(std::string(name) + " must be a positive finite number, got " +
-                         std::to_string(radius));
+    if (!std::isfinite(radius) || !(radius > 0.0)) {
+        char got[32];
+        std::snprintf(got, sizeof got, "%.17g", radius);
+        throw InputError(std::string(name) + " must be a positive finite number, got " + got);
+    }
 }
 
 inline void require_finite_point(const Vec2& p, const std::string& name) {
