@@ -1,0 +1,210 @@
+// The exact (unlimited) Voronoi cell of one agent by Adjust-Sensing-Radius (Cortés, Martínez,
+// Karataş & Bullo 2004; Section 1 and 4.1 of the Boundary Scan paper): compute the limited cell with a
+// small radius, and double the radius until the cell certifies itself exact, or until every agent is
+// in range — then the cell is the intersection of all half-planes, bounded or not.
+//
+// Schedule: the first cell radius is the nearest-neighbour distance d_1 (agents closer than 2 d_1 are
+// used), then it doubles. Certificate: the limited cell V ∩ B(c, R) is a polygon (no arc) whose every
+// vertex lies strictly inside the open disk of radius R; an agent not closer than 2R has its bisector
+// at distance >= R from c, so it cannot cut such a polygon, and the polygon is the exact cell. Every
+// decision (in range, vertex strictly inside the disk, the scans) is an exact predicate.
+//
+// When every agent is in range and the certificate still fails, the cell is computed without a disk:
+// it is unbounded exactly when the directions to the agents leave an angular gap of at least pi
+// (the agent is on the convex hull); the boundary is then a chain of edges from one ray to another,
+// found by a linear stack scan over the directions after the gap; otherwise the Boundary Scan stack
+// scan runs with full lines instead of chords.
+#pragma once
+
+#include "dvoronoi/cells/boundary_scan.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace dvoronoi {
+
+/// One edge of an exact Voronoi cell, counter-clockwise, shared with agent `neighbor`. An edge that
+/// comes from (goes to) infinity has `start` (`end`) at the foot of its bisector, a point of its line
+/// only; `direction` points along the edge, counter-clockwise around the agent.
+struct VoronoiEdge {
+    Index neighbor = -1;
+    Vec2 start = Vec2::Zero();
+    Vec2 end = Vec2::Zero();
+    Vec2 direction = Vec2::Zero();  ///< unit vector along the edge, counter-clockwise around the agent
+    bool from_infinity = false;     ///< the edge comes in from infinity (a ray ending at `end`)
+    bool to_infinity = false;       ///< the edge goes out to infinity (a ray starting at `start`)
+};
+
+/// The exact Voronoi cell of an agent.
+struct VoronoiCell {
+    Vec2 center = Vec2::Zero();
+    /// Counter-clockwise edges; for an unbounded cell the first comes from infinity and the last goes
+    /// to infinity (a strip between parallel bisectors has two edges, each a full line).
+    std::vector<VoronoiEdge> edges;
+    bool on_hull = false;        ///< the cell is unbounded (the agent is on the convex hull)
+    int radius_steps = 0;        ///< limited cells computed by the radius schedule
+    Index agents_used = 0;       ///< agents within the final sensing radius (all of them if uncertified)
+
+    /// Voronoi neighbours (cells sharing a segment of positive length), ascending.
+    std::vector<Index> neighbors() const {
+        std::vector<Index> out;
+        for (const VoronoiEdge& e : edges) out.push_back(e.neighbor);
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+        return out;
+    }
+};
+
+namespace detail {
+
+/// Direction of L_j, counter-clockwise around c: perp(a_j) normalised.
+inline Vec2 edge_direction(const Line& l) { return Vec2(-l.a.y(), l.a.x()).normalized(); }
+
+/// The cell from all agents, with no disk (ws.lines sorted and deduplicated by sorted_bisectors).
+inline void unlimited_cell(const Vec2& c, CellWorkspace& ws, VoronoiCell& out) {
+    const auto& L = ws.lines;
+    const int m = static_cast<int>(L.size());
+    const LineGeometry g{c, L, 0.0};
+    out.edges.clear();
+    out.on_hull = true;
+    if (m == 0) return;
+    // An angular gap of at least pi between consecutive directions: the cell is unbounded.
+    int gap = -1;
+    for (int t = 0; t < m && m >= 2; ++t)
+        if (g.orient(t, (t + 1) % m) <= 0) {
+            gap = t;
+            break;
+        }
+    auto& st = ws.scan;
+    st.clear();
+    if (m == 1 || gap >= 0) {
+        // Linear scan over the directions after the gap (they span at most pi): b_j between b_i and
+        // b_k survives when, bounded from below by b_i and from above by b_k, its lower vertex comes
+        // first. Antiparallel neighbours do not bound each other.
+        for (int s = 0; s < m; ++s) {
+            const int k = (gap + 1 + s) % m;
+            while (st.size() >= 2) {
+                const int j = st.back().line, i = st[st.size() - 2].line;
+                if (g.orient(j, i) >= 0 || g.orient(j, k) <= 0 || g.vertex_before(j, i, k)) break;
+                st.pop_back();
+            }
+            st.push_back({k, 0, true});
+        }
+        for (std::size_t t = 0; t < st.size(); ++t) {
+            const Line& j = L[static_cast<std::size_t>(st[t].line)];
+            VoronoiEdge e;
+            e.neighbor = j.id;
+            e.direction = edge_direction(j);
+            const bool has_prev = t > 0 && g.orient(st[t - 1].line, st[t].line) > 0;
+            const bool has_next = t + 1 < st.size() && g.orient(st[t].line, st[t + 1].line) > 0;
+            const Vec2 foot = 0.5 * j.a;
+            e.from_infinity = !has_prev;
+            e.to_infinity = !has_next;
+            e.start = c + (has_prev ? vertex(L[static_cast<std::size_t>(st[t - 1].line)].a, j.a) : foot);
+            e.end = c + (has_next ? vertex(j.a, L[static_cast<std::size_t>(st[t + 1].line)].a) : foot);
+            out.edges.push_back(e);
+        }
+        return;
+    }
+    // Bounded: the Boundary Scan stack scan with full lines (every chord bound holds), closing on the
+    // nearest neighbour's bisector, which is always an edge.
+    out.on_hull = false;
+    st.push_back({0, 0, true});
+    for (int step = 1; step <= m; ++step) {
+        const int k = step % m;
+        while (st.size() >= 2) {
+            const ScanEntry& e = st.back();
+            const int j = e.line, i = st[st.size() - 2].line;
+            const int o = g.orient(j, k);
+            bool keep = true;
+            if (e.o_prev != 0 && o != 0 && (e.o_prev > 0) != (o > 0))
+                keep = e.o_prev < 0 ? g.vertex_before(j, i, k) : g.vertex_before(j, k, i);
+            if (keep) break;
+            st.pop_back();
+        }
+        if (k != 0) st.push_back({k, g.orient(k, st.back().line), true});
+    }
+    const std::size_t s = st.size();
+    for (std::size_t t = 0; t < s; ++t) {
+        const Line& i = L[static_cast<std::size_t>(st[(t + s - 1) % s].line)];
+        const Line& j = L[static_cast<std::size_t>(st[t].line)];
+        const Line& k = L[static_cast<std::size_t>(st[(t + 1) % s].line)];
+        VoronoiEdge e;
+        e.neighbor = j.id;
+        e.direction = edge_direction(j);
+        e.start = c + vertex(i.a, j.a);
+        e.end = c + vertex(j.a, k.a);
+        out.edges.push_back(e);
+    }
+}
+
+}  // namespace detail
+
+/// The exact Voronoi cell of `center` among `others` by Adjust-Sensing-Radius with the Boundary Scan
+/// limited cell as its inner step (ASR+BS). Edge neighbours are rows of `others`.
+///
+/// \throws InputError for non-finite coordinates; CoincidentError when an agent of `others` lies at
+///         `center` or two agents in range coincide.
+/// \note Thread-safe (pure function). Each radius step is O(m_k log m_k) for the m_k agents in range
+///       (selected in O(m) per step); a bounded cell needs O(log(rho / d_1)) steps, rho its farthest
+///       vertex.
+inline VoronoiCell asr_cell(const Vec2& center, PointsRef others) {
+    detail::require_finite_point(center, "center");
+    detail::require_finite_points(others, "others");
+    VoronoiCell out;
+    out.center = center;
+    const Index n = others.rows();
+    std::vector<detail::Candidate> all, cand;
+    all.reserve(static_cast<std::size_t>(n));
+    double nearest2 = 0.0;
+    for (Index j = 0; j < n; ++j) {
+        const Vec2 p = others.row(j).transpose();
+        if (p == center)
+            throw CoincidentError("others[" + std::to_string(j) +
+                                      "] coincides with center; its Voronoi cell is undefined",
+                                  j, j);
+        const double d2 = (p - center).squaredNorm();
+        if (all.empty() || d2 < nearest2) nearest2 = d2;
+        all.push_back({p, j});
+    }
+    detail::CellWorkspace ws;
+    LimitedCell limited;
+    if (!all.empty()) {
+        // Any radius schedule works; this one starts at the nearest-neighbour distance and doubles.
+        for (double radius = std::sqrt(nearest2);; radius *= 2.0) {
+            cand.clear();
+            for (const detail::Candidate& q : all)
+                if (pred::within_2r(center, q.p, radius) > 0) cand.push_back(q);
+            ++out.radius_steps;
+            out.agents_used = static_cast<Index>(cand.size());
+            if (cand.empty()) continue;
+            detail::boundary_scan(center, cand, radius, limited, ws);
+            const auto& st = ws.stack;
+            const auto& meets = ws.start_is_vertex;
+            const detail::LineGeometry g{center, ws.lines, radius};
+            bool certified = st.size() >= 3;
+            for (std::size_t t = 0; certified && t < st.size(); ++t)
+                certified = meets[t] && g.in_disk(st[t], st[(t + 1) % st.size()]) < 0;
+            if (certified) {
+                for (std::size_t t = 0; t < limited.pieces.size(); ++t) {
+                    VoronoiEdge e;
+                    e.neighbor = limited.pieces[t].neighbor;
+                    e.start = limited.pieces[t].start;
+                    e.end = limited.piece_end(t);
+                    const Vec2 a = others.row(e.neighbor).transpose() - center;
+                    e.direction = Vec2(-a.y(), a.x()).normalized();
+                    out.edges.push_back(e);
+                }
+                return out;
+            }
+            if (cand.size() == all.size() || !std::isfinite(radius * 4.0)) break;
+        }
+    }
+    // Every agent is in range and the cell did not certify: intersect all half-planes.
+    detail::sorted_bisectors(center, all, ws);
+    detail::unlimited_cell(center, ws, out);
+    out.agents_used = static_cast<Index>(all.size());
+    return out;
+}
+
+}  // namespace dvoronoi
