@@ -6,6 +6,7 @@
 #include "families.hpp"
 
 #include "dvoronoi/cells/asr.hpp"
+#include "dvoronoi/partition/voronoi_partition.hpp"
 
 #include <doctest/doctest.h>
 
@@ -98,5 +99,33 @@ TEST_CASE("ASR+BS: exact transforms keep neighbours and hull flags") {
         const auto base = fam::grid_subset(7, 500, 1.0, seed);
         for (const auto& t : dvoronoi_oracle::exact_transforms(base.points, 1.0, seed)) bad += compare(t.points, base.name + " " + t.name);
     }
+    CHECK(bad == 0);
+}
+
+TEST_CASE("voronoi_cells (all agents, grid index, 2 threads) equals the oracle") {
+    int bad = 0;
+    std::size_t cases = 0;
+    auto check = [&](const std::vector<XY>& pts, const std::string& label) {
+        ++cases;
+        const auto exact = dvoronoi_oracle::compute_oracle(pts, 1.0);
+        dvoronoi::Points P(static_cast<Eigen::Index>(pts.size()), 2);
+        for (std::size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) << pts[i][0], pts[i][1];
+        const dvoronoi::VoronoiPartition part = dvoronoi::voronoi_cells(P, 2);
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            const auto [b, e] = part.neighbors(static_cast<dvoronoi::Index>(i));
+            const std::vector<std::size_t> got(b, e);
+            if (got != exact.voronoi_neighbors[i] || (part.on_hull[i] != 0) != static_cast<bool>(exact.on_hull[i])) {
+                if (bad < 5) MESSAGE(label << ": agent " << i);
+                ++bad;
+            }
+        }
+    };
+    for (std::uint64_t seed = 0; seed < 10; ++seed) {
+        check(fam::uniform(3000, 10.0, seed).points, "uniform 3000");
+        check(fam::grid_subset(30, 500, 1.0, seed).points, "grid subset 30x30");
+    }
+    for (const auto& c : dvoronoi_oracle::read_corpus(std::string(DVORONOI_TEST_DATA_DIR) + "/degenerate_corpus.txt"))
+        check(c.points, c.name);
+    CHECK(cases > 200);
     CHECK(bad == 0);
 }

@@ -19,6 +19,8 @@
 #include "dvoronoi/cells/boundary_scan.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace dvoronoi {
@@ -138,6 +140,54 @@ inline void unlimited_cell(const Vec2& c, CellWorkspace& ws, VoronoiCell& out) {
     }
 }
 
+/// Adjust-Sensing-Radius around c. `query(radius, cand)` fills `cand` with the agents strictly
+/// within 2*radius of c (exact); `total` is the number of other agents; `first_radius` starts the
+/// schedule (the nearest-neighbour distance). Leaves the cell in `out`.
+template <class Query>
+void asr(const Vec2& c, Query&& query, Index total, double first_radius, CellWorkspace& ws,
+         std::vector<Candidate>& cand, LimitedCell& limited, VoronoiCell& out) {
+    out.center = c;
+    out.edges.clear();
+    out.on_hull = false;
+    out.radius_steps = 0;
+    out.agents_used = 0;
+    if (total == 0) {
+        out.on_hull = true;
+        return;
+    }
+    for (double radius = first_radius;; radius *= 2.0) {
+        query(radius, cand);
+        ++out.radius_steps;
+        out.agents_used = static_cast<Index>(cand.size());
+        if (cand.empty()) continue;
+        boundary_scan(c, cand, radius, limited, ws);
+        const auto& st = ws.stack;
+        const auto& meets = ws.start_is_vertex;
+        const LineGeometry g{c, ws.lines, radius};
+        bool certified = st.size() >= 3;
+        for (std::size_t t = 0; certified && t < st.size(); ++t)
+            certified = meets[t] && g.in_disk(st[t], st[(t + 1) % st.size()]) < 0;
+        if (certified) {
+            for (std::size_t t = 0; t < limited.pieces.size(); ++t) {
+                const Line& l = ws.lines[static_cast<std::size_t>(st[t])];
+                VoronoiEdge e;
+                e.neighbor = limited.pieces[t].neighbor;
+                e.start = limited.pieces[t].start;
+                e.end = limited.piece_end(t);
+                e.direction = edge_direction(l);
+                out.edges.push_back(e);
+            }
+            return;
+        }
+        if (static_cast<Index>(cand.size()) == total || !std::isfinite(radius * 4.0)) break;
+    }
+    // Every agent is in range and the cell did not certify: intersect all half-planes.
+    query(std::numeric_limits<double>::infinity(), cand);
+    sorted_bisectors(c, cand, ws);
+    unlimited_cell(c, ws, out);
+    out.agents_used = static_cast<Index>(cand.size());
+}
+
 }  // namespace detail
 
 /// The exact Voronoi cell of `center` among `others` by Adjust-Sensing-Radius with the Boundary Scan
@@ -147,14 +197,12 @@ inline void unlimited_cell(const Vec2& c, CellWorkspace& ws, VoronoiCell& out) {
 ///         `center` or two agents in range coincide.
 /// \note Thread-safe (pure function). Each radius step is O(m_k log m_k) for the m_k agents in range
 ///       (selected in O(m) per step); a bounded cell needs O(log(rho / d_1)) steps, rho its farthest
-///       vertex.
+///       vertex; an unbounded one ends with all m agents.
 inline VoronoiCell asr_cell(const Vec2& center, PointsRef others) {
     detail::require_finite_point(center, "center");
     detail::require_finite_points(others, "others");
-    VoronoiCell out;
-    out.center = center;
     const Index n = others.rows();
-    std::vector<detail::Candidate> all, cand;
+    std::vector<detail::Candidate> all;
     all.reserve(static_cast<std::size_t>(n));
     double nearest2 = 0.0;
     for (Index j = 0; j < n; ++j) {
@@ -167,43 +215,17 @@ inline VoronoiCell asr_cell(const Vec2& center, PointsRef others) {
         if (all.empty() || d2 < nearest2) nearest2 = d2;
         all.push_back({p, j});
     }
+    const auto query = [&](double radius, std::vector<detail::Candidate>& cand) {
+        cand.clear();
+        for (const detail::Candidate& q : all)
+            if (!(radius < std::numeric_limits<double>::infinity()) || pred::within_2r(center, q.p, radius) > 0)
+                cand.push_back(q);
+    };
+    VoronoiCell out;
     detail::CellWorkspace ws;
+    std::vector<detail::Candidate> cand;
     LimitedCell limited;
-    if (!all.empty()) {
-        // Any radius schedule works; this one starts at the nearest-neighbour distance and doubles.
-        for (double radius = std::sqrt(nearest2);; radius *= 2.0) {
-            cand.clear();
-            for (const detail::Candidate& q : all)
-                if (pred::within_2r(center, q.p, radius) > 0) cand.push_back(q);
-            ++out.radius_steps;
-            out.agents_used = static_cast<Index>(cand.size());
-            if (cand.empty()) continue;
-            detail::boundary_scan(center, cand, radius, limited, ws);
-            const auto& st = ws.stack;
-            const auto& meets = ws.start_is_vertex;
-            const detail::LineGeometry g{center, ws.lines, radius};
-            bool certified = st.size() >= 3;
-            for (std::size_t t = 0; certified && t < st.size(); ++t)
-                certified = meets[t] && g.in_disk(st[t], st[(t + 1) % st.size()]) < 0;
-            if (certified) {
-                for (std::size_t t = 0; t < limited.pieces.size(); ++t) {
-                    VoronoiEdge e;
-                    e.neighbor = limited.pieces[t].neighbor;
-                    e.start = limited.pieces[t].start;
-                    e.end = limited.piece_end(t);
-                    const Vec2 a = others.row(e.neighbor).transpose() - center;
-                    e.direction = Vec2(-a.y(), a.x()).normalized();
-                    out.edges.push_back(e);
-                }
-                return out;
-            }
-            if (cand.size() == all.size() || !std::isfinite(radius * 4.0)) break;
-        }
-    }
-    // Every agent is in range and the cell did not certify: intersect all half-planes.
-    detail::sorted_bisectors(center, all, ws);
-    detail::unlimited_cell(center, ws, out);
-    out.agents_used = static_cast<Index>(all.size());
+    detail::asr(center, query, n, std::sqrt(nearest2), ws, cand, limited, out);
     return out;
 }
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <utility>
 #include <vector>
@@ -123,6 +124,8 @@ public:
 
     /// The same for the agent at position `pos` of grid_order(): reads only the index's own
     /// contiguous arrays (no scattered access to the input when agents are visited in grid order).
+    /// Any radius works: beyond the indexed range more cells are scanned; an infinite radius
+    /// returns every other agent.
     void within_at(std::size_t pos, double radius, std::vector<detail::Candidate>& out) const {
         within_impl(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, out);
     }
@@ -142,10 +145,20 @@ private:
         out.clear();
         if (pts_.rows() == 0) return;
         const Vec2 c(x, y);
-        for (std::int64_t cx = k.cx - 1; cx <= k.cx + 1; ++cx) {
-            if (cx < 0 || cx >= nx_) continue;
-            const std::int64_t cy0 = std::max<std::int64_t>(0, k.cy - 1);
-            const std::int64_t cy1 = std::min<std::int64_t>(ny_ - 1, k.cy + 1);
+        if (!(radius < std::numeric_limits<double>::infinity())) {
+            for (std::size_t s = 0; s < order_.size(); ++s)
+                if (order_[s] != i) out.push_back({Vec2(xs_[s], ys_[s]), order_[s]});
+            return;
+        }
+        // Cells to scan on each side: one within the indexed range (its margin covers the rounding
+        // of the cell coordinates), else enough for 2*radius plus a margin for that rounding.
+        const double span = 2.0 * radius / cell_;
+        const std::int64_t reach =
+            span <= 1.0 ? 1 : static_cast<std::int64_t>(std::min(std::ceil(span + 1e-5), 1e15));
+        for (std::int64_t cx = std::max<std::int64_t>(0, k.cx - reach);
+             cx <= std::min<std::int64_t>(nx_ - 1, k.cx + reach); ++cx) {
+            const std::int64_t cy0 = std::max<std::int64_t>(0, k.cy - reach);
+            const std::int64_t cy1 = std::min<std::int64_t>(ny_ - 1, k.cy + reach);
             std::size_t lo, hi;
             if (dense_) {
                 lo = static_cast<std::size_t>(start_[static_cast<std::size_t>(cx * ny_ + cy0)]);

@@ -145,4 +145,18 @@ inline int endpoint_side(const Vec2& c, const Vec2& pm, int sigma, const Vec2& p
     return sx * cmp;
 }
 
+/// Standard in-circle test on input points: sign of
+/// det[[a - d, |a - d|^2], [b - d, |b - d|^2], [c - d, |c - d|^2]]. With (a, b, c) counter-clockwise
+/// (orient(a, b, c) > 0): +1 when d lies strictly inside their circumcircle, 0 on it, -1 outside (the
+/// sign flips for a clockwise triangle). Degree 4 in the coordinate differences; exact like every
+/// predicate here (floating-point filter, then expansions).
+inline int incircle(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+    return filtered_sign([&](auto tag) {
+        using T = typename decltype(tag)::type;
+        using namespace detail_;
+        const auto ad = rel<T>(a, d), bd = rel<T>(b, d), cd = rel<T>(c, d);
+        return norm2(ad) * cross(bd, cd) - norm2(bd) * cross(ad, cd) + norm2(cd) * cross(ad, bd);
+    });
+}
+
 }  // namespace dvoronoi::pred
