@@ -10,6 +10,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
@@ -29,7 +30,23 @@ int compare(const std::vector<XY>& pts, const std::string& label, std::size_t st
     for (std::size_t i = 0; i < n; i += stride) {
         for (std::size_t j = 0, k = 0; j < n; ++j)
             if (j != i) others.row(static_cast<Eigen::Index>(k++)) << pts[j][0], pts[j][1];
-        const dvoronoi::VoronoiCell cell = dvoronoi::asr_cell(dvoronoi::Vec2(pts[i][0], pts[i][1]), others);
+        const dvoronoi::Vec2 center(pts[i][0], pts[i][1]);
+        const dvoronoi::VoronoiCell cell = dvoronoi::asr_cell(center, others);
+        // ASR+EVT agrees with ASR+BS edge for edge (same order, same vertices up to rounding).
+        const dvoronoi::VoronoiCell evt = dvoronoi::asr_cell(center, others, dvoronoi::AsrInner::Evt);
+        bool same = evt.on_hull == cell.on_hull && evt.neighbors() == cell.neighbors();
+        if (same && !cell.on_hull) {
+            std::vector<dvoronoi::Index> a, b;
+            for (const auto& e : cell.edges) a.push_back(e.neighbor);
+            for (const auto& e : evt.edges) b.push_back(e.neighbor);
+            const auto first = std::find(b.begin(), b.end(), a.empty() ? -1 : a.front());
+            if (first != b.end()) std::rotate(b.begin(), first, b.end());
+            same = a == b;
+        }
+        if (!same) {
+            if (bad < 5) MESSAGE(label << ": agent " << i << " ASR+EVT differs from ASR+BS");
+            ++bad;
+        }
         ++g_compared;
         g_hull += cell.on_hull ? 1 : 0;
         std::set<std::size_t> got;
@@ -110,7 +127,8 @@ TEST_CASE("voronoi_cells (all agents, grid index, 2 threads) equals the oracle")
         const auto exact = dvoronoi_oracle::compute_oracle(pts, 1.0);
         dvoronoi::Points P(static_cast<Eigen::Index>(pts.size()), 2);
         for (std::size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) << pts[i][0], pts[i][1];
-        const dvoronoi::VoronoiPartition part = dvoronoi::voronoi_cells(P, 2);
+        const dvoronoi::VoronoiPartition part =
+            dvoronoi::voronoi_cells(P, cases % 2 ? dvoronoi::AsrInner::Scan : dvoronoi::AsrInner::Evt, 2);
         for (std::size_t i = 0; i < pts.size(); ++i) {
             const auto [b, e] = part.neighbors(static_cast<dvoronoi::Index>(i));
             const std::vector<std::size_t> got(b, e);

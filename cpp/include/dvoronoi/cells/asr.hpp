@@ -17,6 +17,7 @@
 #pragma once
 
 #include "dvoronoi/cells/boundary_scan.hpp"
+#include "dvoronoi/cells/delaunay.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -56,6 +57,11 @@ struct VoronoiCell {
         return out;
     }
 };
+
+/// The inner step of Adjust-Sensing-Radius: the limited cell by Boundary Scan (ASR+BS), or the
+/// exact Voronoi tessellation of the agent and its current neighbours by our incremental Delaunay
+/// triangulation (ASR+EVT, cells/delaunay.hpp), the baseline of the Boundary Scan paper.
+enum class AsrInner { Scan, Evt };
 
 namespace detail {
 
@@ -140,12 +146,37 @@ inline void unlimited_cell(const Vec2& c, CellWorkspace& ws, VoronoiCell& out) {
     }
 }
 
+/// Edges of c's cell from its Voronoi neighbours in counter-clockwise order (an interior cycle, or a
+/// hull agent's chain from its incoming to its outgoing ray); `pos(id)` gives a neighbour's position.
+template <class Pos>
+void edges_from_neighbors(const Vec2& c, const std::vector<Index>& nb, bool unbounded, Pos&& pos,
+                          VoronoiCell& out) {
+    out.edges.clear();
+    const std::size_t s = nb.size();
+    const auto a = [&](std::size_t t) { return pos(nb[t]) - c; };
+    for (std::size_t t = 0; t < s; ++t) {
+        const Vec2 aj = a(t);
+        VoronoiEdge e;
+        e.neighbor = nb[t];
+        e.direction = Vec2(-aj.y(), aj.x()).normalized();
+        const bool has_prev = (!unbounded || t > 0) && s > 1 && pred::orient(c, pos(nb[(t + s - 1) % s]), pos(nb[t])) > 0;
+        const bool has_next = (!unbounded || t + 1 < s) && s > 1 && pred::orient(c, pos(nb[t]), pos(nb[(t + 1) % s])) > 0;
+        e.from_infinity = !has_prev;
+        e.to_infinity = !has_next;
+        e.start = c + (has_prev ? vertex(a((t + s - 1) % s), aj) : Vec2(0.5 * aj));
+        e.end = c + (has_next ? vertex(aj, a((t + 1) % s)) : Vec2(0.5 * aj));
+        out.edges.push_back(e);
+    }
+    out.on_hull = unbounded;
+}
+
 /// Adjust-Sensing-Radius around c. `query(radius, cand)` fills `cand` with the agents strictly
 /// within 2*radius of c (exact); `total` is the number of other agents; `first_radius` starts the
 /// schedule (the nearest-neighbour distance). Leaves the cell in `out`.
 template <class Query>
-void asr(const Vec2& c, Query&& query, Index total, double first_radius, CellWorkspace& ws,
-         std::vector<Candidate>& cand, LimitedCell& limited, VoronoiCell& out) {
+void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInner inner,
+         CellWorkspace& ws, DelaunayWorkspace& dws, std::vector<Candidate>& cand, LimitedCell& limited,
+         VoronoiCell& out) {
     out.center = c;
     out.edges.clear();
     out.on_hull = false;
@@ -160,6 +191,34 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, CellWor
         ++out.radius_steps;
         out.agents_used = static_cast<Index>(cand.size());
         if (cand.empty()) continue;
+        if (inner == AsrInner::Evt) {
+            // The agent's cell among its current neighbours; exact when bounded with every vertex
+            // strictly inside the disk of the current radius.
+            DelaunayCell dc;
+            delaunay_star(c, cand, dc, dws);
+            const auto pos = [&](Index id) {
+                for (const Candidate& q : cand)
+                    if (q.id == id) return q.p;
+                return c;  // not reached: neighbours are candidates
+            };
+            bool certified = !dc.on_hull && dc.neighbors.size() >= 3;
+            for (std::size_t t = 0; certified && t < dc.neighbors.size(); ++t)
+                certified = pred::vertex_in_disk(c, pos(dc.neighbors[t]),
+                                                 pos(dc.neighbors[(t + 1) % dc.neighbors.size()]), radius) < 0;
+            if (certified || static_cast<Index>(cand.size()) == total) {
+                if (static_cast<Index>(cand.size()) < total) {
+                    edges_from_neighbors(c, dc.neighbors, false, pos, out);
+                    return;
+                }
+                query(std::numeric_limits<double>::infinity(), cand);  // every agent, as the final step
+                delaunay_star(c, cand, dc, dws);
+                edges_from_neighbors(c, dc.neighbors, dc.on_hull, pos, out);
+                out.agents_used = static_cast<Index>(cand.size());
+                return;
+            }
+            if (!std::isfinite(radius * 4.0)) break;
+            continue;
+        }
         boundary_scan(c, cand, radius, limited, ws);
         const auto& st = ws.stack;
         const auto& meets = ws.start_is_vertex;
@@ -191,14 +250,15 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, CellWor
 }  // namespace detail
 
 /// The exact Voronoi cell of `center` among `others` by Adjust-Sensing-Radius with the Boundary Scan
-/// limited cell as its inner step (ASR+BS). Edge neighbours are rows of `others`.
+/// limited cell (ASR+BS, default) or the exact tessellation of the current neighbours (ASR+EVT) as
+/// its inner step. Edge neighbours are rows of `others`.
 ///
 /// \throws InputError for non-finite coordinates; CoincidentError when an agent of `others` lies at
 ///         `center` or two agents in range coincide.
 /// \note Thread-safe (pure function). Each radius step is O(m_k log m_k) for the m_k agents in range
 ///       (selected in O(m) per step); a bounded cell needs O(log(rho / d_1)) steps, rho its farthest
 ///       vertex; an unbounded one ends with all m agents.
-inline VoronoiCell asr_cell(const Vec2& center, PointsRef others) {
+inline VoronoiCell asr_cell(const Vec2& center, PointsRef others, AsrInner inner = AsrInner::Scan) {
     detail::require_finite_point(center, "center");
     detail::require_finite_points(others, "others");
     const Index n = others.rows();
@@ -223,9 +283,10 @@ inline VoronoiCell asr_cell(const Vec2& center, PointsRef others) {
     };
     VoronoiCell out;
     detail::CellWorkspace ws;
+    detail::DelaunayWorkspace dws;
     std::vector<detail::Candidate> cand;
     LimitedCell limited;
-    detail::asr(center, query, n, std::sqrt(nearest2), ws, cand, limited, out);
+    detail::asr(center, query, n, std::sqrt(nearest2), inner, ws, dws, cand, limited, out);
     return out;
 }
 

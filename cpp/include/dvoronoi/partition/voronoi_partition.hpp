@@ -40,7 +40,8 @@ struct VoronoiPartition {
     }
 };
 
-/// Every agent's exact Voronoi neighbours and hull flag by ASR+BS: each agent starts from its
+/// Every agent's exact Voronoi neighbours and hull flag by ASR (inner step Boundary Scan or EVT, see
+/// AsrInner): each agent starts from its
 /// nearest-neighbour distance and doubles its sensing radius until its cell certifies itself
 /// (cells/asr.hpp); hull agents end with every agent.
 ///
@@ -51,8 +52,8 @@ struct VoronoiPartition {
 ///       with far vertices need large radii. Known limit: 1e5 uniform agents take 4 s, 1e6 take 100 s
 ///       on one core (2026-11-22) — certifying unbounded and elongated cells from the global convex
 ///       hull instead of the full agent set is the planned remedy. Thread-safe.
-inline VoronoiPartition voronoi_cells(PointsRef points, int threads = 0,
-                                      const ProgressFn& progress = nullptr) {
+inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInner::Scan,
+                                      int threads = 0, const ProgressFn& progress = nullptr) {
     detail::require_finite_points(points, "points");
     const Index n = points.rows();
     VoronoiPartition out;
@@ -88,6 +89,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, int threads = 0,
     {
         std::vector<detail::Candidate> cand;
         detail::CellWorkspace ws;
+        detail::DelaunayWorkspace dws;
         LimitedCell limited;
         VoronoiCell cell;
 #pragma omp for schedule(dynamic, 1)
@@ -111,7 +113,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, int threads = 0,
                     for (const detail::Candidate& q : cand) best = std::min(best, (q.p - c).squaredNorm());
                     first = std::sqrt(best);
                 }
-                detail::asr(c, query, n - 1, first, ws, cand, limited, cell);
+                detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell);
                 out.on_hull[ii] = cell.on_hull ? 1 : 0;
                 out.radius_steps[ii] = cell.radius_steps;
                 out.agents_used[ii] = cell.agents_used;
