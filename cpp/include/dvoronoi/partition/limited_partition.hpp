@@ -82,6 +82,45 @@ using ProgressFn = std::function<void(Index, Index)>;
 
 namespace detail {
 
+/// Progress of a parallel loop over blocks: counts finished agents, calls the callback from the
+/// calling thread (OpenMP thread 0), and turns an exception thrown by the callback (e.g. a Python
+/// KeyboardInterrupt) into a cancellation that is rethrown after the parallel region.
+class ProgressTracker {
+public:
+    ProgressTracker(const ProgressFn& progress, Index total) : progress_(progress), total_(total) {}
+    bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
+    void block_done(Index agents) {
+        const Index now = done_.fetch_add(agents) + agents;
+#ifdef _OPENMP
+        const bool caller = omp_get_thread_num() == 0;
+#else
+        const bool caller = true;
+#endif
+        if (!progress_ || !caller) return;
+        try {
+            progress_(now, total_);
+        } catch (...) {
+            failure_ = std::current_exception();
+            cancelled_ = true;
+        }
+    }
+    /// After the parallel region: rethrow the callback's exception, if it threw.
+    void rethrow_if_failed() const {
+        if (failure_) std::rethrow_exception(failure_);
+    }
+    /// At the very end: the callback sees (total, total).
+    void report_all() const {
+        if (progress_) progress_(total_, total_);
+    }
+
+private:
+    const ProgressFn& progress_;
+    Index total_;
+    std::atomic<Index> done_{0};
+    std::atomic<bool> cancelled_{false};
+    std::exception_ptr failure_;
+};
+
 /// Throws CoincidentError naming the lowest pair (i, j), i < j, of coinciding agents.
 inline void require_distinct(const GridIndex& index, const Points& pts) {
     const auto [i, j] = index.first_duplicate();
@@ -140,11 +179,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     const int team = static_cast<int>(std::min<Index>(nthreads, nblocks));
     std::vector<Block> blocks(static_cast<std::size_t>(nblocks));
     std::vector<Index> count(static_cast<std::size_t>(n)), nb_count(static_cast<std::size_t>(n));
-    std::atomic<Index> done{0};
-    // A progress callback may throw (e.g. a Python KeyboardInterrupt): the exception is carried out
-    // of the parallel region, the remaining blocks are skipped, and it is rethrown here.
-    std::exception_ptr failure;
-    std::atomic<bool> cancelled{false};
+    detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)
     {
@@ -153,7 +188,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         detail::CellWorkspace ws;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
-            if (cancelled.load(std::memory_order_relaxed)) continue;
+            if (tracker.cancelled()) continue;
             Block& blk = blocks[static_cast<std::size_t>(b)];
             const Index lo = b * block, hi = std::min(n, lo + block);
             for (Index pos = lo; pos < hi; ++pos) {
@@ -178,23 +213,10 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
                 for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
                 nb_count[ii] = edges;
             }
-            const Index now = done.fetch_add(hi - lo) + (hi - lo);
-#ifdef _OPENMP
-            const bool caller = omp_get_thread_num() == 0;
-#else
-            const bool caller = true;
-#endif
-            if (progress && caller) {
-                try {
-                    progress(now, n);
-                } catch (...) {
-                    failure = std::current_exception();
-                    cancelled = true;
-                }
-            }
+            tracker.block_done(hi - lo);
         }
     }
-    if (failure) std::rethrow_exception(failure);
+    tracker.rethrow_if_failed();
 
     // Lay out the pieces and the neighbour CSR in input order.
     out.piece_ptr.resize(static_cast<std::size_t>(n) + 1);
@@ -227,7 +249,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         }
         std::sort(out.indices.begin() + out.indptr[ii], out.indices.begin() + out.indptr[ii + 1]);
     }
-    if (progress) progress(n, n);
+    tracker.report_all();
     return out;
 }
 

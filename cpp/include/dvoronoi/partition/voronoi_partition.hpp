@@ -81,9 +81,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     const Index nblocks = (n + block - 1) / block;
     const int team = static_cast<int>(std::min<Index>(nthreads, nblocks));
     std::vector<std::vector<Index>> nbrs(static_cast<std::size_t>(n));
-    std::atomic<Index> done{0};
-    std::exception_ptr failure;
-    std::atomic<bool> cancelled{false};
+    detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)
     {
@@ -94,7 +92,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         VoronoiCell cell;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
-            if (cancelled.load(std::memory_order_relaxed)) continue;
+            if (tracker.cancelled()) continue;
             const Index lo = b * block, hi = std::min(n, lo + block);
             for (Index pos = lo; pos < hi; ++pos) {
                 const auto spos = static_cast<std::size_t>(pos);
@@ -122,29 +120,16 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                 std::sort(mine.begin(), mine.end());
                 mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
             }
-            const Index now = done.fetch_add(hi - lo) + (hi - lo);
-#ifdef _OPENMP
-            const bool caller = omp_get_thread_num() == 0;
-#else
-            const bool caller = true;
-#endif
-            if (progress && caller) {
-                try {
-                    progress(now, n);
-                } catch (...) {
-                    failure = std::current_exception();
-                    cancelled = true;
-                }
-            }
+            tracker.block_done(hi - lo);
         }
     }
-    if (failure) std::rethrow_exception(failure);
+    tracker.rethrow_if_failed();
     for (Index i = 0; i < n; ++i) {
         const auto& mine = nbrs[static_cast<std::size_t>(i)];
         out.indptr[static_cast<std::size_t>(i) + 1] = out.indptr[static_cast<std::size_t>(i)] + static_cast<Index>(mine.size());
         out.indices.insert(out.indices.end(), mine.begin(), mine.end());
     }
-    if (progress) progress(n, n);
+    tracker.report_all();
     return out;
 }
 
