@@ -14,6 +14,7 @@ Every result answers in the same shape: ``neighbors(i)``, CSR ``indptr``/``indic
 """
 from ._core import CoincidentError, LimitedCell, Piece, __version__, limited_cell
 from ._partition import LimitedPartition, limited_cells
+from ._voronoi import VoronoiPartition, voronoi_cell, voronoi_cells
 from . import datasets
 
 __all__ = [
@@ -21,6 +22,9 @@ __all__ = [
     "limited_cells",
     "LimitedCell",
     "LimitedPartition",
+    "voronoi_cell",
+    "voronoi_cells",
+    "VoronoiPartition",
     "Piece",
     "CoincidentError",
     "datasets",

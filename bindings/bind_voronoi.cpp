@@ -1,0 +1,141 @@
+// Exact (unlimited) Voronoi cells in Python: voronoi_cell (one agent) and voronoi_cells (all agents),
+// by Adjust-Sensing-Radius with Boundary Scan or EVT as the inner step. Neighbour sets and hull flags
+// are exact; arrays are copied out once (the results are small: CSR plus per-agent counters).
+#include "arrays.hpp"
+
+#include "dvoronoi/cells/asr.hpp"
+#include "dvoronoi/partition/voronoi_partition.hpp"
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace dvoronoi_bindings;
+using dvoronoi::AsrInner;
+using dvoronoi::VoronoiCell;
+using dvoronoi::VoronoiEdge;
+using dvoronoi::VoronoiPartition;
+
+namespace {
+
+AsrInner parse_inner(const std::string& name) {
+    if (name == "scan") return AsrInner::Scan;
+    if (name == "evt") return AsrInner::Evt;
+    throw py::value_error("inner must be \"scan\" or \"evt\", got \"" + name + "\"");
+}
+
+template <class T, class U = T>
+py::array copy_array(const std::vector<U>& v) {
+    py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
+    T* out = a.mutable_data();
+    for (std::size_t k = 0; k < v.size(); ++k) out[k] = static_cast<T>(v[k]);
+    return a;
+}
+
+py::array xy_array(const std::vector<Vec2>& v) {
+    py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{2}});
+    double* out = a.mutable_data();
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        out[2 * k] = v[k].x();
+        out[2 * k + 1] = v[k].y();
+    }
+    return a;
+}
+
+}  // namespace
+
+void bind_voronoi(py::module_& m) {
+    py::class_<VoronoiEdge>(m, "VoronoiEdge",
+                            "One edge of an exact Voronoi cell, counter-clockwise. An edge from (to) "
+                            "infinity has `start` (`end`) at the foot of its bisector, a point of its line.")
+        .def_readonly("neighbor", &VoronoiEdge::neighbor)
+        .def_property_readonly("start", [](const VoronoiEdge& e) { return py::make_tuple(e.start.x(), e.start.y()); })
+        .def_property_readonly("end", [](const VoronoiEdge& e) { return py::make_tuple(e.end.x(), e.end.y()); })
+        .def_property_readonly("direction", [](const VoronoiEdge& e) { return py::make_tuple(e.direction.x(), e.direction.y()); })
+        .def_readonly("from_infinity", &VoronoiEdge::from_infinity)
+        .def_readonly("to_infinity", &VoronoiEdge::to_infinity)
+        .def("__repr__", [](const VoronoiEdge& e) {
+            return "VoronoiEdge(neighbor=" + std::to_string(e.neighbor) + (e.from_infinity ? ", from infinity" : "") +
+                   (e.to_infinity ? ", to infinity" : "") + ")";
+        });
+
+    py::class_<VoronoiCell>(m, "VoronoiCell", "The exact Voronoi cell of one agent (compiled core).")
+        .def_property_readonly("center", [](const VoronoiCell& c) { return py::make_tuple(c.center.x(), c.center.y()); })
+        .def_readonly("edges", &VoronoiCell::edges, "Counter-clockwise edges (a chain from ray to ray when unbounded).")
+        .def_property_readonly("neighbors", [](const VoronoiCell& c) { return copy_array<Index>(c.neighbors()); },
+                               "Voronoi neighbours (positive-length edges), int64, ascending.")
+        .def_property_readonly("vertices",
+                               [](const VoronoiCell& c) {
+                                   std::vector<Vec2> v;
+                                   for (const VoronoiEdge& e : c.edges)
+                                       if (!e.from_infinity) v.push_back(e.start);
+                                   return xy_array(v);
+                               },
+                               "Finite vertices, counter-clockwise, shape (k, 2).")
+        .def_readonly("on_hull", &VoronoiCell::on_hull, "The cell is unbounded (the agent is on the convex hull).")
+        .def_readonly("radius_steps", &VoronoiCell::radius_steps)
+        .def_readonly("agents_used", &VoronoiCell::agents_used)
+        .def("__repr__", [](const VoronoiCell& c) {
+            return "VoronoiCell(edges=" + std::to_string(c.edges.size()) + ", on_hull=" + (c.on_hull ? "True" : "False") +
+                   ", radius_steps=" + std::to_string(c.radius_steps) + ")";
+        });
+
+    m.def(
+        "voronoi_cell",
+        [](py::handle center, py::handle others, const std::string& inner) {
+            const Vec2 c = point_arg(center, "center");
+            const PointsArg o = points_arg(others, "others");
+            return dvoronoi::asr_cell(c, o.ref(), parse_inner(inner));
+        },
+        py::arg("center"), py::arg("others"), py::arg("inner") = "scan",
+        "voronoi_cell(center, others, inner=\"scan\") -> VoronoiCell\n\n"
+        "The exact Voronoi cell of the agent at `center` among `others` by Adjust-Sensing-Radius, with "
+        "the Boundary Scan limited cell (\"scan\") or our exact Delaunay tessellation (\"evt\") as the "
+        "inner step. Edge neighbours are rows of `others`.");
+
+    py::class_<VoronoiPartition>(m, "VoronoiPartition", "Exact Voronoi neighbours and hull flags of n agents (compiled core).")
+        .def_property_readonly("points", [](const py::object& s) { return view(s.cast<const VoronoiPartition&>().points, s); })
+        .def_property_readonly("indptr", [](const VoronoiPartition& p) { return copy_array<Index>(p.indptr); })
+        .def_property_readonly("indices", [](const VoronoiPartition& p) { return copy_array<Index>(p.indices); })
+        .def_property_readonly("on_hull", [](const VoronoiPartition& p) { return copy_array<bool>(p.on_hull); })
+        .def_property_readonly("radius_steps", [](const VoronoiPartition& p) { return copy_array<std::int32_t>(p.radius_steps); })
+        .def_property_readonly("agents_used", [](const VoronoiPartition& p) { return copy_array<Index>(p.agents_used); })
+        .def("__len__", &VoronoiPartition::size);
+
+    m.def(
+        "voronoi_cells",
+        [](py::handle points, const std::string& inner, int threads, py::object progress) {
+            const PointsArg pts = points_arg(points, "points");
+            const AsrInner in = parse_inner(inner);
+            if (threads < 0)
+                throw py::value_error("threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
+            std::optional<py::error_already_set> failure;
+            dvoronoi::ProgressFn fn;
+            if (!progress.is_none()) {
+                fn = [&progress, &failure](Index done, Index total) {
+                    py::gil_scoped_acquire gil;
+                    if (failure) return;
+                    try {
+                        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+                        progress(done, total);
+                    } catch (py::error_already_set& e) {
+                        failure.emplace(std::move(e));
+                    }
+                };
+            }
+            VoronoiPartition result;
+            {
+                py::gil_scoped_release release;
+                result = dvoronoi::voronoi_cells(pts.ref(), in, threads, fn);
+            }
+            if (failure) throw std::move(*failure);
+            return result;
+        },
+        py::arg("points"), py::arg("inner") = "scan", py::arg("threads") = 0, py::arg("progress") = py::none(),
+        "voronoi_cells(points, inner=\"scan\", threads=0, progress=None) -> VoronoiPartition\n\n"
+        "Every agent's exact Voronoi neighbours and hull flag by Adjust-Sensing-Radius (GIL released).");
+}
