@@ -155,6 +155,16 @@ private:
         const double span = 2.0 * radius / cell_;
         const std::int64_t reach =
             span <= 1.0 ? 1 : static_cast<std::int64_t>(std::min(std::ceil(span + 1e-5), 1e15));
+        const double wide = static_cast<double>(std::min(2 * reach + 1, nx_)) *
+                            static_cast<double>(std::min(2 * reach + 1, ny_));
+        if (reach > 1 && wide > static_cast<double>(order_.size())) {
+            // More cells than agents to visit: test every agent instead.
+            for (std::size_t s = 0; s < order_.size(); ++s) {
+                const Vec2 p(xs_[s], ys_[s]);
+                if (order_[s] != i && pred::within_2r(c, p, radius) > 0) out.push_back({p, order_[s]});
+            }
+            return;
+        }
         for (std::int64_t cx = std::max<std::int64_t>(0, k.cx - reach);
              cx <= std::min<std::int64_t>(nx_ - 1, k.cx + reach); ++cx) {
             const std::int64_t cy0 = std::max<std::int64_t>(0, k.cy - reach);
