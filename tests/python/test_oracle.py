@@ -99,3 +99,12 @@ def test_degenerate_corpus(oracle, name, radius, pts):
 @pytest.mark.parametrize("radius", [0.5, 1.5, 2.5, 3.0, 4.0, 10.0])
 def test_intel_lab(oracle, intel, radius):
     compare(oracle, intel, radius, f"intel lab R={radius}")
+
+
+@pytest.mark.parametrize("radius", [0.05, 0.3, 2.0])
+def test_two_far_clusters(oracle, radius):
+    # Two clusters 1e9 apart: the grid index takes its sparse (sorted-cell) path.
+    rng = np.random.default_rng(11)
+    pts = rng.uniform(0.0, 1.0, (200, 2))
+    pts[100:, 0] += 1e9
+    compare(oracle, pts, radius, f"two far clusters R={radius}")

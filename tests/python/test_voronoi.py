@@ -70,3 +70,11 @@ def test_bad_input():
     assert len(dv.voronoi_cells(np.zeros((0, 2)))) == 0
     one = dv.voronoi_cells(np.array([[3.0, 4.0]]))
     assert bool(one.on_hull[0]) and len(one.indices) == 0
+
+
+def test_two_far_clusters(oracle):
+    # Two clusters 1e9 apart: a sparse grid index and sensing radii that grow across the gap.
+    rng = np.random.default_rng(5)
+    pts = rng.uniform(0.0, 1.0, (120, 2))
+    pts[60:, 0] += 1e9
+    check(oracle, pts, "two far clusters")
