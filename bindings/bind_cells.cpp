@@ -6,6 +6,7 @@
 // limited_cells releases the GIL for the whole computation; its arrays are zero-copy read-only views
 // into the bound LimitedPartition.
 #include "arrays.hpp"
+#include "progress.hpp"
 
 #include "dvoronoi/cells/limited_cell.hpp"
 #include "dvoronoi/partition/limited_partition.hpp"
@@ -366,32 +367,15 @@ void bind_cells(py::module_& m) {
             if (threads < 0)
                 throw py::value_error("threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
 
-            // The callback runs with the GIL re-acquired. A Python exception must not unwind through
-            // the library's OpenMP region, so it is kept and re-raised after the computation.
-            std::optional<py::error_already_set> failure;
-            dvoronoi::ProgressFn fn;
-            if (!progress.is_none()) {
-                fn = [&progress, &failure](Index done, Index total) {
-                    py::gil_scoped_acquire gil;
-                    if (failure) return;
-                    try {
-                        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-                        progress(done, total);
-                    } catch (py::error_already_set& e) {
-                        failure.emplace(std::move(e));
-                    } catch (const std::exception& e) {
-                        PyErr_SetString(PyExc_RuntimeError, e.what());
-                        failure.emplace();
-                    }
-                };
-            }
+            PyProgress report(std::move(progress));
+            const dvoronoi::ProgressFn fn = report.fn();
             auto result = std::make_unique<PyPartition>();
             result->method = meth;
             {
                 py::gil_scoped_release release;
                 result->part = dvoronoi::limited_cells(pts.ref(), radius, meth, threads, fn);
             }
-            if (failure) throw std::move(*failure);
+            report.rethrow();
             return result;
         },
         py::arg("points"), py::arg("radius"), py::arg("method") = "scan", py::arg("threads") = 0,

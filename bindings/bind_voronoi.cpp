@@ -2,6 +2,7 @@
 // by Adjust-Sensing-Radius with Boundary Scan or EVT as the inner step. Neighbour sets and hull flags
 // are exact; arrays are copied out once (the results are small: CSR plus per-agent counters).
 #include "arrays.hpp"
+#include "progress.hpp"
 
 #include "dvoronoi/cells/asr.hpp"
 #include "dvoronoi/partition/voronoi_partition.hpp"
@@ -9,7 +10,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -113,26 +113,14 @@ void bind_voronoi(py::module_& m) {
             const AsrInner in = parse_inner(inner);
             if (threads < 0)
                 throw py::value_error("threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
-            std::optional<py::error_already_set> failure;
-            dvoronoi::ProgressFn fn;
-            if (!progress.is_none()) {
-                fn = [&progress, &failure](Index done, Index total) {
-                    py::gil_scoped_acquire gil;
-                    if (failure) return;
-                    try {
-                        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-                        progress(done, total);
-                    } catch (py::error_already_set& e) {
-                        failure.emplace(std::move(e));
-                    }
-                };
-            }
+            PyProgress report(std::move(progress));
+            const dvoronoi::ProgressFn fn = report.fn();
             VoronoiPartition result;
             {
                 py::gil_scoped_release release;
                 result = dvoronoi::voronoi_cells(pts.ref(), in, threads, fn);
             }
-            if (failure) throw std::move(*failure);
+            report.rethrow();
             return result;
         },
         py::arg("points"), py::arg("inner") = "scan", py::arg("threads") = 0, py::arg("progress") = py::none(),

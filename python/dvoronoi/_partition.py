@@ -1,8 +1,9 @@
 """All agents' range-limited Voronoi cells: :func:`limited_cells` and :class:`LimitedPartition`."""
 from __future__ import annotations
 
+from contextlib import contextmanager
 from functools import cached_property
-from typing import Any, Callable, Optional, Union
+from typing import Any, Callable, Iterator, Optional, Union
 
 import numpy as np
 
@@ -139,6 +140,30 @@ def _agent_count(points: Any) -> Optional[int]:
         return None
 
 
+@contextmanager
+def progress_callback(points: Any, progress: ProgressArg, desc: str) -> Iterator[Optional[Callable[[int, int], Any]]]:
+    """The `progress` argument of the all-agents calls as a ``(done, total)`` callback for the core.
+
+    A callable is used as is; True/False show a tqdm bar always/never; None shows one from
+    ``PROGRESS_BAR_FROM`` agents on. The bar is closed when the block exits, also on errors.
+    """
+    if callable(progress) and not isinstance(progress, bool):
+        yield progress
+        return
+    n = _agent_count(points)
+    show = bool(progress) if progress is not None else (n is not None and n >= PROGRESS_BAR_FROM)
+    if not (show and n):
+        yield None
+        return
+    from tqdm.auto import tqdm
+
+    bar = tqdm(total=n, unit="agents", desc=desc)
+    try:
+        yield lambda done, total: bar.update(done - bar.n)
+    finally:
+        bar.close()
+
+
 def limited_cells(points: Any, radius: float, method: str = "scan", threads: Optional[int] = None,
                   progress: ProgressArg = None) -> LimitedPartition:
     """Every agent's range-limited Voronoi cell ``V_i ∩ B(p_i, radius)``.
@@ -177,24 +202,6 @@ def limited_cells(points: Any, radius: float, method: str = "scan", threads: Opt
     vertices, areas and centroids carry floating-point rounding.
     """
     threads = 0 if threads is None else int(threads)
-    bar = None
-    callback: Optional[Callable[[int, int], Any]] = None
-    if callable(progress) and not isinstance(progress, bool):
-        callback = progress
-    else:
-        n = _agent_count(points)
-        show = bool(progress) if progress is not None else (n is not None and n >= PROGRESS_BAR_FROM)
-        if show and n:
-            from tqdm.auto import tqdm
-
-            bar = tqdm(total=n, unit="agents", desc="limited cells")
-
-            def callback(done: int, total: int) -> None:
-                bar.update(done - bar.n)
-
-    try:
+    with progress_callback(points, progress, "limited cells") as callback:
         core = _core.limited_cells(points, radius, method, threads, callback)
-    finally:
-        if bar is not None:
-            bar.close()
     return LimitedPartition(core)

@@ -8,17 +8,13 @@ from __future__ import annotations
 
 import json
 from functools import cached_property
-from typing import Any, Callable, Optional
+from typing import Any, Optional
 
 import numpy as np
 
 from . import _core
-from ._partition import ProgressArg, _agent_count
+from ._partition import ProgressArg, progress_callback
 from ._result import Result
-
-#: From this many agents on, ``voronoi_cells(progress=None)`` shows a tqdm progress bar.
-PROGRESS_BAR_FROM = 200_000
-
 
 class VoronoiPartition(Result):
     """Exact Voronoi neighbours (cells sharing an edge of positive length) and hull flags of n agents.
@@ -129,24 +125,6 @@ def voronoi_cells(points: Any, inner: str = "scan", threads: Optional[int] = Non
     :func:`voronoi_cell`); ``threads`` None or 0 uses every core; ``progress`` as in
     :func:`limited_cells`. Raises ValueError for bad shapes, NaN/inf or coinciding agents."""
     threads = 0 if threads is None else int(threads)
-    bar = None
-    callback: Optional[Callable[[int, int], Any]] = None
-    if callable(progress) and not isinstance(progress, bool):
-        callback = progress
-    else:
-        n = _agent_count(points)
-        show = bool(progress) if progress is not None else (n is not None and n >= PROGRESS_BAR_FROM)
-        if show and n:
-            from tqdm.auto import tqdm
-
-            bar = tqdm(total=n, unit="agents", desc="voronoi cells")
-
-            def callback(done: int, total: int) -> None:
-                bar.update(done - bar.n)
-
-    try:
+    with progress_callback(points, progress, "voronoi cells") as callback:
         core = _core.voronoi_cells(points, inner, threads, callback)
-    finally:
-        if bar is not None:
-            bar.close()
     return VoronoiPartition(core, inner)

@@ -121,6 +121,21 @@ private:
     std::exception_ptr failure_;
 };
 
+/// Agents per block of the parallel drivers (the unit of scheduling and of progress reports).
+inline constexpr Index kBlock = 2048;
+
+/// OpenMP team size for `blocks` blocks: `threads` (0 = all cores), never more than one thread per
+/// block, so small inputs start no team.
+inline int thread_team(int threads, Index blocks) {
+#ifdef _OPENMP
+    const int wanted = threads > 0 ? threads : omp_get_max_threads();
+#else
+    const int wanted = 1;
+    (void)threads;
+#endif
+    return static_cast<int>(std::min<Index>(wanted, std::max<Index>(blocks, 1)));
+}
+
 /// Throws CoincidentError naming the lowest pair (i, j), i < j, of coinciding agents.
 inline void require_distinct(const GridIndex& index, const Points& pts) {
     const auto [i, j] = index.first_duplicate();
@@ -161,22 +176,15 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     const GridIndex index(out.points, 2.0 * radius);
     detail::require_distinct(index, out.points);
     const std::vector<Index>& order = index.grid_order();
-#ifdef _OPENMP
-    const int nthreads = threads > 0 ? threads : omp_get_max_threads();
-#else
-    const int nthreads = 1;
-    (void)threads;
-#endif
     // Agents are processed in grid order, in blocks; each block appends its cells to its own buffers
     // and records where each agent's pieces landed. The flat arrays are then laid out in input order.
     struct Block {
         std::vector<Piece> pieces;
         std::vector<Index> first;  // per agent of the block: offset of its first piece
     };
-    const Index block = 2048;
+    const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
-    // No thread team for small inputs: one thread per block at most.
-    const int team = static_cast<int>(std::min<Index>(nthreads, nblocks));
+    const int team = detail::thread_team(threads, nblocks);
     std::vector<Block> blocks(static_cast<std::size_t>(nblocks));
     std::vector<Index> count(static_cast<std::size_t>(n)), nb_count(static_cast<std::size_t>(n));
     detail::ProgressTracker tracker(progress, n);

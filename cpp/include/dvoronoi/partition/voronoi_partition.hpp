@@ -71,15 +71,9 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     const GridIndex index(out.points, range);
     detail::require_distinct(index, out.points);
     const std::vector<Index>& order = index.grid_order();
-#ifdef _OPENMP
-    const int nthreads = threads > 0 ? threads : omp_get_max_threads();
-#else
-    const int nthreads = 1;
-    (void)threads;
-#endif
-    const Index block = 2048;
+    const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
-    const int team = static_cast<int>(std::min<Index>(nthreads, nblocks));
+    const int team = detail::thread_team(threads, nblocks);
     std::vector<std::vector<Index>> nbrs(static_cast<std::size_t>(n));
     detail::ProgressTracker tracker(progress, n);
 
