@@ -87,6 +87,67 @@ inline NamedCase jittered_lattice(int size, double jitter, double radius, std::u
     return c;
 }
 
+/// Inputs whose cells reach far beyond their agents (the exact-cell driver's hard cases): `kind`
+/// 0 = agents on the boundary of a square (long collinear hull edges) around a uniform interior,
+/// 1 = a convex arc y = x^2 / 2^20 (nearly collinear; huge Delaunay circles) with agents just above,
+/// 2 = every integer point of the circle x^2 + y^2 = 5^6 (exactly cocircular) plus its centre and
+///     agents just inside, 3 = two concentric rings (the inner one's cells reach the outer one's).
+inline NamedCase far_vertices(int kind, std::size_t n, std::uint64_t seed) {
+    std::mt19937_64 rng(seed * 2654435761u + static_cast<std::uint64_t>(kind) * 97u + n);
+    NamedCase c;
+    c.name = "far_vertices/kind=" + std::to_string(kind) + "/n=" + std::to_string(n) + "/seed=" + std::to_string(seed);
+    const auto u = [&] { return uniform40(rng); };
+    if (kind == 0) {
+        const int side = static_cast<int>(n / 8) + 2;
+        for (int t = 0; t < side; ++t) {
+            c.points.push_back({static_cast<double>(t), 0.0});
+            c.points.push_back({static_cast<double>(side), static_cast<double>(t)});
+            c.points.push_back({static_cast<double>(side - t), static_cast<double>(side)});
+            c.points.push_back({0.0, static_cast<double>(side - t)});
+        }
+        for (std::size_t k = 0; k < n / 2; ++k) c.points.push_back({side * (0.001 + 0.998 * u()), side * (0.001 + 0.998 * u())});
+    } else if (kind == 1) {
+        for (std::size_t k = 0; k < n / 2; ++k) {
+            const double x = std::floor(u() * 4096.0) - 2048.0;
+            c.points.push_back({x, x * x * 0x1p-20});
+            c.points.push_back({x + 0.5, (x + 0.5) * (x + 0.5) * 0x1p-20 + 1.0 + u()});
+        }
+    } else if (kind == 2) {
+        const long r2 = 15625;  // 5^6: many integer points on the circle
+        for (long x = -125; x <= 125; ++x) {
+            const long y2 = r2 - x * x;
+            const long y = std::lround(std::sqrt(static_cast<double>(y2)));
+            if (y * y != y2) continue;
+            c.points.push_back({static_cast<double>(x), static_cast<double>(y)});
+            if (y != 0) c.points.push_back({static_cast<double>(x), static_cast<double>(-y)});
+        }
+        c.points.push_back({0.0, 0.0});
+        for (std::size_t k = 0; k < n; ++k) {
+            const double a = 6.283185307179586 * u(), rr = 124.0 * std::sqrt(u());
+            c.points.push_back({std::round(rr * std::cos(a) * 64.0) / 64.0 + 0x1p-10, std::round(rr * std::sin(a) * 64.0) / 64.0});
+        }
+    } else {
+        for (std::size_t k = 0; k < n; ++k) {
+            const double a = 6.283185307179586 * (static_cast<double>(k) + 0.25 * u()) / static_cast<double>(n);
+            const double r = k % 2 ? 100.0 : 99.0;
+            c.points.push_back({r * std::cos(a), r * std::sin(a)});
+        }
+    }
+    // Drop exact duplicates (the generators can repeat a point).
+    std::sort(c.points.begin(), c.points.end());
+    c.points.erase(std::unique(c.points.begin(), c.points.end()), c.points.end());
+    const auto perm = [&] {
+        std::vector<std::size_t> p(c.points.size());
+        std::iota(p.begin(), p.end(), std::size_t{0});
+        for (std::size_t i = p.size(); i > 1; --i) std::swap(p[i - 1], p[rng() % i]);
+        return p;
+    }();
+    std::vector<XY> shuffled;
+    for (std::size_t k : perm) shuffled.push_back(c.points[k]);
+    c.points = shuffled;
+    return c;
+}
+
 /// A seeded permutation (Fisher-Yates on mt19937_64 output).
 inline std::vector<std::size_t> permutation(std::size_t n, std::uint64_t seed) {
     std::vector<std::size_t> p(n);

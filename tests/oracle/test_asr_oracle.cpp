@@ -147,3 +147,54 @@ TEST_CASE("voronoi_cells (all agents, grid index, 2 threads) equals the oracle")
     CHECK(cases > 200);
     CHECK(bad == 0);
 }
+
+TEST_CASE("voronoi_cells: cells that reach far (hull runs, convex arcs, cocircular rings), transformed") {
+    // These need the driver's empty-circle and hull certificates (partition/empty_circle_certificate.hpp).
+    int bad = 0;
+    std::size_t cases = 0;
+    for (std::uint64_t seed = 0; seed < 3; ++seed)
+        for (int kind = 0; kind < 4; ++kind) {
+            const auto base = fam::far_vertices(kind, kind == 3 ? 200 : 600, seed);
+            std::vector<std::pair<std::string, std::vector<XY>>> inputs{{base.name, base.points}};
+            if (seed == 0)
+                for (const auto& t : dvoronoi_oracle::exact_transforms(base.points, 1.0, seed))
+                    inputs.push_back({base.name + " " + t.name, t.points});
+            for (const auto& [label, pts] : inputs) {
+                ++cases;
+                const auto exact = dvoronoi_oracle::compute_oracle(pts, 1.0);
+                dvoronoi::Points P(static_cast<Eigen::Index>(pts.size()), 2);
+                for (std::size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) << pts[i][0], pts[i][1];
+                for (auto inner : {dvoronoi::AsrInner::Scan, dvoronoi::AsrInner::Evt}) {
+                    const auto part = dvoronoi::voronoi_cells(P, inner, 2);
+                    for (std::size_t i = 0; i < pts.size(); ++i) {
+                        const auto [b, e] = part.neighbors(static_cast<dvoronoi::Index>(i));
+                        const std::vector<std::size_t> got(b, e);
+                        if (got != exact.voronoi_neighbors[i] ||
+                            (part.on_hull[i] != 0) != static_cast<bool>(exact.on_hull[i])) {
+                            if (bad < 5) MESSAGE(label << ": agent " << i);
+                            ++bad;
+                        }
+                    }
+                }
+            }
+        }
+    CHECK(cases > 30);
+    CHECK(bad == 0);
+}
+
+TEST_CASE("voronoi_cells: 20000 uniform agents (deep radius schedules) equal the oracle") {
+    const auto base = fam::uniform(20000, 10.0, 7);
+    const auto exact = dvoronoi_oracle::compute_oracle(base.points, 1.0);
+    dvoronoi::Points P(static_cast<Eigen::Index>(base.points.size()), 2);
+    for (std::size_t i = 0; i < base.points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) << base.points[i][0], base.points[i][1];
+    const auto part = dvoronoi::voronoi_cells(P, dvoronoi::AsrInner::Scan, 2);
+    int bad = 0, deep = 0;
+    for (std::size_t i = 0; i < base.points.size(); ++i) {
+        const auto [b, e] = part.neighbors(static_cast<dvoronoi::Index>(i));
+        bad += std::vector<std::size_t>(b, e) != exact.voronoi_neighbors[i] ||
+               (part.on_hull[i] != 0) != static_cast<bool>(exact.on_hull[i]);
+        deep += part.radius_steps[i] >= 5;
+    }
+    CHECK(deep > 10);  // the schedule's long tail (agents near the hull) is exercised
+    CHECK(bad == 0);
+}

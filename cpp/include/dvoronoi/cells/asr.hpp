@@ -170,13 +170,61 @@ void edges_from_neighbors(const Vec2& c, const std::vector<Index>& nb, bool unbo
     out.on_hull = unbounded;
 }
 
-/// Adjust-Sensing-Radius around c. `query(radius, cand)` fills `cand` with the agents strictly
-/// within 2*radius of c (exact); `total` is the number of other agents; `first_radius` starts the
-/// schedule (the nearest-neighbour distance). Leaves the cell in `out`.
-template <class Query>
+/// The cell of c among all of `cand` (no disk), by the inner step's own means.
+inline void candidate_cell(const Vec2& c, std::vector<Candidate>& cand, AsrInner inner, CellWorkspace& ws,
+                           DelaunayWorkspace& dws, VoronoiCell& out) {
+    if (inner == AsrInner::Evt) {
+        DelaunayCell dc;
+        delaunay_star(c, cand, dc, dws);
+        const auto pos = [&](Index id) {
+            for (const Candidate& q : cand)
+                if (q.id == id) return q.p;
+            return c;  // not reached: neighbours are candidates
+        };
+        edges_from_neighbors(c, dc.neighbors, dc.on_hull, pos, out);
+        return;
+    }
+    sorted_bisectors(c, cand, ws);
+    unlimited_cell(c, ws, out);
+}
+
+/// ASR on its own: only the radius certificate (what one robot can check).
+struct NoCertificate {
+    static constexpr int kFromStep = std::numeric_limits<int>::max();
+    int check(Index, const Vec2&, double, const VoronoiCell&, std::vector<Candidate>&) const { return -1; }
+};
+
+/// After an uncertified radius step: ask the certificate (if it applies from this step on),
+/// extending the candidates while it finds agents that cut the cell. True when the cell is exact.
+template <class Certificate>
+bool certify_beyond_radius(Index self, const Vec2& c, double radius, AsrInner inner, const Certificate& cert,
+                           CellWorkspace& ws, DelaunayWorkspace& dws, std::vector<Candidate>& cand,
+                           VoronoiCell& out) {
+    if (out.radius_steps < Certificate::kFromStep) return false;
+    for (;;) {
+        candidate_cell(c, cand, inner, ws, dws, out);
+        const int verdict = cert.check(self, c, radius, out, cand);
+        if (verdict > 0) {
+            out.agents_used = static_cast<Index>(cand.size());
+            return true;
+        }
+        if (verdict < 0) {
+            out.edges.clear();
+            out.on_hull = false;
+            return false;
+        }
+    }
+}
+
+/// Adjust-Sensing-Radius around agent `self` at c. `query(radius, cand)` fills `cand` with the agents
+/// strictly within 2*radius of c (exact); `total` is the number of other agents; `first_radius`
+/// starts the schedule (the nearest-neighbour distance). From radius step Certificate::kFromStep on,
+/// an uncertified step also asks `cert` (see partition/empty_circle_certificate.hpp): +1 exact, 0 it
+/// added candidates (recompute and ask again), -1 widen the radius. Leaves the cell in `out`.
+template <class Query, class Certificate = NoCertificate>
 void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInner inner,
          CellWorkspace& ws, DelaunayWorkspace& dws, std::vector<Candidate>& cand, LimitedCell& limited,
-         VoronoiCell& out) {
+         VoronoiCell& out, Index self = -1, const Certificate& cert = Certificate{}) {
     out.center = c;
     out.edges.clear();
     out.on_hull = false;
@@ -216,6 +264,7 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
                 out.agents_used = static_cast<Index>(cand.size());
                 return;
             }
+            if (certify_beyond_radius(self, c, radius, inner, cert, ws, dws, cand, out)) return;
             if (!std::isfinite(radius * 4.0)) break;
             continue;
         }
@@ -238,6 +287,7 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
             }
             return;
         }
+        if (certify_beyond_radius(self, c, radius, inner, cert, ws, dws, cand, out)) return;
         if (static_cast<Index>(cand.size()) == total || !std::isfinite(radius * 4.0)) break;
     }
     // Every agent is in range and the cell did not certify: intersect all half-planes.

@@ -53,11 +53,27 @@ public:
     int sign() const { return c_.empty() ? 0 : (c_.back() > 0.0 ? 1 : -1); }
 
     friend Expansion operator+(const Expansion& a, const Expansion& b) {
-        // Shewchuk's grow-expansion per component of the shorter operand: simple and exact.
-        const Expansion& big = a.c_.size() >= b.c_.size() ? a : b;
-        const Expansion& small = a.c_.size() >= b.c_.size() ? b : a;
-        Expansion r = big;
-        for (double v : small.c_) r.grow(v);
+        // Shewchuk's linear expansion sum (merge by magnitude, then one two_sum per component,
+        // zeros eliminated): one allocation per result.
+        if (a.c_.empty()) return b;
+        if (b.c_.empty()) return a;
+        const std::vector<double>& e = a.c_;
+        const std::vector<double>& f = b.c_;
+        std::size_t ei = 0, fi = 0;
+        const auto take = [&]() {
+            if (fi >= f.size() || (ei < e.size() && std::fabs(e[ei]) < std::fabs(f[fi]))) return e[ei++];
+            return f[fi++];
+        };
+        Expansion r;
+        r.c_.reserve(e.size() + f.size());
+        double q = take();
+        while (ei < e.size() || fi < f.size()) {
+            double qn, hh;
+            two_sum(q, take(), qn, hh);
+            q = qn;
+            if (hh != 0.0) r.c_.push_back(hh);
+        }
+        if (q != 0.0) r.c_.push_back(q);
         return r;
     }
     friend Expansion operator-(const Expansion& a) {
@@ -75,23 +91,10 @@ public:
     }
 
 private:
-    void grow(double b) {  // this += b (grow_expansion_zeroelim)
-        std::vector<double> h;
-        h.reserve(c_.size() + 1);
-        double q = b;
-        for (double e : c_) {
-            double s, t;
-            two_sum(q, e, s, t);
-            if (t != 0.0) h.push_back(t);
-            q = s;
-        }
-        if (q != 0.0 || h.empty()) h.push_back(q);
-        if (h.size() == 1 && h[0] == 0.0) h.clear();
-        c_.swap(h);
-    }
     Expansion scaled(double b) const {  // scale_expansion_zeroelim
         Expansion r;
         if (c_.empty() || b == 0.0) return r;
+        r.c_.reserve(2 * c_.size());
         double q, hh;
         two_product(c_[0], b, q, hh);
         if (hh != 0.0) r.c_.push_back(hh);

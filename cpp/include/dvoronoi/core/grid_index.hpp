@@ -130,7 +130,64 @@ public:
         within_impl(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, out);
     }
 
+    /// Calls fn(position, id) for every agent of the grid cells that meet the disk of radius r around
+    /// `center` (a superset of the agents in the disk; the caller decides exactly) until fn returns
+    /// false; returns false when it was stopped that way. Only the part of
+    /// the disk over the agents' bounding box is scanned, column by column, so a huge disk that barely
+    /// touches the agents costs little; when more cells than agents would be visited, every agent is.
+    template <class Fn>
+    bool for_each_in_disk(const Vec2& center, double r, Fn&& fn) const {
+        const std::int64_t n = static_cast<std::int64_t>(order_.size());
+        if (n == 0 || !(r >= 0.0)) return true;
+        const auto clampf = [](double v, double lo, double hi) { return std::min(std::max(v, lo), hi); };
+        // Column range (one cell of margin on each side covers the rounding of the keys).
+        const double fx0 = std::floor((center.x() - r - x0_) / cell_) - 1.0;
+        const double fx1 = std::floor((center.x() + r - x0_) / cell_) + 1.0;
+        const double fy0 = std::floor((center.y() - r - y0_) / cell_) - 1.0;
+        const double fy1 = std::floor((center.y() + r - y0_) / cell_) + 1.0;
+        if (!(fx1 >= 0.0 && fy1 >= 0.0 && fx0 <= static_cast<double>(nx_ - 1) && fy0 <= static_cast<double>(ny_ - 1)))
+            return true;  // the disk misses the agents' bounding box
+        const auto cx0 = static_cast<std::int64_t>(clampf(fx0, 0.0, static_cast<double>(nx_ - 1)));
+        const auto cx1 = static_cast<std::int64_t>(clampf(fx1, 0.0, static_cast<double>(nx_ - 1)));
+        const auto gy0 = static_cast<std::int64_t>(clampf(fy0, 0.0, static_cast<double>(ny_ - 1)));
+        const auto gy1 = static_cast<std::int64_t>(clampf(fy1, 0.0, static_cast<double>(ny_ - 1)));
+        if (cx1 - cx0 + 1 > n) {
+            for (std::size_t s = 0; s < order_.size(); ++s)
+                if (!fn(Vec2(xs_[s], ys_[s]), order_[s])) return false;
+            return true;
+        }
+        for (std::int64_t cx = cx0; cx <= cx1; ++cx) {
+            // The disk's extent over this column's x-interval [xa, xb].
+            const double xa = x0_ + static_cast<double>(cx) * cell_, xb = xa + cell_;
+            const double dx = center.x() < xa ? xa - center.x() : (center.x() > xb ? center.x() - xb : 0.0);
+            if (dx > r) continue;
+            const double half = std::sqrt(std::max(0.0, r * r - dx * dx)) * (1.0 + 1e-12);
+            const double ly = std::floor((center.y() - half - y0_) / cell_) - 1.0;
+            const double hy = std::floor((center.y() + half - y0_) / cell_) + 1.0;
+            if (hy < static_cast<double>(gy0) || ly > static_cast<double>(gy1)) continue;
+            const auto cy0 = static_cast<std::int64_t>(clampf(ly, static_cast<double>(gy0), static_cast<double>(gy1)));
+            const auto cy1 = static_cast<std::int64_t>(clampf(hy, static_cast<double>(gy0), static_cast<double>(gy1)));
+            std::size_t lo, hi;
+            column_run(cx, cy0, cy1, lo, hi);
+            for (std::size_t s = lo; s < hi; ++s)
+                if (!fn(Vec2(xs_[s], ys_[s]), order_[s])) return false;
+        }
+        return true;
+    }
+
 private:
+    /// Positions [lo, hi) of grid_order() in cells (cx, cy0..cy1).
+    void column_run(std::int64_t cx, std::int64_t cy0, std::int64_t cy1, std::size_t& lo, std::size_t& hi) const {
+        if (dense_) {
+            lo = static_cast<std::size_t>(start_[static_cast<std::size_t>(cx * ny_ + cy0)]);
+            hi = static_cast<std::size_t>(start_[static_cast<std::size_t>(cx * ny_ + cy1 + 1)]);
+        } else {
+            const auto cmp = [](const Key& a, const Key& b) { return a.cx != b.cx ? a.cx < b.cx : a.cy < b.cy; };
+            lo = static_cast<std::size_t>(std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), Key{cx, cy0}, cmp) - sorted_keys_.begin());
+            hi = static_cast<std::size_t>(std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), Key{cx, cy1}, cmp) - sorted_keys_.begin());
+        }
+    }
+
     struct Key {
         std::int64_t cx, cy;
     };
@@ -170,16 +227,7 @@ private:
             const std::int64_t cy0 = std::max<std::int64_t>(0, k.cy - reach);
             const std::int64_t cy1 = std::min<std::int64_t>(ny_ - 1, k.cy + reach);
             std::size_t lo, hi;
-            if (dense_) {
-                lo = static_cast<std::size_t>(start_[static_cast<std::size_t>(cx * ny_ + cy0)]);
-                hi = static_cast<std::size_t>(start_[static_cast<std::size_t>(cx * ny_ + cy1 + 1)]);
-            } else {
-                const auto cmp = [](const Key& a, const Key& b) {
-                    return a.cx != b.cx ? a.cx < b.cx : a.cy < b.cy;
-                };
-                lo = static_cast<std::size_t>(std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), Key{cx, cy0}, cmp) - sorted_keys_.begin());
-                hi = static_cast<std::size_t>(std::upper_bound(sorted_keys_.begin(), sorted_keys_.end(), Key{cx, cy1}, cmp) - sorted_keys_.begin());
-            }
+            column_run(cx, cy0, cy1, lo, hi);
             // Branch-free distance pass over the contiguous run, then the rare exact checks.
             const double r2 = 4.0 * radius * radius, r2hi = r2 * (1.0 + 1e-9), r2lo = r2 * (1.0 - 1e-9);
             for (std::size_t s = lo; s < hi; ++s) {

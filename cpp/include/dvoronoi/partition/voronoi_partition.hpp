@@ -3,6 +3,8 @@
 #pragma once
 
 #include "dvoronoi/cells/asr.hpp"
+#include "dvoronoi/core/convex_hull.hpp"
+#include "dvoronoi/partition/empty_circle_certificate.hpp"
 #include "dvoronoi/partition/limited_partition.hpp"
 
 #include <cmath>
@@ -70,6 +72,8 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     if (!(range > 0.0) || !std::isfinite(range)) range = 1.0;
     const GridIndex index(out.points, range);
     detail::require_distinct(index, out.points);
+    const ConvexHull hull(out.points);
+    const detail::EmptyCircleCertificate cert(out.points, index, hull);
     const std::vector<Index>& order = index.grid_order();
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
@@ -105,7 +109,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     for (const detail::Candidate& q : cand) best = std::min(best, (q.p - c).squaredNorm());
                     first = std::sqrt(best);
                 }
-                detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell);
+                detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell, i, cert);
                 out.on_hull[ii] = cell.on_hull ? 1 : 0;
                 out.radius_steps[ii] = cell.radius_steps;
                 out.agents_used[ii] = cell.agents_used;

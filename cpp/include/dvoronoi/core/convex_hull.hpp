@@ -1,0 +1,133 @@
+// The boundary of the convex hull of all agents, with the agents that lie on hull edges (not only the
+// corners): exactly the agents whose Voronoi cells are unbounded. Andrew's monotone chain on exact
+// orientation tests, O(n log n).
+//
+// What the exact-cell driver needs from it (partition/voronoi_partition.hpp): for an agent c on the
+// boundary, its predecessor and successor along the boundary generate, from c, the cone that holds
+// every agent (with one agent off the line when c lies inside a hull edge) — so the recession cone
+// of a candidate cell can be certified with three orientation tests.
+#pragma once
+
+#include "dvoronoi/core/predicates.hpp"
+#include "dvoronoi/core/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+namespace dvoronoi {
+
+class ConvexHull {
+public:
+    /// The hull of `pts` (agents must be distinct; not checked here).
+    explicit ConvexHull(const Points& pts) {
+        const Index n = pts.rows();
+        prev_.assign(static_cast<std::size_t>(n), -1);
+        next_.assign(static_cast<std::size_t>(n), -1);
+        if (n == 0) return;
+        const auto P = [&](Index i) { return Vec2(pts(i, 0), pts(i, 1)); };
+        std::vector<Index> s(static_cast<std::size_t>(n));
+        std::iota(s.begin(), s.end(), Index{0});
+        std::sort(s.begin(), s.end(), [&](Index a, Index b) {
+            return pts(a, 0) != pts(b, 0) ? pts(a, 0) < pts(b, 0) : pts(a, 1) < pts(b, 1);
+        });
+        if (n == 1) {
+            boundary_ = {s[0]};
+            return;
+        }
+        // Strict corners of the lower and upper chains, as positions in the sorted order.
+        std::vector<std::size_t> lower, upper;
+        const auto chain = [&](std::vector<std::size_t>& h, std::size_t k) {
+            while (h.size() >= 2 && pred::orient(P(s[h[h.size() - 2]]), P(s[h.back()]), P(s[k])) <= 0) h.pop_back();
+            h.push_back(k);
+        };
+        for (std::size_t k = 0; k < s.size(); ++k) chain(lower, k);
+        for (std::size_t k = s.size(); k-- > 0;) chain(upper, k);
+        if (lower.size() == 2 && upper.size() == 2) {
+            // Every agent on one line: the boundary is the sorted order, walked both ways.
+            collinear_ = true;
+            boundary_ = s;
+            for (std::size_t k = 0; k < s.size(); ++k) {
+                const auto i = static_cast<std::size_t>(s[k]);
+                prev_[i] = s[k > 0 ? k - 1 : k + 1];
+                next_[i] = s[k + 1 < s.size() ? k + 1 : k - 1];
+            }
+            return;
+        }
+        // Walk the corners counter-clockwise, inserting the agents that lie on each hull edge: on the
+        // lower chain they sit between the edge's ends in the sorted order, on the upper chain too
+        // (walked backwards).
+        const auto walk = [&](const std::vector<std::size_t>& h, bool forward) {
+            for (std::size_t e = 0; e + 1 < h.size(); ++e) {
+                const std::size_t a = h[e], b = h[e + 1];
+                boundary_.push_back(s[a]);
+                if (forward) {
+                    for (std::size_t k = a + 1; k < b; ++k)
+                        if (pred::orient(P(s[a]), P(s[b]), P(s[k])) == 0) boundary_.push_back(s[k]);
+                } else {
+                    for (std::size_t k = a; k-- > b + 1;)
+                        if (pred::orient(P(s[a]), P(s[b]), P(s[k])) == 0) boundary_.push_back(s[k]);
+                }
+            }
+        };
+        walk(lower, true);
+        walk(upper, false);
+        const std::size_t m = boundary_.size();
+        for (std::size_t k = 0; k < m; ++k) {
+            const auto i = static_cast<std::size_t>(boundary_[k]);
+            prev_[i] = boundary_[(k + m - 1) % m];
+            next_[i] = boundary_[(k + 1) % m];
+        }
+        // Three corners that are not collinear: one of them lies off any line through a hull edge.
+        for (std::size_t k = 0; k + 1 < lower.size(); ++k) corners_.push_back(s[lower[k]]);
+        for (std::size_t k = 0; k + 1 < upper.size(); ++k) corners_.push_back(s[upper[k]]);
+        witnesses_.assign(corners_.begin(), corners_.begin() + 3);
+        // Outward normal angle of each corner's outgoing edge; they increase around the hull.
+        const std::size_t h = corners_.size();
+        for (std::size_t k = 0; k < h; ++k) {
+            const Vec2 e = P(corners_[(k + 1) % h]) - P(corners_[k]);
+            normal_angle_.push_back(std::atan2(-e.x(), e.y()));
+        }
+        const auto first = std::min_element(normal_angle_.begin(), normal_angle_.end()) - normal_angle_.begin();
+        std::rotate(normal_angle_.begin(), normal_angle_.begin() + first, normal_angle_.end());
+        std::rotate(corners_.begin(), corners_.begin() + first, corners_.end());
+    }
+
+    /// The agent lies on the hull boundary (its Voronoi cell is unbounded).
+    bool on_boundary(Index i) const { return next_[static_cast<std::size_t>(i)] >= 0; }
+    /// Neighbours along the boundary, counter-clockwise (collinear input: along the sorted line; an
+    /// end of the line has the same agent as both). Only for agents on the boundary.
+    Index prev(Index i) const { return prev_[static_cast<std::size_t>(i)]; }
+    Index next(Index i) const { return next_[static_cast<std::size_t>(i)]; }
+    /// Every agent lies on one line.
+    bool collinear() const noexcept { return collinear_; }
+    /// The boundary, counter-clockwise from the lexicographically smallest agent.
+    const std::vector<Index>& boundary() const noexcept { return boundary_; }
+    /// Agents that together span the plane (empty for a collinear input): for any line, one of them
+    /// lies off it.
+    const std::vector<Index>& witnesses() const noexcept { return witnesses_; }
+
+    /// A hull corner that maximises d . p (up to rounding of the edge angles: a hint for where to
+    /// look, not an exact answer), in O(log h). Collinear input: the end of the line in direction d.
+    Index extreme(const Vec2& d, const Points& pts) const {
+        if (boundary_.empty()) return -1;
+        if (collinear_) {
+            const Index a = boundary_.front(), b = boundary_.back();
+            return d.dot(Vec2(pts(b, 0) - pts(a, 0), pts(b, 1) - pts(a, 1))) >= 0.0 ? b : a;
+        }
+        // The corner whose incoming edge normal comes before d's angle and outgoing one after it.
+        const double phi = std::atan2(d.y(), d.x());
+        const std::size_t h = corners_.size();
+        const auto k = static_cast<std::size_t>(
+            std::upper_bound(normal_angle_.begin(), normal_angle_.end(), phi) - normal_angle_.begin());
+        return corners_[k % h];
+    }
+
+private:
+    std::vector<Index> prev_, next_, boundary_, witnesses_, corners_;
+    std::vector<double> normal_angle_;
+    bool collinear_ = false;
+};
+
+}  // namespace dvoronoi
