@@ -16,6 +16,8 @@
 namespace py = pybind11;
 using namespace dvoronoi_bindings;
 using dvoronoi::AsrInner;
+using dvoronoi::ClippedCell;
+using dvoronoi::ConvexRegion;
 using dvoronoi::VoronoiCell;
 using dvoronoi::VoronoiEdge;
 using dvoronoi::VoronoiPartition;
@@ -46,9 +48,38 @@ py::array xy_array(const std::vector<Vec2>& v) {
     return a;
 }
 
+/// bounds=None | (xmin, ymin, xmax, ymax) | (k, 2) convex polygon.
+ConvexRegion region_arg(py::handle obj) {
+    if (obj.is_none()) return ConvexRegion();
+    const py::array arr = as_array(obj, "bounds", "a box (xmin, ymin, xmax, ymax) or a (k, 2) convex polygon");
+    if (arr.ndim() == 1 && arr.shape(0) == 4) {
+        const py::array_t<double, py::array::forcecast> b(arr);
+        return ConvexRegion::box(b.at(0), b.at(1), b.at(2), b.at(3), "bounds");
+    }
+    if (arr.ndim() == 2 && arr.shape(1) == 2) {
+        const PointsArg poly = points_arg(arr, "bounds");
+        return ConvexRegion::polygon(poly.ref(), "bounds");
+    }
+    throw py::value_error("bounds must be a box (xmin, ymin, xmax, ymax) or a (k, 2) array of convex polygon "
+                          "vertices, got shape " + shape_str(arr));
+}
+
+py::tuple xy(const Vec2& v) { return py::make_tuple(v.x(), v.y()); }
+
 }  // namespace
 
 void bind_voronoi(py::module_& m) {
+    py::class_<ClippedCell>(m, "ClippedCell", "A Voronoi cell cut to the caller's convex region (a convex polygon).")
+        .def_property_readonly("vertices", [](const ClippedCell& c) { return xy_array(c.vertices); },
+                               "Counter-clockwise vertices, shape (k, 2) (empty when the cell misses the region).")
+        .def_property_readonly("side_neighbors", [](const ClippedCell& c) { return copy_array<Index>(c.side_neighbor); },
+                               "Per side (vertex k -> k+1): the Voronoi neighbour, or -1 on the region's boundary.")
+        .def_readonly("area", &ClippedCell::area)
+        .def_property_readonly("centroid", [](const ClippedCell& c) { return xy(c.centroid); })
+        .def("__repr__", [](const ClippedCell& c) {
+            return "ClippedCell(vertices=" + std::to_string(c.vertices.size()) + ", area=" + std::to_string(c.area) + ")";
+        });
+
     py::class_<VoronoiEdge>(m, "VoronoiEdge",
                             "One edge of an exact Voronoi cell, counter-clockwise. An edge from (to) "
                             "infinity has `start` (`end`) at the foot of its bisector, a point of its line.")
@@ -77,6 +108,12 @@ void bind_voronoi(py::module_& m) {
                                },
                                "Finite vertices, counter-clockwise, shape (k, 2).")
         .def_readonly("on_hull", &VoronoiCell::on_hull, "The cell is unbounded (the agent is on the convex hull).")
+        .def_property_readonly("clipped", [](const VoronoiCell& c) -> py::object {
+            return c.is_clipped ? py::cast(c.clipped) : py::none();
+        }, "The cell cut to the `bounds` region (a ClippedCell), or None when no bounds were given.")
+        .def_property_readonly("area", &VoronoiCell::area,
+                               "Area of the clipped cell (with bounds), else of the bounded cell; NaN when unbounded.")
+        .def_property_readonly("centroid", [](const VoronoiCell& c) { return xy(c.centroid()); })
         .def_readonly("radius_steps", &VoronoiCell::radius_steps)
         .def_readonly("agents_used", &VoronoiCell::agents_used)
         .def("__repr__", [](const VoronoiCell& c) {
@@ -86,13 +123,14 @@ void bind_voronoi(py::module_& m) {
 
     m.def(
         "voronoi_cell",
-        [](py::handle center, py::handle others, const std::string& inner) {
+        [](py::handle center, py::handle others, const std::string& inner, py::handle bounds) {
             const Vec2 c = point_arg(center, "center");
             const PointsArg o = points_arg(others, "others");
-            return dvoronoi::asr_cell(c, o.ref(), parse_inner(inner));
+            const AsrInner in = parse_inner(inner);
+            return dvoronoi::asr_cell(c, o.ref(), in, region_arg(bounds));
         },
-        py::arg("center"), py::arg("others"), py::arg("inner") = "scan",
-        "voronoi_cell(center, others, inner=\"scan\") -> VoronoiCell\n\n"
+        py::arg("center"), py::arg("others"), py::arg("inner") = "scan", py::arg("bounds") = py::none(),
+        "voronoi_cell(center, others, inner=\"scan\", bounds=None) -> VoronoiCell\n\n"
         "The exact Voronoi cell of the agent at `center` among `others` by Adjust-Sensing-Radius, with "
         "the Boundary Scan limited cell (\"scan\") or our exact Delaunay tessellation (\"evt\") as the "
         "inner step. Edge neighbours are rows of `others`.");
@@ -104,13 +142,21 @@ void bind_voronoi(py::module_& m) {
         .def_property_readonly("on_hull", [](const VoronoiPartition& p) { return copy_array<bool>(p.on_hull); })
         .def_property_readonly("radius_steps", [](const VoronoiPartition& p) { return copy_array<std::int32_t>(p.radius_steps); })
         .def_property_readonly("agents_used", [](const VoronoiPartition& p) { return copy_array<Index>(p.agents_used); })
+        .def_property_readonly("areas", [](const VoronoiPartition& p) { return copy_array<double>(p.areas); })
+        .def_property_readonly("centroids", [](const py::object& s) { return view(s.cast<const VoronoiPartition&>().centroids, s); })
+        .def_property_readonly("bounds", [](const VoronoiPartition& p) -> py::object {
+            if (p.bounds.empty()) return py::none();
+            return xy_array(p.bounds.vertices());
+        })
+        .def("cell", [](const VoronoiPartition& p, Index i) { return p.cell(i); }, py::arg("i"))
         .def("__len__", &VoronoiPartition::size);
 
     m.def(
         "voronoi_cells",
-        [](py::handle points, const std::string& inner, int threads, py::object progress) {
+        [](py::handle points, const std::string& inner, int threads, py::object progress, py::handle bounds) {
             const PointsArg pts = points_arg(points, "points");
             const AsrInner in = parse_inner(inner);
+            const ConvexRegion region = region_arg(bounds);
             if (threads < 0)
                 throw py::value_error("threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
             PyProgress report(std::move(progress));
@@ -118,12 +164,13 @@ void bind_voronoi(py::module_& m) {
             VoronoiPartition result;
             {
                 py::gil_scoped_release release;
-                result = dvoronoi::voronoi_cells(pts.ref(), in, threads, fn);
+                result = dvoronoi::voronoi_cells(pts.ref(), in, threads, fn, region);
             }
             report.rethrow();
             return result;
         },
         py::arg("points"), py::arg("inner") = "scan", py::arg("threads") = 0, py::arg("progress") = py::none(),
-        "voronoi_cells(points, inner=\"scan\", threads=0, progress=None) -> VoronoiPartition\n\n"
+        py::arg("bounds") = py::none(),
+        "voronoi_cells(points, inner=\"scan\", threads=0, progress=None, bounds=None) -> VoronoiPartition\n\n"
         "Every agent's exact Voronoi neighbours and hull flag by Adjust-Sensing-Radius (GIL released).");
 }

@@ -14,6 +14,7 @@ Every result answers in the same shape: ``neighbors(i)``, CSR ``indptr``/``indic
 """
 from ._core import CoincidentError, LimitedCell, Piece, __version__, limited_cell
 from ._partition import LimitedPartition, limited_cells
+from ._core import ClippedCell, VoronoiCell, VoronoiEdge
 from ._voronoi import VoronoiPartition, voronoi_cell, voronoi_cells
 from . import datasets
 
@@ -25,6 +26,9 @@ __all__ = [
     "voronoi_cell",
     "voronoi_cells",
     "VoronoiPartition",
+    "VoronoiCell",
+    "VoronoiEdge",
+    "ClippedCell",
     "Piece",
     "CoincidentError",
     "datasets",

@@ -1,8 +1,10 @@
 """Exact (unlimited) Voronoi cells: :func:`voronoi_cell`, :func:`voronoi_cells` and
-:class:`VoronoiPartition` (neighbours, hull flags and the Delaunay graph).
+:class:`VoronoiPartition` (neighbours, hull flags, the Delaunay graph, cells clipped to ``bounds``).
 
-Clipping to a bounding box or polygon (``bounds=``), cell areas and the CLI ``voronoi`` command are
-not there yet; neighbour sets and hull flags are exact (they equal CGAL's exact answer in the tests).
+Neighbour sets and hull flags are exact (they equal CGAL's exact answer in the tests). Hull agents'
+cells are unbounded: they are reported as rays (``cell(i).edges``), and measured only when the caller
+gives a convex region to clip to (``bounds=(xmin, ymin, xmax, ymax)`` or a ``(k, 2)`` convex
+polygon); the library never invents a boundary.
 """
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ import numpy as np
 
 from . import _core
 from ._partition import ProgressArg, progress_callback
+from ._io import PathLike, atomic_write_text
 from ._result import Result
 
 class VoronoiPartition(Result):
@@ -31,7 +34,15 @@ class VoronoiPartition(Result):
     radius_steps : (n,) int32
         Limited cells the radius schedule computed per agent.
     agents_used : (n,) int64
-        Agents within the final sensing radius per agent (all of them for hull agents).
+        Agents the certificate needed per agent (within the final sensing radius, plus those the
+        empty-circle and hull certificates added).
+    areas : (n,) float64
+        Area of each cell clipped to ``bounds``; without bounds, of each bounded cell (NaN for hull
+        agents).
+    centroids : (n, 2) float64
+        Centroids, same rules (NaN where the area is NaN or 0).
+    bounds : (k, 2) float64 or None
+        The clipping region's vertices, counter-clockwise.
     """
 
     def __init__(self, core: "_core.VoronoiPartition", inner: str) -> None:
@@ -62,6 +73,60 @@ class VoronoiPartition(Result):
     def agents_used(self) -> np.ndarray:
         return self._core.agents_used
 
+    @cached_property
+    def areas(self) -> np.ndarray:
+        return self._core.areas
+
+    @cached_property
+    def centroids(self) -> np.ndarray:
+        return self._core.centroids
+
+    @cached_property
+    def bounds(self) -> Optional[np.ndarray]:
+        return self._core.bounds
+
+    def cell(self, i: int) -> "_core.VoronoiCell":
+        """The exact cell of agent `i`: ``edges`` (counter-clockwise; rays for hull agents),
+        ``vertices``, ``neighbors``, ``on_hull``, ``area``/``centroid`` and, with bounds, ``clipped``
+        (the polygon cut to the region, with the neighbour of each side, -1 on the region's boundary)."""
+        return self._core.cell(self._index(i))
+
+    def cells(self):
+        """Iterate over the cells in input order."""
+        for i in range(len(self)):
+            yield self.cell(i)
+
+    def polygon(self, i: int) -> Optional[np.ndarray]:
+        """Agent `i`'s cell as a ``(k, 2)`` counter-clockwise polygon: clipped to ``bounds`` when
+        given (may be empty), else the bounded cell; None for a hull agent without bounds."""
+        c = self.cell(i)
+        if c.clipped is not None:
+            return c.clipped.vertices
+        return None if c.on_hull else c.vertices
+
+    def to_geojson(self, path: Optional[PathLike] = None) -> Optional[str]:
+        """The cells as a GeoJSON FeatureCollection, one Feature per agent in input order (what the
+        CLI writes): a Polygon per clipped (or bounded) cell, closed and counter-clockwise; ``null``
+        geometry for a hull agent's unbounded cell when no bounds were given (or a cell that misses
+        the region). Properties: ``agent``, ``on_hull``, ``area`` and ``neighbors``."""
+        feats = []
+        for i in range(len(self)):
+            poly = self.polygon(i)
+            geom = None
+            if poly is not None and len(poly) >= 3:
+                ring = np.vstack([poly, poly[:1]]).tolist()
+                geom = {"type": "Polygon", "coordinates": [ring]}
+            area = float(self.areas[i])
+            feats.append({"type": "Feature", "geometry": geom, "properties": {
+                "agent": i, "on_hull": bool(self.on_hull[i]),
+                "area": None if np.isnan(area) else area,
+                "neighbors": self.neighbors(i).tolist()}})
+        text = json.dumps({"type": "FeatureCollection", "features": feats})
+        if path is None:
+            return text
+        atomic_write_text(path, text + "\n")
+        return None
+
     def delaunay_edges(self) -> np.ndarray:
         """The Delaunay graph (positive-length Voronoi edges only) as an ``(E, 2)`` int64 array of
         pairs ``i < j``, sorted."""
@@ -75,34 +140,67 @@ class VoronoiPartition(Result):
         return self.to_csr()
 
     def _json_text(self, indent: Optional[int]) -> str:
+        areas = [None if np.isnan(a) else float(a) for a in self.areas]
+        cents = [None if np.isnan(c[0]) else [float(c[0]), float(c[1])] for c in self.centroids]
         return json.dumps({
             "kind": "voronoi_partition",
             "inner": self.inner,
+            "bounds": None if self.bounds is None else self.bounds.tolist(),
             "points": self.points.tolist(),
             "indptr": self.indptr.tolist(),
             "indices": self.indices.tolist(),
             "on_hull": self.on_hull.tolist(),
             "radius_steps": self.radius_steps.tolist(),
             "agents_used": self.agents_used.tolist(),
+            "areas": areas,
+            "centroids": cents,
         }, indent=indent)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """Draw the agents (hull agents highlighted) and the Delaunay graph; returns the Axes."""
+    def plot(self, ax: Any = None, *, cells: bool = True, delaunay: bool = False, **kwargs: Any) -> Any:
+        """Draw the cells (clipped to ``bounds`` when given; without bounds the bounded cells, and hull
+        agents' rays up to the view's edge), the agents (hull agents circled) and, with
+        ``delaunay=True``, the Delaunay graph. Returns the Axes."""
         import matplotlib.pyplot as plt
-        from matplotlib.collections import LineCollection
+        from matplotlib.collections import LineCollection, PolyCollection
 
         if ax is None:
             _, ax = plt.subplots()
         pts = self.points
-        edges = self.delaunay_edges()
-        ax.add_collection(LineCollection(pts[edges], colors=kwargs.get("edgecolor", "0.5"),
-                                         linewidths=kwargs.get("linewidth", 0.8)))
-        ax.scatter(pts[:, 0], pts[:, 1], s=kwargs.get("point_size", 8), c="k", zorder=3)
+        if cells and len(self):
+            polys = [p for p in (self.polygon(i) for i in range(len(self))) if p is not None and len(p) >= 3]
+            ax.add_collection(PolyCollection(polys, facecolors=kwargs.get("facecolor", "#dbe9f6"),
+                                             edgecolors=kwargs.get("edgecolor", "0.25"),
+                                             linewidths=kwargs.get("linewidth", 0.6), gid="dvoronoi-cells"))
+            if self.bounds is None and np.any(self.on_hull):
+                lo, hi = pts.min(axis=0), pts.max(axis=0)
+                reach = 2.0 * float(np.max(hi - lo)) + 1.0
+                rays = []
+                for i in np.flatnonzero(self.on_hull):
+                    for e in self.cell(int(i)).edges:
+                        s, t, d = np.array(e.start), np.array(e.end), np.array(e.direction)
+                        a = s - reach * d if e.from_infinity else s
+                        b = t + reach * d if e.to_infinity else t
+                        rays.append([a, b])
+                ax.add_collection(LineCollection(rays, colors=kwargs.get("edgecolor", "0.25"),
+                                                 linewidths=kwargs.get("linewidth", 0.6), gid="dvoronoi-rays"))
+        if delaunay:
+            edges = self.delaunay_edges()
+            ax.add_collection(LineCollection(pts[edges], colors="tab:orange", linewidths=0.6,
+                                             gid="dvoronoi-delaunay"))
+        ax.scatter(pts[:, 0], pts[:, 1], s=kwargs.get("point_size", 8), c="k", zorder=3, gid="dvoronoi-agents")
         hull = pts[self.on_hull]
         ax.scatter(hull[:, 0], hull[:, 1], s=3 * kwargs.get("point_size", 8), facecolors="none",
                    edgecolors="tab:red", zorder=4, label="hull agents")
         ax.set_aspect("equal")
-        ax.autoscale_view()
+        if self.bounds is not None:
+            b = self.bounds
+            ax.set_xlim(b[:, 0].min(), b[:, 0].max())
+            ax.set_ylim(b[:, 1].min(), b[:, 1].max())
+        elif len(self):
+            lo, hi = pts.min(axis=0), pts.max(axis=0)
+            pad = 0.05 * float(np.max(hi - lo) or 1.0)
+            ax.set_xlim(lo[0] - pad, hi[0] + pad)
+            ax.set_ylim(lo[1] - pad, hi[1] + pad)
         return ax
 
     def __repr__(self) -> str:
@@ -111,20 +209,28 @@ class VoronoiPartition(Result):
                 f"mean_neighbors={(len(self.indices) / n) if n else 0.0:.3g})")
 
 
-def voronoi_cell(center: Any, others: Any, inner: str = "scan") -> "_core.VoronoiCell":
+BoundsArg = Any  # None | (xmin, ymin, xmax, ymax) | (k, 2) convex polygon
+
+
+def voronoi_cell(center: Any, others: Any, inner: str = "scan", bounds: BoundsArg = None) -> "_core.VoronoiCell":
     """The exact Voronoi cell of the agent at `center` among `others` (rows of `others` name the
     neighbours), by Adjust-Sensing-Radius with Boundary Scan (``inner="scan"``) or our exact Delaunay
     tessellation (``inner="evt"``) as the inner step. ``on_hull`` says whether it is unbounded; its
-    ``edges`` then run from one ray to the other."""
-    return _core.voronoi_cell(center, others, inner)
+    ``edges`` then run from one ray to the other. With ``bounds`` (a box ``(xmin, ymin, xmax, ymax)``
+    or a ``(k, 2)`` convex polygon) the cell is also clipped: ``clipped``, ``area``, ``centroid``."""
+    return _core.voronoi_cell(center, others, inner, bounds)
 
 
-def voronoi_cells(points: Any, inner: str = "scan", threads: Optional[int] = None,
-                  progress: ProgressArg = None) -> VoronoiPartition:
-    """Every agent's exact Voronoi neighbours and hull flag by Adjust-Sensing-Radius (see
-    :func:`voronoi_cell`); ``threads`` None or 0 uses every core; ``progress`` as in
-    :func:`limited_cells`. Raises ValueError for bad shapes, NaN/inf or coinciding agents."""
+def voronoi_cells(points: Any, method: str = "asr", inner: str = "scan", bounds: BoundsArg = None,
+                  threads: Optional[int] = None, progress: ProgressArg = None) -> VoronoiPartition:
+    """Every agent's exact Voronoi cell by Adjust-Sensing-Radius (``method="asr"``, see
+    :func:`voronoi_cell`): neighbours, hull flags, the Delaunay graph, and areas/centroids of the
+    cells clipped to ``bounds`` (of the bounded cells when no bounds are given). ``threads`` None or
+    0 uses every core; ``progress`` as in :func:`limited_cells`. Raises ValueError for bad shapes,
+    NaN/inf, coinciding agents, or bounds that are not a box or a convex polygon."""
+    if method != "asr":
+        raise ValueError(f'method must be "asr", got {method!r}')
     threads = 0 if threads is None else int(threads)
     with progress_callback(points, progress, "voronoi cells") as callback:
-        core = _core.voronoi_cells(points, inner, threads, callback)
+        core = _core.voronoi_cells(points, inner, threads, callback, bounds)
     return VoronoiPartition(core, inner)

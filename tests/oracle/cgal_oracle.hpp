@@ -363,4 +363,51 @@ inline OracleResult compute_oracle(const std::vector<XY>& pts, double R, bool se
     return res;
 }
 
+/// Areas of the exact Voronoi cells clipped to the box [x0, x1] x [y0, y1]: the box clipped exactly
+/// (CGAL's exact kernel, in the agent's frame) by the bisectors of all Delaunay neighbours, its
+/// area summed exactly and rounded once. 0 for a cell that misses the box.
+inline std::vector<double> clipped_areas(const std::vector<XY>& pts, double x0, double y0, double x1, double y1) {
+    const std::size_t n = pts.size();
+    std::vector<double> areas(n, 0.0);
+    DT dt;
+    std::vector<std::pair<Point, std::size_t>> input;
+    for (std::size_t i = 0; i < n; ++i) input.emplace_back(Point(pts[i][0], pts[i][1]), i);
+    dt.insert(input.begin(), input.end());
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+        const std::size_t i = v->info();
+        const Point& p = v->point();
+        const Point c0(FT(x0) - p.x(), FT(y0) - p.y()), c1(FT(x1) - p.x(), FT(y0) - p.y());
+        const Point c2(FT(x1) - p.x(), FT(y1) - p.y()), c3(FT(x0) - p.x(), FT(y1) - p.y());
+        std::vector<Point> poly{c0, c1, c2, c3};
+        if (dt.dimension() >= 1) {
+            auto c = dt.incident_vertices(v), done = c;
+            do {
+                if (dt.is_infinite(c)) continue;
+                const K::Vector_2 d = c->point() - p;
+                const Line L(FT(-2) * d.x(), FT(-2) * d.y(), d.squared_length());  // keep the positive side
+                std::vector<Point> out;
+                for (std::size_t k = 0; k < poly.size(); ++k) {
+                    const Point& a = poly[k];
+                    const Point& b = poly[(k + 1) % poly.size()];
+                    const auto sa = L.oriented_side(a), sb = L.oriented_side(b);
+                    if (sa != CGAL::ON_NEGATIVE_SIDE) out.push_back(a);
+                    if ((sa == CGAL::ON_POSITIVE_SIDE && sb == CGAL::ON_NEGATIVE_SIDE) ||
+                        (sa == CGAL::ON_NEGATIVE_SIDE && sb == CGAL::ON_POSITIVE_SIDE))
+                        out.push_back(detail::intersect(K::Line_2(a, b), L));
+                }
+                poly.swap(out);
+            } while (++c != done && !poly.empty());
+        }
+        if (poly.size() < 3) continue;
+        FT a2 = 0;
+        for (std::size_t k = 0; k < poly.size(); ++k) {
+            const Point& a = poly[k];
+            const Point& b = poly[(k + 1) % poly.size()];
+            a2 += a.x() * b.y() - a.y() * b.x();
+        }
+        areas[i] = CGAL::to_double((a2 / 2).exact());
+    }
+    return areas;
+}
+
 }  // namespace dvoronoi_oracle

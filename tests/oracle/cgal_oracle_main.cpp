@@ -1,10 +1,11 @@
-// dvoronoi_cgal_oracle POINTS_FILE RADIUS
+// dvoronoi_cgal_oracle POINTS_FILE RADIUS [XMIN YMIN XMAX YMAX]
 //
 // Runs the exact CGAL oracle (cgal_oracle.hpp) and prints JSON to stdout:
 //   {"n": ..., "radius": ..., "dimension": ...,
 //    "voronoi_neighbors": [[...], ...], "limited_neighbors": [[...], ...], "on_hull": [...],
 //    "limited_areas": [...], "limited_centroids": [[x, y], ...],
 //    "limited_pieces": [[neighbour or -1 for an arc, ...], ...]}   (ccw, from the smallest neighbour)
+// With a box, also "clipped_areas": the exact Voronoi cells clipped to that box (exact clipping).
 // POINTS_FILE holds whitespace- (or comma-) separated `x y` per line; `#` starts a comment.
 // Doubles are printed so that they read back to the same double (shortest round-trip form).
 #include "cgal_oracle.hpp"
@@ -63,8 +64,8 @@ std::vector<dvoronoi_oracle::XY> read_points(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 3) {
-        std::cerr << "usage: dvoronoi_cgal_oracle POINTS_FILE RADIUS\n";
+    if (argc != 3 && argc != 7) {
+        std::cerr << "usage: dvoronoi_cgal_oracle POINTS_FILE RADIUS [XMIN YMIN XMAX YMAX]\n";
         return 2;
     }
     try {
@@ -83,6 +84,15 @@ int main(int argc, char** argv) {
         j["limited_areas"] = res.limited_areas;
         j["limited_centroids"] = res.limited_centroids;
         j["limited_pieces"] = res.limited_pieces;
+        if (argc == 7) {
+            double b[4];
+            for (int k = 0; k < 4; ++k) {
+                char* e = nullptr;
+                b[k] = std::strtod(argv[3 + k], &e);
+                if (e == argv[3 + k] || *e != '\0') throw std::runtime_error("box: not a number");
+            }
+            j["clipped_areas"] = dvoronoi_oracle::clipped_areas(pts, b[0], b[1], b[2], b[3]);
+        }
         std::cout << j.dump() << '\n';
     } catch (const std::exception& e) {
         std::cerr << "dvoronoi_cgal_oracle: " << e.what() << '\n';

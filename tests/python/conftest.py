@@ -52,11 +52,13 @@ def write_points(path: Path, points: np.ndarray) -> None:
             f.write(f"{float(x)!r} {float(y)!r}\n")
 
 
-def run_oracle(exe: Path, points: np.ndarray, radius: float) -> dict:
+def run_oracle(exe: Path, points: np.ndarray, radius: float, box=None) -> dict:
+    """The oracle's JSON; with `box` = (xmin, ymin, xmax, ymax) also "clipped_areas"."""
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "points.txt"
         write_points(path, points)
-        proc = subprocess.run([str(exe), str(path), repr(float(radius))], capture_output=True,
+        extra = [repr(float(b)) for b in box] if box is not None else []
+        proc = subprocess.run([str(exe), str(path), repr(float(radius))] + extra, capture_output=True,
                               text=True, timeout=600)
     if proc.returncode != 0:
         raise RuntimeError(f"{exe} failed ({proc.returncode}): {proc.stderr.strip()}")
@@ -65,11 +67,11 @@ def run_oracle(exe: Path, points: np.ndarray, radius: float) -> dict:
 
 @pytest.fixture(scope="session")
 def oracle():
-    """Callable (points, radius) -> oracle JSON dict; skips when the executable is missing."""
+    """Callable (points, radius, box=None) -> oracle JSON dict; skips when the executable is missing."""
     exe = find_oracle()
     if exe is None:
         pytest.skip(f"CGAL oracle executable {ORACLE_NAME} not found; {BUILD_HINT}")
-    return lambda points, radius: run_oracle(exe, points, radius)
+    return lambda points, radius, box=None: run_oracle(exe, points, radius, box)
 
 
 def read_corpus(path: Path = CORPUS) -> List[Tuple[str, float, np.ndarray]]:

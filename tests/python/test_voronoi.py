@@ -78,3 +78,113 @@ def test_two_far_clusters(oracle):
     pts = rng.uniform(0.0, 1.0, (120, 2))
     pts[60:, 0] += 1e9
     check(oracle, pts, "two far clusters")
+
+
+def box_around(points: np.ndarray, margin: float, shift=(0.0, 0.0)):
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    span = float(np.max(hi - lo)) or 1.0
+    return (lo[0] - margin * span + shift[0], lo[1] - margin * span + shift[1],
+            hi[0] + margin * span + shift[0], hi[1] + margin * span + shift[1])
+
+
+def box_area(box) -> float:
+    return (box[2] - box[0]) * (box[3] - box[1])
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_clipped_areas_match_cgal_and_sum_to_the_box(oracle, seed):
+    # Boxes around the agents, one that cuts through them, on random points, an integer grid (exact
+    # cocircularities, bisectors through box corners) and a far-offset copy.
+    cases = [("random", random_points(seed, 300)), ("grid", grid_points(seed, 150, 14)),
+             ("far offset", random_points(seed, 200) * 1e-3 + np.array([1e7, -3e6]))]
+    for label, pts in cases:
+        for box in (box_around(pts, 0.1), box_around(pts, -0.2, shift=(0.05, 0.0)), box_around(pts, 0.0)):
+            want = np.asarray(oracle(pts, 1.0, box)["clipped_areas"])
+            for inner in ("scan", "evt"):
+                part = dv.voronoi_cells(pts, inner=inner, bounds=box, threads=2)
+                scale = box_area(box)
+                assert np.allclose(part.areas, want, rtol=1e-9, atol=1e-12 * scale), \
+                    f"{label} {box} [{inner}]: worst {np.max(np.abs(part.areas - want)):.3g}"
+                assert abs(part.areas.sum() - scale) <= 1e-9 * scale
+                # The clipped polygon of cell(i) agrees with the partition's area and neighbours.
+                for i in range(0, len(pts), 37):
+                    c = part.cell(i)
+                    assert c.clipped is not None and c.area == pytest.approx(part.areas[i], rel=1e-12, abs=1e-15 * scale)
+                    sides = set(c.clipped.side_neighbors.tolist()) - {-1}
+                    assert sides <= set(part.neighbors(i).tolist())
+
+
+def test_bounded_cells_measured_and_hull_cells_not_invented():
+    pts = random_points(3, 400)
+    part = dv.voronoi_cells(pts)
+    assert np.array_equal(np.isnan(part.areas), part.on_hull)
+    box = box_around(pts, 0.5)
+    clipped = dv.voronoi_cells(pts, bounds=box)
+    # A bounded cell whose vertices all lie inside the box is not changed by clipping.
+    inside = [i for i in range(len(pts)) if not part.on_hull[i] and np.all(
+        (part.polygon(i) > [box[0], box[1]]) & (part.polygon(i) < [box[2], box[3]]))]
+    assert len(inside) > 300
+    inner = np.array(inside)
+    assert np.allclose(part.areas[inner], clipped.areas[inner], rtol=1e-12)
+    assert np.allclose(part.centroids[inner], clipped.centroids[inner], rtol=0, atol=1e-12)
+    # Hull cells: rays, no finite polygon without bounds.
+    i = int(np.flatnonzero(part.on_hull)[0])
+    cell = part.cell(i)
+    assert cell.on_hull and cell.edges[0].from_infinity and cell.edges[-1].to_infinity
+    assert part.polygon(i) is None and cell.clipped is None
+    assert np.isnan(cell.area)
+
+
+def test_polygon_bounds_and_single_agent():
+    pts = random_points(11, 250)
+    hexagon = np.array([[np.cos(a), np.sin(a)] for a in np.linspace(0, 2 * np.pi, 7)[:-1]]) * 0.8 + 0.5
+    area = 0.5 * abs(np.dot(hexagon[:, 0], np.roll(hexagon[:, 1], -1)) - np.dot(hexagon[:, 1], np.roll(hexagon[:, 0], -1)))
+    for poly in (hexagon, hexagon[::-1]):  # either orientation
+        part = dv.voronoi_cells(pts, bounds=poly)
+        assert part.areas.sum() == pytest.approx(area, rel=1e-12)
+        assert np.all(part.areas >= 0.0)
+    # A box given as a polygon is the same region as the box.
+    box = (-0.1, -0.1, 1.1, 1.1)
+    as_poly = np.array([[-0.1, -0.1], [1.1, -0.1], [1.1, 1.1], [-0.1, 1.1]])
+    assert np.allclose(dv.voronoi_cells(pts, bounds=box).areas, dv.voronoi_cells(pts, bounds=as_poly).areas,
+                       rtol=0, atol=1e-15)
+    # One agent: the same clipped cell as in the partition.
+    part = dv.voronoi_cells(pts, bounds=box)
+    for i in (0, 7, 100):
+        cell = dv.voronoi_cell(pts[i], np.delete(pts, i, axis=0), bounds=box)
+        assert cell.area == pytest.approx(part.areas[i], rel=1e-12, abs=1e-16)
+
+
+def test_bad_bounds():
+    pts = random_points(1, 20)
+    with pytest.raises(ValueError, match="bounds.*xmin < xmax"):
+        dv.voronoi_cells(pts, bounds=(1.0, 0.0, 0.0, 1.0))
+    with pytest.raises(ValueError, match="bounds.*not convex"):
+        dv.voronoi_cells(pts, bounds=[[0, 0], [1, 1], [1, 0], [0, 1]])
+    with pytest.raises(ValueError, match="bounds.*finite"):
+        dv.voronoi_cells(pts, bounds=(0.0, 0.0, np.inf, 1.0))
+    with pytest.raises(ValueError, match="bounds"):
+        dv.voronoi_cells(pts, bounds=[1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="bounds.*three vertices"):
+        dv.voronoi_cell(pts[0], pts[1:], bounds=[[0, 0], [1, 1], [2, 2]])
+    with pytest.raises(ValueError, match="method"):
+        dv.voronoi_cells(pts, method="qhull")
+
+
+def test_json_and_geojson_round_trip(tmp_path):
+    import json
+    pts = random_points(2, 60)
+    part = dv.voronoi_cells(pts, bounds=(-0.5, -0.5, 1.5, 1.5))
+    doc = json.loads(part.to_json())
+    assert doc["indices"] == part.indices.tolist() and doc["bounds"] == part.bounds.tolist()
+    assert np.allclose(doc["areas"], part.areas)
+    gj = json.loads(part.to_geojson())
+    assert len(gj["features"]) == 60
+    for f in gj["features"]:
+        ring = np.array(f["geometry"]["coordinates"][0])
+        assert np.array_equal(ring[0], ring[-1])
+        shoelace = 0.5 * np.sum(ring[:-1, 0] * ring[1:, 1] - ring[1:, 0] * ring[:-1, 1])
+        assert shoelace == pytest.approx(f["properties"]["area"], rel=1e-12)
+    unb = json.loads(dv.voronoi_cells(pts).to_geojson())
+    hull = [f for f in unb["features"] if f["properties"]["on_hull"]]
+    assert hull and all(f["geometry"] is None and f["properties"]["area"] is None for f in hull)

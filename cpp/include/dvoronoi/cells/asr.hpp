@@ -17,6 +17,7 @@
 #pragma once
 
 #include "dvoronoi/cells/boundary_scan.hpp"
+#include "dvoronoi/cells/clip.hpp"
 #include "dvoronoi/cells/delaunay.hpp"
 
 #include <algorithm>
@@ -47,6 +48,23 @@ struct VoronoiCell {
     bool on_hull = false;        ///< the cell is unbounded (the agent is on the convex hull)
     int radius_steps = 0;        ///< limited cells computed by the radius schedule
     Index agents_used = 0;       ///< agents within the final sensing radius (all of them if uncertified)
+    bool is_clipped = false;     ///< `clipped` holds the cell cut to the caller's region
+    ClippedCell clipped;         ///< the cell cut to the caller's region (when is_clipped)
+
+    /// Area and centroid: of the clipped cell when clipped, else of the bounded cell; NaN for an
+    /// unbounded cell that was not clipped (never an invented boundary).
+    double area() const { return measures().area; }
+    Vec2 centroid() const { return measures().centroid; }
+    ClippedCell measures() const {
+        if (is_clipped) return clipped;
+        ClippedCell m;
+        m.area = std::numeric_limits<double>::quiet_NaN();
+        if (on_hull || edges.size() < 3) return m;
+        std::vector<Vec2> local;
+        for (const VoronoiEdge& e : edges) local.push_back(e.start - center);
+        detail::polygon_measures(local, center, m);
+        return m;
+    }
 
     /// Voronoi neighbours (cells sharing a segment of positive length), ascending.
     std::vector<Index> neighbors() const {
@@ -301,14 +319,16 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
 
 /// The exact Voronoi cell of `center` among `others` by Adjust-Sensing-Radius with the Boundary Scan
 /// limited cell (ASR+BS, default) or the exact tessellation of the current neighbours (ASR+EVT) as
-/// its inner step. Edge neighbours are rows of `others`.
+/// its inner step. Edge neighbours are rows of `others`. With `bounds` (not empty), the cell is also
+/// clipped to that convex region (`clipped`, and area() / centroid() measure the clipped cell).
 ///
 /// \throws InputError for non-finite coordinates; CoincidentError when an agent of `others` lies at
 ///         `center` or two agents in range coincide.
 /// \note Thread-safe (pure function). Each radius step is O(m_k log m_k) for the m_k agents in range
 ///       (selected in O(m) per step); a bounded cell needs O(log(rho / d_1)) steps, rho its farthest
 ///       vertex; an unbounded one ends with all m agents.
-inline VoronoiCell asr_cell(const Vec2& center, PointsRef others, AsrInner inner = AsrInner::Scan) {
+inline VoronoiCell asr_cell(const Vec2& center, PointsRef others, AsrInner inner = AsrInner::Scan,
+                           const ConvexRegion& bounds = ConvexRegion()) {
     detail::require_finite_point(center, "center");
     detail::require_finite_points(others, "others");
     const Index n = others.rows();
@@ -337,6 +357,16 @@ inline VoronoiCell asr_cell(const Vec2& center, PointsRef others, AsrInner inner
     std::vector<detail::Candidate> cand;
     LimitedCell limited;
     detail::asr(center, query, n, std::sqrt(nearest2), inner, ws, dws, cand, limited, out);
+    if (!bounds.empty()) {
+        std::vector<Vec2> pos;
+        std::vector<Index> ids;
+        for (const VoronoiEdge& e : out.edges) {
+            pos.push_back(others.row(e.neighbor).transpose());
+            ids.push_back(e.neighbor);
+        }
+        out.clipped = clip_cell(center, pos, ids, bounds);
+        out.is_clipped = true;
+    }
     return out;
 }
 

@@ -12,6 +12,19 @@
 
 namespace dvoronoi {
 
+namespace detail {
+/// The cell of c with the half-planes of `cand` applied, clipped to `region`.
+inline ClippedCell clip_to(const Vec2& c, const std::vector<Candidate>& cand, const ConvexRegion& region) {
+    std::vector<Vec2> pos;
+    std::vector<Index> ids;
+    for (const Candidate& q : cand) {
+        pos.push_back(q.p);
+        ids.push_back(q.id);
+    }
+    return clip_cell(c, pos, ids, region);
+}
+}  // namespace detail
+
 /// Exact Voronoi neighbours and hull flags of n agents (the result of voronoi_cells).
 struct VoronoiPartition {
     Points points;                    ///< the agents, as given
@@ -20,8 +33,38 @@ struct VoronoiPartition {
     std::vector<char> on_hull;        ///< the agent's cell is unbounded
     std::vector<int> radius_steps;    ///< limited cells the radius schedule computed per agent
     std::vector<Index> agents_used;   ///< agents within the final sensing radius per agent
+    ConvexRegion bounds;              ///< the region cells are clipped to (empty: none given)
+    /// Per agent: area and centroid of the clipped cell when `bounds` is given (0 and NaN when the
+    /// cell misses it), else of the bounded cell (NaN for hull agents).
+    std::vector<double> areas;
+    Points centroids;
 
     Index size() const noexcept { return static_cast<Index>(points.rows()); }
+
+    /// The exact cell of agent i (rebuilt from its Voronoi neighbours, whose half-planes define it;
+    /// clipped to `bounds` when given). 	hrows InputError for an index out of range.
+    VoronoiCell cell(Index i) const {
+        const auto [b, e] = neighbors(i);
+        const Vec2 c = points.row(i).transpose();
+        std::vector<detail::Candidate> cand;
+        for (const Index* j = b; j != e; ++j) cand.push_back({points.row(*j).transpose(), *j});
+        VoronoiCell out;
+        out.center = c;
+        detail::CellWorkspace ws;
+        detail::DelaunayWorkspace dws;
+        if (cand.empty()) {
+            out.on_hull = true;
+        } else {
+            detail::candidate_cell(c, cand, AsrInner::Scan, ws, dws, out);
+        }
+        out.radius_steps = radius_steps[static_cast<std::size_t>(i)];
+        out.agents_used = agents_used[static_cast<std::size_t>(i)];
+        if (!bounds.empty()) {
+            out.clipped = detail::clip_to(c, cand, bounds);
+            out.is_clipped = true;
+        }
+        return out;
+    }
 
     /// Voronoi neighbours of agent i, ascending (a view into `indices`).
     std::pair<const Index*, const Index*> neighbors(Index i) const {
@@ -42,24 +85,32 @@ struct VoronoiPartition {
     }
 };
 
+
 /// Every agent's exact Voronoi neighbours and hull flag by ASR (inner step Boundary Scan or EVT, see
 /// AsrInner): each agent starts from its
 /// nearest-neighbour distance and doubles its sensing radius until its cell certifies itself
 /// (cells/asr.hpp); hull agents end with every agent.
 ///
 /// \param threads number of OpenMP threads; 0 = all cores. Results do not depend on it.
+/// \param bounds  a convex region (box or polygon) to clip every cell to: `areas` and `centroids`
+///                then measure the clipped cells, and `cell(i)` carries the clipped polygon.
 /// \throws InputError for non-finite coordinates; CoincidentError for coinciding agents.
-/// \note Interior agents cost O(m log m) for the m agents within twice their farthest vertex
-///       (times the few radius steps); each hull agent costs O(n log n), and agents near the hull
-///       with far vertices need large radii. Known limit: 1e5 uniform agents take 4 s, 1e6 take 100 s
-///       on one core (2026-11-22) — certifying unbounded and elongated cells from the global convex
-///       hull instead of the full agent set is the planned remedy. Thread-safe.
+/// \note Each agent runs the radius schedule of cells/asr.hpp; from step
+///       EmptyCircleCertificate::kFromStep on, a cell that the radius does not certify is certified
+///       by empty vertex circles and the global convex hull (partition/empty_circle_certificate.hpp),
+///       so agents near the hull do not sweep most agents. Uniform agents cost O(log n) each
+///       (sorting), about 1.3 s for 1e5 on one core; inputs where k agents are (nearly)
+///       cocircular around a shared vertex cost O(k) exact tests per agent there. Thread-safe.
 inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInner::Scan,
-                                      int threads = 0, const ProgressFn& progress = nullptr) {
+                                      int threads = 0, const ProgressFn& progress = nullptr,
+                                      const ConvexRegion& bounds = ConvexRegion()) {
     detail::require_finite_points(points, "points");
     const Index n = points.rows();
     VoronoiPartition out;
     out.points = points;
+    out.bounds = bounds;
+    out.areas.assign(static_cast<std::size_t>(n), 0.0);
+    out.centroids.resize(n, 2);
     out.on_hull.assign(static_cast<std::size_t>(n), 0);
     out.radius_steps.assign(static_cast<std::size_t>(n), 0);
     out.agents_used.assign(static_cast<std::size_t>(n), 0);
@@ -115,6 +166,15 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                 out.agents_used[ii] = cell.agents_used;
                 auto& mine = nbrs[ii];
                 for (const VoronoiEdge& e : cell.edges) mine.push_back(e.neighbor);
+                if (!bounds.empty()) {
+                    cand.clear();
+                    for (const VoronoiEdge& e : cell.edges) cand.push_back({out.points.row(e.neighbor).transpose(), e.neighbor});
+                    cell.clipped = detail::clip_to(c, cand, bounds);
+                    cell.is_clipped = true;
+                }
+                const ClippedCell m = cell.measures();
+                out.areas[ii] = m.area;
+                out.centroids.row(i) = m.centroid.transpose();
                 std::sort(mine.begin(), mine.end());
                 mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
             }

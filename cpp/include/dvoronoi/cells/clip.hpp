@@ -1,0 +1,180 @@
+// Exact Voronoi cells clipped to a convex region (a box or a convex polygon): hull agents' cells are
+// unbounded, and a caller that needs areas, centroids or pictures gives the region to cut them with —
+// the library never invents a boundary of its own.
+//
+// The clipped cell is the region intersected with the half-planes of the agent's Voronoi neighbours
+// (the cell is exactly that intersection), by Sutherland-Hodgman in the agent's frame. The
+// combinatorics of the cell (its neighbours, bounded or not) come from the exact predicates; the
+// clipped polygon is a constructed object: its vertices carry rounding error (relative ~1e-15 of the
+// region's size in the agent's frame), so clipped areas over all agents sum to the region's area up
+// to about n * 1e-15 of it.
+#pragma once
+
+#include "dvoronoi/core/predicates.hpp"
+#include "dvoronoi/core/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace dvoronoi {
+
+/// A convex region, vertices counter-clockwise, no three consecutive collinear.
+class ConvexRegion {
+public:
+    ConvexRegion() = default;
+
+    /// The box [xmin, xmax] x [ymin, ymax]. \throws InputError naming `name` unless finite with
+    /// xmin < xmax and ymin < ymax.
+    static ConvexRegion box(double xmin, double ymin, double xmax, double ymax, const std::string& name = "bounds") {
+        if (!(std::isfinite(xmin) && std::isfinite(ymin) && std::isfinite(xmax) && std::isfinite(ymax)))
+            throw InputError(name + ": box coordinates must be finite");
+        if (!(xmin < xmax && ymin < ymax))
+            throw InputError(name + ": box needs xmin < xmax and ymin < ymax, got (" + std::to_string(xmin) + ", " +
+                             std::to_string(ymin) + ", " + std::to_string(xmax) + ", " + std::to_string(ymax) + ")");
+        ConvexRegion r;
+        r.v_ = {Vec2(xmin, ymin), Vec2(xmax, ymin), Vec2(xmax, ymax), Vec2(xmin, ymax)};
+        return r;
+    }
+
+    /// A convex polygon given by its vertices in order (either orientation; collinear vertices are
+    /// dropped). \throws InputError naming `name` when a coordinate is not finite, fewer than three
+    /// vertices remain, two consecutive vertices coincide, or the polygon is not convex (decided
+    /// with exact orientation tests).
+    static ConvexRegion polygon(PointsRef pts, const std::string& name = "bounds") {
+        detail::require_finite_points(pts, name.c_str());
+        std::vector<Vec2> v;
+        for (Index k = 0; k < pts.rows(); ++k) v.push_back(pts.row(k).transpose());
+        const std::size_t m = v.size();
+        for (std::size_t k = 0; k < m; ++k)
+            if (v[k] == v[(k + 1) % m])
+                throw InputError(name + ": vertices " + std::to_string(k) + " and " + std::to_string((k + 1) % m) +
+                                 " coincide");
+        std::vector<Vec2> kept;
+        int turn = 0;
+        for (std::size_t k = 0; k < m; ++k) {
+            const int o = pred::orient(v[(k + m - 1) % m], v[k], v[(k + 1) % m]);
+            if (o == 0) continue;
+            if (turn != 0 && o != turn)
+                throw InputError(name + ": the polygon is not convex (vertex " + std::to_string(k) + " turns the other way)");
+            turn = o;
+            kept.push_back(v[k]);
+        }
+        if (kept.size() < 3) throw InputError(name + ": a polygon needs at least three vertices that are not collinear");
+        if (turn < 0) std::reverse(kept.begin(), kept.end());
+        // Simple: the turns all agree, so the polygon winds once only if its angles sum to 2 pi.
+        double winding = 0.0;
+        for (std::size_t k = 0; k < kept.size(); ++k) {
+            const Vec2 a = kept[(k + 1) % kept.size()] - kept[k];
+            const Vec2 b = kept[(k + 2) % kept.size()] - kept[(k + 1) % kept.size()];
+            winding += std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+        }
+        if (winding > 7.0) throw InputError(name + ": the polygon winds around more than once (not simple)");
+        ConvexRegion r;
+        r.v_ = std::move(kept);
+        return r;
+    }
+
+    const std::vector<Vec2>& vertices() const noexcept { return v_; }
+    bool empty() const noexcept { return v_.empty(); }
+
+    /// Area (shoelace).
+    double area() const {
+        double a = 0.0;
+        for (std::size_t k = 0; k < v_.size(); ++k) {
+            const Vec2& p = v_[k];
+            const Vec2& q = v_[(k + 1) % v_.size()];
+            a += p.x() * q.y() - p.y() * q.x();
+        }
+        return 0.5 * a;
+    }
+
+private:
+    std::vector<Vec2> v_;
+};
+
+/// A Voronoi cell clipped to a convex region: a convex polygon, counter-clockwise.
+struct ClippedCell {
+    std::vector<Vec2> vertices;        ///< counter-clockwise; empty when the cell misses the region
+    std::vector<Index> side_neighbor;  ///< per side (vertex k -> k+1): the Voronoi neighbour, or -1 for the region's boundary
+    double area = 0.0;
+    Vec2 centroid = Vec2::Constant(std::numeric_limits<double>::quiet_NaN());
+};
+
+namespace detail {
+
+/// Area and centroid of a polygon given in the frame centred at the origin (shoelace).
+inline void polygon_measures(const std::vector<Vec2>& local, const Vec2& origin, ClippedCell& out) {
+    double a2 = 0.0, cx = 0.0, cy = 0.0;
+    for (std::size_t k = 0; k < local.size(); ++k) {
+        const Vec2& p = local[k];
+        const Vec2& q = local[(k + 1) % local.size()];
+        const double w = p.x() * q.y() - p.y() * q.x();
+        a2 += w;
+        cx += (p.x() + q.x()) * w;
+        cy += (p.y() + q.y()) * w;
+    }
+    out.area = 0.5 * a2;
+    out.centroid = a2 > 0.0 ? Vec2(origin + Vec2(cx, cy) / (3.0 * a2))
+                            : Vec2::Constant(std::numeric_limits<double>::quiet_NaN());
+}
+
+}  // namespace detail
+
+/// The cell of the agent at `center` whose Voronoi neighbours are at `neighbors` (ids `ids`),
+/// clipped to `region`. Every neighbour's half-plane is applied, so any superset of the true
+/// neighbours gives the same polygon.
+inline ClippedCell clip_cell(const Vec2& center, const std::vector<Vec2>& neighbors, const std::vector<Index>& ids,
+                             const ConvexRegion& region) {
+    ClippedCell out;
+    // Work in the agent's frame: coordinates near 1e7 lose no more precision than near 0.
+    std::vector<Vec2> poly, next;
+    std::vector<Index> side, next_side;
+    for (const Vec2& v : region.vertices()) {
+        poly.push_back(v - center);
+        side.push_back(-1);
+    }
+    for (std::size_t t = 0; t < neighbors.size() && !poly.empty(); ++t) {
+        const Vec2 a = neighbors[t] - center;
+        const double h = 0.5 * a.squaredNorm();
+        const auto f = [&](const Vec2& q) { return q.dot(a) - h; };  // <= 0: on the agent's side
+        next.clear();
+        next_side.clear();
+        const std::size_t m = poly.size();
+        for (std::size_t k = 0; k < m; ++k) {
+            const Vec2& p = poly[k];
+            const Vec2& q = poly[(k + 1) % m];
+            const double fp = f(p), fq = f(q);
+            if (fp <= 0.0) {
+                next.push_back(p);
+                next_side.push_back(side[k]);
+            }
+            if ((fp < 0.0 && fq > 0.0) || (fp > 0.0 && fq < 0.0)) {
+                const double s = fp / (fp - fq);
+                next.push_back(p + s * (q - p));
+                // Leaving the half-plane: the new side runs along the bisector; entering: the old side.
+                next_side.push_back(fp < 0.0 ? ids[t] : side[k]);
+            }
+        }
+        poly.swap(next);
+        side.swap(next_side);
+    }
+    // Drop repeated vertices (a bisector through a corner).
+    for (std::size_t k = 0; k < poly.size();) {
+        if (poly.size() > 1 && poly[k] == poly[(k + 1) % poly.size()]) {
+            poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(k));
+            side.erase(side.begin() + static_cast<std::ptrdiff_t>(k));
+        } else {
+            ++k;
+        }
+    }
+    if (poly.size() < 3) return out;
+    detail::polygon_measures(poly, center, out);
+    for (const Vec2& p : poly) out.vertices.push_back(center + p);
+    out.side_neighbor = std::move(side);
+    return out;
+}
+
+}  // namespace dvoronoi
