@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
     namespace cli = dvoronoi::cli;
     std::ios::sync_with_stdio(false);
 
-    CLI::App app{"dvoronoi: exact range-limited Voronoi cells for multi-robot systems", "dvoronoi"};
+    CLI::App app{"dvoronoi: exact Voronoi cells (range-limited and unlimited) for multi-robot systems", "dvoronoi"};
     app.set_version_flag("--version", DVORONOI_VERSION);
     app.require_subcommand(1);
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
     });
     std::vector<cli::Command> commands;
     commands.push_back(cli::add_cells(app));
+    commands.push_back(cli::add_voronoi(app));
     app.footer("Run 'dvoronoi SUBCOMMAND --help' for a subcommand's options.");
 
     try {

@@ -369,3 +369,65 @@ def test_progress_on_large_runs_and_quiet(tmp_path):
     assert r.returncode == 0 and r.stderr == ""
     assert (tmp_path / "big.csv").read_text() == (tmp_path / "big2.csv").read_text()
     assert len((tmp_path / "big.csv").read_text().splitlines()) == n + 1
+
+
+# --- dvoronoi voronoi --------------------------------------------------------------------------
+
+
+def test_voronoi_json_equals_the_python_result(points_file):
+    import numpy as np
+    import dvoronoi as dv
+
+    pts = np.array(sample_points())
+    for extra, bounds in (((), None), (("--bounds", -1, -2, 110, 105), (-1, -2, 110, 105))):
+        for inner in ("scan", "evt"):
+            r = run("voronoi", points_file, "--inner", inner, *extra)
+            assert r.returncode == 0, r.stderr
+            got = json.loads(r.stdout)
+            want = json.loads(dv.voronoi_cells(pts, inner=inner, bounds=bounds).to_json())
+            assert got.keys() == want.keys()
+            for key in ("kind", "inner", "bounds", "points", "indptr", "indices", "on_hull"):
+                assert got[key] == want[key], key
+            for a, b in zip(got["areas"], want["areas"]):
+                assert (a is None and b is None) or math.isclose(a, b, rel_tol=1e-12, abs_tol=1e-15)
+    # With bounds every cell has an area and they tile the box.
+    assert math.isclose(sum(got["areas"]), 111 * 107, rel_tol=1e-12)
+
+
+def test_voronoi_geojson_csv_svg(points_file, tmp_path):
+    box = ("--bounds", -1, -2, 110, 105)
+    r = run("voronoi", points_file, *box, "-o", tmp_path / "v.geojson", "--svg", tmp_path / "v.svg")
+    assert r.returncode == 0, r.stderr
+    gj = json.loads((tmp_path / "v.geojson").read_text())
+    feats = gj["features"]
+    assert len(feats) == len(sample_points())
+    for f in feats:
+        ring = f["geometry"]["coordinates"][0]
+        assert ring[0] == ring[-1]
+        assert math.isclose(shoelace(ring), f["properties"]["area"], rel_tol=1e-9)
+    svg = ET.parse(tmp_path / "v.svg").getroot()
+    cells = [e for e in svg.iter(f"{SVG_NS}path") if e.get("id", "").startswith("cell-")]
+    assert len(cells) == len(feats)
+    # Without bounds: hull agents have null geometry and no area, and the SVG draws their rays.
+    r = run("voronoi", points_file, "-o", tmp_path / "u.csv", "--svg", tmp_path / "u.svg")
+    assert r.returncode == 0, r.stderr
+    with open(tmp_path / "u.csv") as f:
+        rows = list(csv.DictReader(f))
+    hull = [row for row in rows if row["on_hull"] == "1"]
+    assert hull and all(row["area"] == "" for row in hull)
+    assert all(float(row["area"]) > 0 for row in rows if row["on_hull"] == "0")
+    svg = ET.parse(tmp_path / "u.svg").getroot()
+    rays = [g for g in svg.iter(f"{SVG_NS}g") if g.get("class") == "rays"]
+    assert len(rays) == 1 and len(list(rays[0])) == len(hull)
+
+
+@pytest.mark.parametrize("bounds, what", [((1, 0, 0, 1), "xmin < xmax"), ((0, 0, "nan", 1), "finite")])
+def test_voronoi_bad_bounds_fail_before_reading(tmp_path, bounds, what):
+    r = run("voronoi", tmp_path / "missing.txt", "--bounds", *bounds, "-o", tmp_path / "v.json")
+    assert_fails_cleanly(r, tmp_path, "--bounds", what)
+
+
+def test_voronoi_coinciding_agents_leave_no_output(tmp_path):
+    pts = write_points(tmp_path / "p.txt", [(0.0, 0.0), (1.0, 1.0), (0.0, 0.0)])
+    r = run("voronoi", pts, "-o", tmp_path / "v.json", "--svg", tmp_path / "v.svg")
+    assert_fails_cleanly(r, tmp_path, "p.txt:3:1", "point 0 (line 1)", before=("p.txt",))

@@ -118,6 +118,10 @@ def test_bounded_cells_measured_and_hull_cells_not_invented():
     pts = random_points(3, 400)
     part = dv.voronoi_cells(pts)
     assert np.array_equal(np.isnan(part.areas), part.on_hull)
+    # Both inner steps build the same cells (vertices too, not only neighbours).
+    evt = dv.voronoi_cells(pts, inner="evt")
+    assert np.allclose(part.areas, evt.areas, rtol=1e-12, atol=0, equal_nan=True)
+    assert np.allclose(part.centroids, evt.centroids, rtol=0, atol=1e-12, equal_nan=True)
     box = box_around(pts, 0.5)
     clipped = dv.voronoi_cells(pts, bounds=box)
     # A bounded cell whose vertices all lie inside the box is not changed by clipping.

@@ -171,7 +171,7 @@ void edges_from_neighbors(const Vec2& c, const std::vector<Index>& nb, bool unbo
                           VoronoiCell& out) {
     out.edges.clear();
     const std::size_t s = nb.size();
-    const auto a = [&](std::size_t t) { return pos(nb[t]) - c; };
+    const auto a = [&](std::size_t t) -> Vec2 { return pos(nb[t]) - c; };  // a value, not an Eigen expression of a temporary
     for (std::size_t t = 0; t < s; ++t) {
         const Vec2 aj = a(t);
         VoronoiEdge e;

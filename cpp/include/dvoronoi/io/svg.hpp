@@ -38,7 +38,9 @@ inline const char* light_colour(std::size_t k) {
 
 /// Greedy colouring of the limited-neighbour graph: each agent takes the first palette colour no
 /// earlier neighbour has (distinct for neighbours whenever an agent has fewer than 12 neighbours).
-inline std::vector<std::size_t> colour_cells(const LimitedPartition& p) {
+/// Any partition with size(), indptr and indices.
+template <class Partition>
+std::vector<std::size_t> colour_cells(const Partition& p) {
     const auto n = static_cast<std::size_t>(p.size());
     std::vector<std::size_t> colour(n, 0);
     for (std::size_t i = 0; i < n; ++i) {

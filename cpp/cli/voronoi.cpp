@@ -1,0 +1,130 @@
+// `dvoronoi voronoi POINTS [--bounds XMIN YMIN XMAX YMAX]`: every agent's exact Voronoi cell by
+// Adjust-Sensing-Radius (neighbours, hull flags, cells clipped to the bounds).
+#include "common.hpp"
+
+#include "dvoronoi/io/voronoi_export.hpp"
+#include "dvoronoi/partition/voronoi_partition.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dvoronoi::cli {
+namespace {
+
+struct VoronoiOptions {
+    std::string points;
+    std::string inner = "scan";
+    std::vector<double> bounds;
+    std::string columns;
+    int threads = 0;
+    std::string output;
+    std::string svg;
+    bool quiet = false;
+};
+
+void write_result(std::ostream& os, Format format, const VoronoiPartition& p, AsrInner inner) {
+    switch (format) {
+        case Format::Json:
+            io::write_json(os, p, inner);
+            os << '\n';
+            break;
+        case Format::GeoJson:
+            io::write_geojson(os, p);
+            os << '\n';
+            break;
+        case Format::Csv: io::write_csv(os, p); break;
+    }
+}
+
+int run_voronoi(const VoronoiOptions& o) {
+    // Everything that can be checked without the data is checked before reading it.
+    ConvexRegion region;
+    if (!o.bounds.empty()) {
+        try {
+            region = ConvexRegion::box(o.bounds[0], o.bounds[1], o.bounds[2], o.bounds[3], "--bounds");
+        } catch (const InputError& e) {
+            throw UsageError(e.what());
+        }
+    }
+    const AsrInner inner = o.inner == "evt" ? AsrInner::Evt : AsrInner::Scan;
+    const bool to_stdout = o.output.empty() || o.output == "-";
+    const Format format = to_stdout ? Format::Json : output_format(o.output, "-o/--output");
+    if (!to_stdout && !o.svg.empty() && o.output == o.svg)
+        throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
+
+    const io::PointFile file = read_points_argument(o.points, o.columns);
+
+    // Create the output files now, so an unwritable destination fails before the computation.
+    std::unique_ptr<io::AtomicFile> out, svg;
+    if (!to_stdout) out = open_output(o.output, "-o/--output");
+    if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
+
+    Progress progress("voronoi", file.points.rows(), o.quiet);
+    VoronoiPartition result;
+    try {
+        result = voronoi_cells(file.points, inner, o.threads,
+                               [&progress](Index done, Index total) { progress(done, total); }, region);
+    } catch (const CoincidentError& e) {
+        progress.abort();
+        throw InputError(coincident_message(file, e));
+    } catch (...) {
+        progress.abort();
+        throw;
+    }
+    progress.finish();
+
+    if (svg) io::write_svg(svg->stream(), result);
+    if (out) write_result(out->stream(), format, result, inner);
+    // Commit only when every output is complete: a failure leaves no output behind.
+    if (out) out->commit();
+    if (svg) svg->commit();
+    if (to_stdout) {
+        write_result(std::cout, Format::Json, result, inner);
+        std::cout.flush();
+        if (!std::cout) {
+            std::cerr << "dvoronoi: error: writing to stdout failed\n";
+            return 1;
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+Command add_voronoi(CLI::App& parent) {
+    auto o = std::make_shared<VoronoiOptions>();
+    CLI::App* sub = parent.add_subcommand(
+        "voronoi",
+        "every agent's exact Voronoi cell by Adjust-Sensing-Radius: Voronoi neighbours, hull flags "
+        "(unbounded cells), areas and centroids of the cells clipped to --bounds");
+    sub->add_option("POINTS", o->points,
+                    "point file: 'x y' per line, whitespace- or comma-separated, '#' comments, "
+                    "optional header line; or a numpy .npy array of shape (n, 2); '-' reads stdin")
+        ->required();
+    sub->add_option("--bounds", o->bounds,
+                    "XMIN YMIN XMAX YMAX: clip every cell to this box (hull agents' cells are "
+                    "unbounded; without bounds they have no area and are drawn as rays)")
+        ->expected(4);
+    sub->add_option("--inner", o->inner,
+                    "inner step of ASR: scan (Boundary Scan limited cell) or evt (exact tessellation of "
+                    "the agents in range); same cells")
+        ->check(CLI::IsMember({"scan", "evt"}))
+        ->capture_default_str();
+    sub->add_option("--columns", o->columns,
+                    "X,Y: the fields holding x and y, as 0-based indices (e.g. 1,2 for 'id x y') or "
+                    "header names (e.g. lon,lat)");
+    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    sub->add_option("-o,--output", o->output,
+                    "output file, format from its extension: .json, .geojson (polygons; null for "
+                    "unbounded cells) or .csv (per-agent table); default or '-': JSON on stdout");
+    sub->add_option("--svg", o->svg, "also draw the cells into this SVG file");
+    sub->add_flag("-q,--quiet", o->quiet, "no progress counter on stderr");
+    return {sub, [o] { return run_voronoi(*o); }};
+}
+
+}  // namespace dvoronoi::cli
