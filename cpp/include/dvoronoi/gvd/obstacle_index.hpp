@@ -1,0 +1,200 @@
+// Nearest-obstacle queries for the grid Voronoi diagram: a uniform bucket grid over the area holding
+// each convex part in every bucket its (slightly enlarged) bounding box overlaps, searched in square
+// rings around the query point with distance lower bounds.
+//
+// Why buckets and not a library kd-tree: the sites are shapes, not points, and the query must return
+// exactly the brute-force answer (same distances, ties to the lower label). A ring search visits a
+// part only if its bounding box is no farther than the best distance so far, and stops once the
+// distance to the unsearched region exceeds it, so the answer equals a scan of all parts. With
+// about one part per bucket a query looks at O(1) buckets on evenly spread obstacles and O(log n)-ish
+// on clustered ones (the paper scans every obstacle edge per corner).
+#pragma once
+
+#include "dvoronoi/gvd/distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace dvoronoi::gvd {
+
+/// The nearest obstacle of a point: its label and squared distance (ties: lower label).
+struct Nearest {
+    std::int32_t label = -1;
+    double sq = std::numeric_limits<double>::infinity();
+    std::int32_t part = -1;  ///< the convex part that realises the distance
+};
+
+/// Per-thread scratch of the index (visited stamps and counters). Not shared between threads.
+struct QueryContext {
+    std::vector<std::uint32_t> stamp;
+    std::uint32_t current = 0;
+    DistanceCounters counters;
+    std::uint64_t queries = 0;
+};
+
+class ObstacleIndex {
+public:
+    ObstacleIndex() = default;
+
+    /// Builds the buckets over `scene.box`. \note O(parts x buckets each overlaps).
+    explicit ObstacleIndex(const Scene& scene, bool visibility = true) : scene_(&scene), visibility_(visibility) {
+        const Box& b = scene.box;
+        const double w = b.x1 - b.x0, h = b.y1 - b.y0;
+        const double n = static_cast<double>(std::max<std::size_t>(1, scene.parts.size()));
+        // about one part per bucket, at most 1024 x 1024 buckets
+        cell_ = std::max(w, h) / std::min(1024.0, std::max(1.0, std::ceil(std::sqrt(n))));
+        nx_ = std::max(1, static_cast<int>(std::ceil(w / cell_)));
+        ny_ = std::max(1, static_cast<int>(std::ceil(h / cell_)));
+        x0_ = b.x0;
+        y0_ = b.y0;
+        eps_ = 1e-9 * std::max({w, h, std::abs(b.x0), std::abs(b.y0), std::abs(b.x1), std::abs(b.y1)});
+        std::vector<std::uint32_t> count(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 1, 0);
+        auto range = [&](const Box& pb, int& i0, int& i1, int& j0, int& j1) {
+            i0 = bx(pb.x0 - eps_); i1 = bx(pb.x1 + eps_);
+            j0 = by(pb.y0 - eps_); j1 = by(pb.y1 + eps_);
+        };
+        for (const ConvexPart& p : scene.parts) {
+            int i0, i1, j0, j1;
+            range(p.box, i0, i1, j0, j1);
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i) ++count[bucket(i, j) + 1];
+        }
+        for (std::size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
+        start_ = count;
+        items_.resize(count.back());
+        for (std::size_t pi = 0; pi < scene.parts.size(); ++pi) {
+            int i0, i1, j0, j1;
+            range(scene.parts[pi].box, i0, i1, j0, j1);
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i) items_[count[bucket(i, j)]++] = static_cast<std::uint32_t>(pi);
+        }
+    }
+
+    const Scene& scene() const { return *scene_; }
+    bool visibility() const { return visibility_; }
+
+    QueryContext context() const {
+        QueryContext c;
+        c.stamp.assign(scene_->parts.size(), 0);
+        return c;
+    }
+
+    /// The nearest obstacle to p: the same answer as `nearest_brute_force`.
+    /// \note Thread-safe with one QueryContext per thread.
+    Nearest nearest(const Vec2& p, QueryContext& ctx) const {
+        ++ctx.queries;
+        next_stamp(ctx);
+        Nearest best;
+        const int ci = bx(p.x()), cj = by(p.y());
+        const int max_ring = std::max({ci, nx_ - 1 - ci, cj, ny_ - 1 - cj});
+        for (int r = 0; r <= max_ring; ++r) {
+            const int i0 = ci - r, i1 = ci + r, j0 = cj - r, j1 = cj + r;
+            for (int j = std::max(j0, 0); j <= std::min(j1, ny_ - 1); ++j) {
+                const bool edge_row = (j == j0 || j == j1);
+                for (int i = std::max(i0, 0); i <= std::min(i1, nx_ - 1); ++i) {
+                    if (!edge_row && i != i0 && i != i1) {  // interior of the ring: jump to its right side
+                        if (i1 > nx_ - 1) break;
+                        i = i1;
+                    }
+                    visit(bucket(i, j), p, ctx, best);
+                }
+            }
+            // Lower bound on the distance of every part not seen yet: such a part lies outside the
+            // searched square (sides at the edge of the bucket grid hold everything beyond them).
+            double lb = std::numeric_limits<double>::infinity();
+            if (i0 > 0) lb = std::min(lb, p.x() - (x0_ + i0 * cell_));
+            if (i1 < nx_ - 1) lb = std::min(lb, (x0_ + (i1 + 1) * cell_) - p.x());
+            if (j0 > 0) lb = std::min(lb, p.y() - (y0_ + j0 * cell_));
+            if (j1 < ny_ - 1) lb = std::min(lb, (y0_ + (j1 + 1) * cell_) - p.y());
+            if (lb == std::numeric_limits<double>::infinity()) break;  // whole grid searched
+            lb -= 2 * eps_;
+            if (lb > 0 && lb * lb > best.sq) break;
+        }
+        return best;
+    }
+
+    /// Is segment ab farther than `radius` from every obstacle (strictly)? Labels in `ignore` (or -1)
+    /// are not considered.
+    bool segment_clear(const Vec2& a, const Vec2& b, double radius, QueryContext& ctx) const {
+        next_stamp(ctx);
+        Box sb;
+        sb.add(a);
+        sb.add(b);
+        const double pad = radius + eps_;
+        const int i0 = bx(sb.x0 - pad), i1 = bx(sb.x1 + pad), j0 = by(sb.y0 - pad), j1 = by(sb.y1 + pad);
+        const double r2 = radius * radius;
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) {
+                const std::size_t bk = bucket(i, j);
+                for (std::uint32_t k = start_[bk]; k < start_[bk + 1]; ++k) {
+                    const std::uint32_t pi = items_[k];
+                    if (ctx.stamp[pi] == ctx.current) continue;
+                    ctx.stamp[pi] = ctx.current;
+                    const ConvexPart& part = scene_->parts[pi];
+                    const double d2 = sq_segment_distance(*scene_, part, a, b);
+                    if (!(d2 > r2)) return false;
+                }
+            }
+        return true;
+    }
+
+private:
+    static void next_stamp(QueryContext& ctx) {
+        if (++ctx.current == 0) {
+            std::fill(ctx.stamp.begin(), ctx.stamp.end(), 0u);
+            ctx.current = 1;
+        }
+    }
+
+    void visit(std::size_t bk, const Vec2& p, QueryContext& ctx, Nearest& best) const {
+        for (std::uint32_t k = start_[bk]; k < start_[bk + 1]; ++k) {
+            const std::uint32_t pi = items_[k];
+            if (ctx.stamp[pi] == ctx.current) continue;
+            ctx.stamp[pi] = ctx.current;
+            const ConvexPart& part = scene_->parts[pi];
+            if (part.box.sq_distance(p) > best.sq * (1.0 + 1e-12) + 1e-300) continue;  // cannot win or tie
+            const double d = sq_distance(*scene_, part, p, visibility_, &ctx.counters);
+            if (d < best.sq || (d == best.sq && part.label < best.label)) {
+                best.sq = d;
+                best.label = part.label;
+                best.part = static_cast<std::int32_t>(pi);
+            }
+        }
+    }
+
+    int bx(double x) const {
+        const double t = std::floor((x - x0_) / cell_);
+        return static_cast<int>(std::clamp(t, 0.0, static_cast<double>(nx_ - 1)));
+    }
+    int by(double y) const {
+        const double t = std::floor((y - y0_) / cell_);
+        return static_cast<int>(std::clamp(t, 0.0, static_cast<double>(ny_ - 1)));
+    }
+    std::size_t bucket(int i, int j) const {
+        return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
+    }
+
+    const Scene* scene_ = nullptr;
+    bool visibility_ = true;
+    double cell_ = 1.0, x0_ = 0.0, y0_ = 0.0, eps_ = 0.0;
+    int nx_ = 1, ny_ = 1;
+    std::vector<std::uint32_t> start_, items_;
+};
+
+/// The nearest obstacle by scanning every part (the oracle's labelling; same distances, same ties).
+inline Nearest nearest_brute_force(const Scene& s, const Vec2& p, bool visibility) {
+    Nearest best;
+    for (std::size_t pi = 0; pi < s.parts.size(); ++pi) {
+        const double d = sq_distance(s, s.parts[pi], p, visibility);
+        if (d < best.sq || (d == best.sq && s.parts[pi].label < best.label)) {
+            best.sq = d;
+            best.label = s.parts[pi].label;
+            best.part = static_cast<std::int32_t>(pi);
+        }
+    }
+    return best;
+}
+
+}  // namespace dvoronoi::gvd

@@ -1,0 +1,196 @@
+// The grid Voronoi diagram as returned to users: the traced cells with their corner labels,
+// clearance and blocked flags, the Voronoi vertices, and the roadmap graph along the diagram.
+//
+// Assembled from the cells every worker kept (threads or MPI ranks), sorted by (row, column), so the
+// result does not depend on the number of workers or the approach.
+#pragma once
+
+#include "dvoronoi/gvd/flat_map.hpp"
+#include "dvoronoi/gvd/grid.hpp"
+#include "dvoronoi/gvd/slice_tracer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace dvoronoi::gvd {
+
+/// Slice approaches of Section 3.
+enum class SliceMode {
+    Independent,  ///< no communication: each worker scans both border lines of its slice
+    Cooperative,  ///< each border line scanned once (by the right worker), seeds sent to the left one
+};
+
+/// What a run did (summed over workers unless stated).
+struct GvdStats {
+    std::int32_t workers = 1;
+    std::uint64_t corners_labelled = 0;   ///< nearest-obstacle queries (lazy corner labels)
+    std::uint64_t part_evaluations = 0;   ///< convex-part distance evaluations
+    std::uint64_t edge_evaluations = 0;   ///< polygon edge / segment distance evaluations
+    std::uint64_t traced_cells = 0;       ///< cells traced before the slices were joined
+    std::uint64_t discarded_cells = 0;    ///< traced from border seeds but not reached from the area corners
+    std::uint64_t border_lines_scanned = 0;
+    std::uint64_t peak_worker_bytes = 0;  ///< largest per-worker tracing memory (labels, cells)
+    std::vector<double> worker_seconds;   ///< wall time per worker
+};
+
+/// The roadmap: nodes at Voronoi vertices, junctions and ends of the traced diagram; edges along the
+/// chains of traced cells between them.
+struct Roadmap {
+    std::vector<std::int64_t> node_cell;  ///< traced-cell index of each node
+    std::vector<std::uint8_t> node_kind;  ///< 0 vertex (>= 3 labels), 1 end (<= 1 neighbour), 2 junction
+    std::vector<std::int64_t> edge_u, edge_v;   ///< node indices
+    std::vector<double> edge_length;            ///< along cell centers
+    std::vector<double> edge_min_clearance;     ///< smallest cell clearance along the edge (ends included)
+    std::vector<std::uint8_t> edge_blocked;     ///< some cell on the edge is blocked
+    std::vector<std::int64_t> chain_ptr{0};     ///< CSR: interior cells of edge e are
+    std::vector<std::int64_t> chain_cells;      ///<   chain_cells[chain_ptr[e] .. chain_ptr[e+1])
+};
+
+/// The result of grid_voronoi.
+struct GridVoronoi {
+    GridSpec grid;
+    double robot_radius = 0.0;
+    std::int32_t n_obstacles = 0, n_labels = 0;
+    std::vector<std::int32_t> col, row;       ///< traced cells, sorted by (row, col)
+    std::vector<std::int32_t> labels;         ///< 4 per cell: corner labels BL, BR, TR, TL
+    std::vector<double> clearance;            ///< per cell: smallest corner distance to its nearest obstacle
+    std::vector<std::uint8_t> blocked;        ///< per cell: clearance <= robot_radius
+    std::vector<std::int64_t> vertices;       ///< cells whose corners carry >= 3 labels
+    std::vector<std::array<std::int32_t, 4>> neighbors;  ///< per cell: traced neighbours across label changes (-1 none)
+    Roadmap roadmap;
+    GvdStats stats;
+
+    std::size_t size() const { return col.size(); }
+    Vec2 center(std::size_t k) const { return grid.center(col[k], row[k]); }
+    int distinct_labels(std::size_t k) const {
+        const std::int32_t* l = &labels[4 * k];
+        int d = 1;
+        for (int a = 1; a < 4; ++a) {
+            bool seen = false;
+            for (int b = 0; b < a; ++b) seen |= l[a] == l[b];
+            d += !seen;
+        }
+        return d;
+    }
+};
+
+namespace detail {
+
+inline void build_roadmap(GridVoronoi& r) {
+    const std::size_t n = r.size();
+    Roadmap& m = r.roadmap;
+    std::vector<std::int64_t> node_of(n, -1);
+    auto degree = [&](std::size_t k) {
+        int d = 0;
+        for (std::int32_t x : r.neighbors[k]) d += x >= 0;
+        return d;
+    };
+    auto add_node = [&](std::size_t k) {
+        node_of[k] = static_cast<std::int64_t>(m.node_cell.size());
+        m.node_cell.push_back(static_cast<std::int64_t>(k));
+        const int d = degree(k);
+        m.node_kind.push_back(r.distinct_labels(k) >= 3 ? 0 : (d <= 1 ? 1 : 2));
+    };
+    for (std::size_t k = 0; k < n; ++k)
+        if (degree(k) != 2 || r.distinct_labels(k) >= 3) add_node(k);
+    std::vector<std::uint8_t> on_chain(n, 0);
+    auto walk_from = [&](std::size_t u) {
+        for (std::int32_t first : r.neighbors[u]) {
+            if (first < 0) continue;
+            std::vector<std::int64_t> chain;
+            std::size_t prev = u, cur = static_cast<std::size_t>(first);
+            while (node_of[cur] < 0) {
+                chain.push_back(static_cast<std::int64_t>(cur));
+                std::size_t next = cur;
+                for (std::int32_t x : r.neighbors[cur])
+                    if (x >= 0 && static_cast<std::size_t>(x) != prev) { next = static_cast<std::size_t>(x); break; }
+                if (next == cur) break;  // cannot happen for degree-2 cells
+                prev = cur;
+                cur = next;
+            }
+            if (node_of[cur] < 0) continue;
+            // Each chain is added once: a direct node-node step from the lower node, a longer chain
+            // from the end that walks it first (its cells are then marked).
+            if (chain.empty() ? !(node_of[u] < node_of[cur]) : on_chain[static_cast<std::size_t>(chain.front())] != 0)
+                continue;
+            double minc = std::min(r.clearance[u], r.clearance[cur]);
+            bool blocked = r.blocked[u] || r.blocked[cur];
+            for (std::int64_t c : chain) {
+                on_chain[static_cast<std::size_t>(c)] = 1;
+                minc = std::min(minc, r.clearance[static_cast<std::size_t>(c)]);
+                blocked = blocked || r.blocked[static_cast<std::size_t>(c)];
+            }
+            m.edge_u.push_back(node_of[u]);
+            m.edge_v.push_back(node_of[cur]);
+            m.edge_length.push_back(static_cast<double>(chain.size() + 1) * r.grid.h);
+            m.edge_min_clearance.push_back(minc);
+            m.edge_blocked.push_back(blocked ? 1 : 0);
+            m.chain_cells.insert(m.chain_cells.end(), chain.begin(), chain.end());
+            m.chain_ptr.push_back(static_cast<std::int64_t>(m.chain_cells.size()));
+        }
+    };
+    const std::size_t initial_nodes = m.node_cell.size();
+    for (std::size_t t = 0; t < initial_nodes; ++t) walk_from(static_cast<std::size_t>(m.node_cell[t]));
+    // Closed loops without any node: make one of their cells a node.
+    for (std::size_t k = 0; k < n; ++k)
+        if (node_of[k] < 0 && !on_chain[k]) {
+            add_node(k);
+            walk_from(k);
+        }
+}
+
+}  // namespace detail
+
+/// Builds the result from the kept cells of every worker.
+/// \note O(cells log cells).
+inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vector<TracedCell> cells,
+                            double robot_radius) {
+    std::sort(cells.begin(), cells.end(), [](const TracedCell& a, const TracedCell& b) {
+        return a.j != b.j ? a.j < b.j : a.i < b.i;
+    });
+    GridVoronoi r;
+    r.grid = grid;
+    r.robot_radius = robot_radius;
+    r.n_obstacles = scene.n_obstacles;
+    r.n_labels = scene.n_labels;
+    const std::size_t n = cells.size();
+    r.col.resize(n);
+    r.row.resize(n);
+    r.labels.resize(4 * n);
+    r.clearance.resize(n);
+    r.blocked.resize(n);
+    const double r2 = robot_radius * robot_radius;
+    FlatMap<std::int32_t> where(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        const TracedCell& c = cells[k];
+        r.col[k] = c.i;
+        r.row[k] = c.j;
+        for (int t = 0; t < 4; ++t) r.labels[4 * k + static_cast<std::size_t>(t)] = c.labels[static_cast<std::size_t>(t)];
+        r.clearance[k] = std::sqrt(c.min_sq);
+        // Paper: free only when every corner is farther than r from its nearest obstacle.
+        r.blocked[k] = c.min_sq <= r2 ? 1 : 0;
+        where.insert(grid.cell_key(c.i, c.j), static_cast<std::int32_t>(k));
+    }
+    r.neighbors.assign(n, {{-1, -1, -1, -1}});
+    for (std::size_t k = 0; k < n; ++k) {
+        const auto& l = cells[k].labels;
+        const std::int32_t i = cells[k].i, j = cells[k].j;
+        auto at = [&](std::int32_t a, std::int32_t b) -> std::int32_t {
+            if (a < 0 || b < 0 || a >= grid.nx || b >= grid.ny) return -1;
+            const std::int32_t* p = where.find(grid.cell_key(a, b));
+            return p ? *p : -1;
+        };
+        if (l[0] != l[1]) r.neighbors[k][0] = at(i, j - 1);
+        if (l[1] != l[2]) r.neighbors[k][1] = at(i + 1, j);
+        if (l[3] != l[2]) r.neighbors[k][2] = at(i, j + 1);
+        if (l[0] != l[3]) r.neighbors[k][3] = at(i - 1, j);
+        if (r.distinct_labels(k) >= 3) r.vertices.push_back(static_cast<std::int64_t>(k));
+    }
+    detail::build_roadmap(r);
+    return r;
+}
+
+}  // namespace dvoronoi::gvd

@@ -1,0 +1,201 @@
+// One worker of the grid Voronoi diagram (Mendes et al., Sections 2 and 3): traces the diagram inside
+// a vertical slice of columns [c0, c1), labelling cell corners lazily.
+//
+// Tracing as published: a cell is queued when its corners carry two or more labels; when it is taken
+// from the queue, each of its four edges whose two corners have different labels leads to the
+// neighbour across that edge (which then also has two labels), queued unless it was queued before
+// ("never re-enter"; the entrance edge is one of those). Cells outside the slice or the working area
+// are not entered. Corner labels are computed only for corners of queued cells and of the scanned
+// border lines, and kept in a hash map, so the work and the memory follow the diagram's length, not
+// the grid's area. Blocking by robot radius happens when results are assembled; a blocked cell is
+// traced through like any other (the paper: "still inserted in the queue").
+//
+// Seeds: the cells at the working area's corners (anchors, all area corners are Voronoi vertices),
+// and the cells next to a label change on a scanned border line. After tracing, the slice's cells are
+// grouped into connected components (cells joined across label-changing edges), so the driver can
+// keep exactly the components the single-worker run reaches from the area corners.
+#pragma once
+
+#include "dvoronoi/gvd/flat_map.hpp"
+#include "dvoronoi/gvd/grid.hpp"
+#include "dvoronoi/gvd/obstacle_index.hpp"
+
+#include <array>
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+namespace dvoronoi::gvd {
+
+/// A corner's nearest obstacle.
+struct CornerLabel {
+    std::int32_t label = -1;
+    double sq = 0.0;  ///< squared distance to it
+};
+
+/// A traced cell: position, corner labels (bottom-left, bottom-right, top-right, top-left) and the
+/// smallest squared corner distance.
+struct TracedCell {
+    std::int32_t i = 0, j = 0;
+    std::array<std::int32_t, 4> labels{{-1, -1, -1, -1}};
+    double min_sq = 0.0;
+    bool anchor = false;
+};
+
+class SliceTracer {
+public:
+    SliceTracer(const Scene& scene, const ObstacleIndex& index, const GridSpec& grid, std::int32_t c0,
+                std::int32_t c1)
+        : scene_(&scene), index_(&index), grid_(grid), c0_(c0), c1_(c1), ctx_(index.context()) {}
+
+    std::int32_t c0() const { return c0_; }
+    std::int32_t c1() const { return c1_; }
+
+    /// The label of corner (i, j), computed on first use.
+    const CornerLabel& corner(std::int32_t i, std::int32_t j) {
+        const std::uint64_t key = grid_.corner_key(i, j);
+        if (const CornerLabel* c = corners_.find(key)) return *c;
+        const Nearest n = index_->nearest(grid_.corner(i, j), ctx_);
+        return *corners_.insert(key, CornerLabel{n.label, n.sq}).first;
+    }
+
+    /// Rows j of the grid line x = x0 + line h where the edge from corner (line, j) to (line, j+1)
+    /// changes label and both cells beside it, (line-1, j) and (line, j), lie in the working area.
+    /// Labels ny + 1 corners.
+    std::vector<std::int32_t> scan_line(std::int32_t line) {
+        std::vector<std::int32_t> rows;
+        std::int32_t prev = corner(line, 0).label;
+        for (std::int32_t j = 0; j < grid_.ny; ++j) {
+            const std::int32_t next = corner(line, j + 1).label;
+            if (next != prev && cell_in_area(*scene_, grid_, line - 1, j) && cell_in_area(*scene_, grid_, line, j))
+                rows.push_back(j);
+            prev = next;
+        }
+        return rows;
+    }
+
+    /// Queues cell (i, j) if it lies in this slice and the working area, has corners with two or more
+    /// labels, and was not queued before. Returns whether it was queued.
+    bool seed(std::int32_t i, std::int32_t j, bool anchor = false) {
+        if (i < c0_ || i >= c1_ || j < 0 || j >= grid_.ny) return false;
+        if (index_of_.find(grid_.cell_key(i, j))) return false;
+        if (!cell_in_area(*scene_, grid_, i, j)) return false;
+        TracedCell c = make_cell(i, j);
+        if (c.labels[0] == c.labels[1] && c.labels[1] == c.labels[2] && c.labels[2] == c.labels[3]) return false;
+        c.anchor = anchor;
+        push(c);
+        return true;
+    }
+
+    /// Seeds the cells at the working area's vertices that fall in this slice.
+    void seed_area_corners() {
+        for (const Vec2& v : scene_->area) {
+            std::int32_t i, j;
+            grid_.locate(v, i, j);
+            // v may lie on a cell edge or corner: try every cell whose closure holds it.
+            for (std::int32_t di = -1; di <= 1; ++di)
+                for (std::int32_t dj = -1; dj <= 1; ++dj) {
+                    const std::int32_t ci = i + di, cj = j + dj;
+                    const Vec2 lo = grid_.corner(ci, cj), hi = grid_.corner(ci + 1, cj + 1);
+                    if (lo.x() <= v.x() && v.x() <= hi.x() && lo.y() <= v.y() && v.y() <= hi.y())
+                        seed(ci, cj, true);
+                }
+        }
+    }
+
+    /// Runs the queue empty (Section 2's loop).
+    void trace() {
+        while (head_ < cells_.size()) {
+            const TracedCell c = cells_[head_++];
+            const auto& l = c.labels;
+            if (l[0] != l[1]) seed(c.i, c.j - 1);  // bottom edge
+            if (l[1] != l[2]) seed(c.i + 1, c.j);  // right edge
+            if (l[3] != l[2]) seed(c.i, c.j + 1);  // top edge
+            if (l[0] != l[3]) seed(c.i - 1, c.j);  // left edge
+        }
+    }
+
+    /// Groups the traced cells into components joined across label-changing edges; returns their
+    /// count. component(k) is cell k's component, anchored(c) whether c holds an area-corner seed.
+    std::int32_t label_components() {
+        const std::size_t n = cells_.size();
+        std::vector<std::int32_t> parent(n);
+        std::iota(parent.begin(), parent.end(), 0);
+        auto find = [&](std::int32_t x) {
+            while (parent[static_cast<std::size_t>(x)] != x) {
+                auto& p = parent[static_cast<std::size_t>(x)];
+                p = parent[static_cast<std::size_t>(p)];
+                x = p;
+            }
+            return x;
+        };
+        for (std::size_t k = 0; k < n; ++k) {
+            const TracedCell& c = cells_[k];
+            auto join = [&](std::int32_t i, std::int32_t j) {
+                if (const std::int32_t* o = index_of_.find(grid_.cell_key(i, j))) {
+                    const std::int32_t a = find(static_cast<std::int32_t>(k)), b = find(*o);
+                    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+                }
+            };
+            if (c.labels[1] != c.labels[2] && c.i + 1 < c1_) join(c.i + 1, c.j);
+            if (c.labels[3] != c.labels[2]) join(c.i, c.j + 1);
+        }
+        component_.assign(n, -1);
+        std::vector<std::int32_t> id(n, -1);
+        std::int32_t count = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            const auto r = static_cast<std::size_t>(find(static_cast<std::int32_t>(k)));
+            if (id[r] < 0) id[r] = count++;
+            component_[k] = id[r];
+        }
+        anchored_.assign(static_cast<std::size_t>(count), 0);
+        for (std::size_t k = 0; k < n; ++k)
+            if (cells_[k].anchor) anchored_[static_cast<std::size_t>(component_[k])] = 1;
+        return count;
+    }
+
+    /// Component of traced cell (i, j), or -1 if it was not traced.
+    std::int32_t component_at(std::int32_t i, std::int32_t j) const {
+        const std::int32_t* k = index_of_.find(grid_.cell_key(i, j));
+        return k ? component_[static_cast<std::size_t>(*k)] : -1;
+    }
+
+    const std::vector<TracedCell>& cells() const { return cells_; }
+    const std::vector<std::int32_t>& components() const { return component_; }
+    const std::vector<std::uint8_t>& anchored() const { return anchored_; }
+    std::size_t corners_labelled() const { return corners_.size(); }
+    const QueryContext& context() const { return ctx_; }
+    std::size_t memory_bytes() const {
+        return corners_.memory_bytes() + index_of_.memory_bytes() + cells_.capacity() * sizeof(TracedCell) +
+               component_.capacity() * sizeof(std::int32_t);
+    }
+
+private:
+    TracedCell make_cell(std::int32_t i, std::int32_t j) {
+        TracedCell c;
+        c.i = i;
+        c.j = j;
+        const CornerLabel a = corner(i, j), b = corner(i + 1, j), cc = corner(i + 1, j + 1), d = corner(i, j + 1);
+        c.labels = {a.label, b.label, cc.label, d.label};
+        c.min_sq = std::min(std::min(a.sq, b.sq), std::min(cc.sq, d.sq));
+        return c;
+    }
+    void push(const TracedCell& c) {
+        index_of_.insert(grid_.cell_key(c.i, c.j), static_cast<std::int32_t>(cells_.size()));
+        cells_.push_back(c);
+    }
+
+    const Scene* scene_;
+    const ObstacleIndex* index_;
+    GridSpec grid_;
+    std::int32_t c0_, c1_;
+    QueryContext ctx_;
+    FlatMap<CornerLabel> corners_;
+    FlatMap<std::int32_t> index_of_;
+    std::vector<TracedCell> cells_;  // also the queue: cells_[head_..] are waiting
+    std::size_t head_ = 0;
+    std::vector<std::int32_t> component_;
+    std::vector<std::uint8_t> anchored_;
+};
+
+}  // namespace dvoronoi::gvd
