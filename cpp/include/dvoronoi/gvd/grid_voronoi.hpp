@@ -149,6 +149,7 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
     std::vector<TracedCell> kept;
     GvdStats st;
     st.workers = workers;
+    st.mode = options.mode;
     for (int k = 0; k < workers; ++k) {
         const auto uk = static_cast<std::size_t>(k);
         append_kept(tracers[uk], keep[uk], kept);

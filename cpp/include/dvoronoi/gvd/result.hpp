@@ -26,6 +26,7 @@ enum class SliceMode {
 /// What a run did (summed over workers unless stated).
 struct GvdStats {
     std::int32_t workers = 1;
+    SliceMode mode = SliceMode::Cooperative;
     std::uint64_t corners_labelled = 0;   ///< nearest-obstacle queries (lazy corner labels)
     std::uint64_t part_evaluations = 0;   ///< convex-part distance evaluations
     std::uint64_t edge_evaluations = 0;   ///< polygon edge / segment distance evaluations
