@@ -16,6 +16,7 @@ from ._core import CoincidentError, LimitedCell, Piece, __version__, limited_cel
 from ._partition import LimitedPartition, limited_cells
 from ._voronoi import VoronoiPartition, voronoi_cell, voronoi_cells
 from . import datasets
+from .gvd import GridVoronoi, grid_voronoi, obstacles_from_occupancy_grid
 
 __all__ = [
     "limited_cell",
@@ -28,5 +29,8 @@ __all__ = [
     "Piece",
     "CoincidentError",
     "datasets",
+    "grid_voronoi",
+    "GridVoronoi",
+    "obstacles_from_occupancy_grid",
     "__version__",
 ]
