@@ -34,6 +34,14 @@ struct PyScene {
 struct PyResult {
     gvd::GridVoronoi r;
     std::shared_ptr<PyScene> scene;
+    /// The roadmap and cell adjacency are built on first use (the diagram itself is ready at once).
+    gvd::GridVoronoi& graph() {
+        if (!r.has_graph) {
+            py::gil_scoped_release release;
+            gvd::build_graph(r);
+        }
+        return r;
+    }
 };
 
 template <class T, class U>
@@ -114,21 +122,34 @@ void bind_gvd(py::module_& m) {
         .def_property_readonly("clearance", [](const PyResult& p) { return copy_array<double>(p.r.clearance); })
         .def_property_readonly("blocked", [](const PyResult& p) { return copy_array<bool>(p.r.blocked); })
         .def_property_readonly("vertices", [](const PyResult& p) { return copy_array<std::int64_t>(p.r.vertices); })
-        .def_property_readonly("node_cell", [](const PyResult& p) { return copy_array<std::int64_t>(p.r.roadmap.node_cell); })
-        .def_property_readonly("node_kind", [](const PyResult& p) { return copy_array<std::uint8_t>(p.r.roadmap.node_kind); })
-        .def_property_readonly("edge_u", [](const PyResult& p) { return copy_array<std::int64_t>(p.r.roadmap.edge_u); })
-        .def_property_readonly("edge_v", [](const PyResult& p) { return copy_array<std::int64_t>(p.r.roadmap.edge_v); })
-        .def_property_readonly("edge_length", [](const PyResult& p) { return copy_array<double>(p.r.roadmap.edge_length); })
-        .def_property_readonly("edge_min_clearance", [](const PyResult& p) { return copy_array<double>(p.r.roadmap.edge_min_clearance); })
-        .def_property_readonly("edge_blocked", [](const PyResult& p) { return copy_array<bool>(p.r.roadmap.edge_blocked); })
-        .def_property_readonly("chain_ptr", [](const PyResult& p) { return copy_array<std::int64_t>(p.r.roadmap.chain_ptr); })
-        .def_property_readonly("chain_cells", [](const PyResult& p) { return copy_array<std::int64_t>(p.r.roadmap.chain_cells); })
+        .def_property_readonly("node_cell", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.node_cell); })
+        .def_property_readonly("node_kind", [](PyResult& p) { return copy_array<std::uint8_t>(p.graph().roadmap.node_kind); })
+        .def_property_readonly("edge_u", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.edge_u); })
+        .def_property_readonly("edge_v", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.edge_v); })
+        .def_property_readonly("edge_length", [](PyResult& p) { return copy_array<double>(p.graph().roadmap.edge_length); })
+        .def_property_readonly("edge_min_clearance", [](PyResult& p) { return copy_array<double>(p.graph().roadmap.edge_min_clearance); })
+        .def_property_readonly("edge_blocked", [](PyResult& p) { return copy_array<bool>(p.graph().roadmap.edge_blocked); })
+        .def_property_readonly("chain_ptr", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.chain_ptr); })
+        .def_property_readonly("chain_cells", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.chain_cells); })
         .def_property_readonly("stats", [](const PyResult& p) {
-            return py::module_::import("json").attr("loads")(dvoronoi::io::gvd_to_json(p.r)["stats"].dump());
+            const auto& s = p.r.stats;
+            py::dict d;
+            d["workers"] = s.workers;
+            d["mode"] = dvoronoi::io::mode_name(s.mode);
+            d["corners_labelled"] = s.corners_labelled;
+            d["part_evaluations"] = s.part_evaluations;
+            d["edge_evaluations"] = s.edge_evaluations;
+            d["traced_cells"] = s.traced_cells;
+            d["discarded_cells"] = s.discarded_cells;
+            d["border_lines_scanned"] = s.border_lines_scanned;
+            d["peak_worker_bytes"] = s.peak_worker_bytes;
+            d["worker_seconds"] = s.worker_seconds;
+            d["worker_cpu_seconds"] = s.worker_cpu_seconds;
+            return d;
         })
-        .def("to_json", [](const PyResult& p, int indent) { return dvoronoi::io::gvd_to_json(p.r).dump(indent); },
+        .def("to_json", [](PyResult& p, int indent) { return dvoronoi::io::gvd_to_json(p.graph()).dump(indent); },
              py::arg("indent") = -1)
-        .def("to_svg", [](const PyResult& p, py::object path) {
+        .def("to_svg", [](PyResult& p, py::object path) {
             std::vector<Vec2> pts;
             if (!path.is_none()) {
                 PointsArg a = points_arg(path, "path");
@@ -138,8 +159,9 @@ void bind_gvd(py::module_& m) {
             dvoronoi::io::write_gvd_svg(os, p.scene->file.scene, p.r, pts);
             return os.str();
         }, py::arg("path") = py::none())
-        .def("path", [](const PyResult& p, py::handle start, py::handle goal) {
+        .def("path", [](PyResult& p, py::handle start, py::handle goal) {
             const Vec2 s = point_arg(start, "start"), g = point_arg(goal, "goal");
+            p.graph();
             gvd::PathResult res;
             {
                 py::gil_scoped_release release;
@@ -161,6 +183,7 @@ void bind_gvd(py::module_& m) {
         o.workers = workers;
         o.mode = parse_mode(mode);
         o.visibility = visibility;
+        o.graph = false;  // built on first use of the roadmap or a path
         auto out = std::make_unique<PyResult>();
         out->scene = scene;
         {

@@ -121,6 +121,7 @@ int run(const Args& a, int rank, int size) {
 
     MPI_Barrier(MPI_COMM_WORLD);
     const auto t0 = std::chrono::steady_clock::now();
+    const double cpu0 = gvd::thread_cpu_seconds();
     const gvd::ObstacleIndex index(file.scene, opt.visibility);
     const auto bounds = gvd::slice_bounds(grid.nx, size);
     gvd::SliceTracer tracer(file.scene, index, grid, bounds[static_cast<std::size_t>(rank)], bounds[static_cast<std::size_t>(rank) + 1]);
@@ -144,6 +145,7 @@ int run(const Args& a, int rank, int size) {
     const gvd::SliceSummary summary = gvd::run_slice(tracer, rank, size, opt.mode, ch, lines);
     MPI_Wait(&send_req, MPI_STATUS_IGNORE);
     const double traced_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double traced_cpu = gvd::thread_cpu_seconds() - cpu0;
 
     // Join on rank 0: summaries in, keep flags out.
     std::vector<int> counts;
@@ -182,6 +184,8 @@ int run(const Args& a, int rank, int size) {
     MPI_Reduce(&local[5], &peak, 1, MPI_UNSIGNED_LONG_LONG, MPI_MAX, 0, MPI_COMM_WORLD);
     std::vector<double> seconds(static_cast<std::size_t>(size));
     MPI_Gather(&traced_seconds, 1, MPI_DOUBLE, seconds.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    std::vector<double> cpu_seconds(static_cast<std::size_t>(size));
+    MPI_Gather(&traced_cpu, 1, MPI_DOUBLE, cpu_seconds.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     if (rank != 0) return 0;
 
     const std::size_t kept = cells.size();
@@ -196,6 +200,8 @@ int run(const Args& a, int rank, int size) {
     r.stats.discarded_cells = sum[3] - kept;
     r.stats.peak_worker_bytes = peak;
     r.stats.worker_seconds = seconds;
+    r.stats.worker_cpu_seconds = cpu_seconds;
+    gvd::build_graph(r);
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::json doc = io::gvd_to_json(r);
     doc["stats"]["total_seconds"] = total;

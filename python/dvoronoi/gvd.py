@@ -119,9 +119,20 @@ class GridVoronoi(Result):
         self.blocked = core.blocked
         self.vertices = core.vertices
         self.stats: Dict[str, Any] = core.stats
-        self._build_relation()
+        self._relation: Optional[Tuple[np.ndarray, np.ndarray]] = None
 
-    def _build_relation(self) -> None:
+    @property
+    def indptr(self) -> np.ndarray:  # type: ignore[override]
+        """CSR of the obstacle relation (labels sharing a diagram cell), computed on first use."""
+        return self._obstacle_relation()[0]
+
+    @property
+    def indices(self) -> np.ndarray:  # type: ignore[override]
+        return self._obstacle_relation()[1]
+
+    def _obstacle_relation(self) -> Tuple[np.ndarray, np.ndarray]:
+        if self._relation is not None:
+            return self._relation
         n = self.n_labels
         lab = np.sort(self.labels, axis=1)
         pairs = []
@@ -132,10 +143,10 @@ class GridVoronoi(Result):
         p = np.concatenate(pairs) if pairs else np.zeros((0, 2), np.int64)
         p = np.concatenate([p, p[:, ::-1]]).astype(np.int64)
         p = np.unique(p, axis=0) if len(p) else p.reshape(0, 2)
-        self.indices = p[:, 1].copy()
-        self.indptr = np.zeros(n + 1, dtype=np.int64)
-        np.add.at(self.indptr, p[:, 0] + 1, 1)
-        self.indptr = np.cumsum(self.indptr)
+        indptr = np.zeros(n + 1, dtype=np.int64)
+        np.add.at(indptr, p[:, 0] + 1, 1)
+        self._relation = (np.cumsum(indptr), p[:, 1].copy())
+        return self._relation
 
     # -- sizes and pictures ---------------------------------------------------------------------
     def __len__(self) -> int:

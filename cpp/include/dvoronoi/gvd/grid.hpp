@@ -24,12 +24,6 @@ struct GridSpec {
     Vec2 center(std::int64_t i, std::int64_t j) const {
         return Vec2(x0 + (static_cast<double>(i) + 0.5) * h, y0 + (static_cast<double>(j) + 0.5) * h);
     }
-    std::uint64_t corner_key(std::int64_t i, std::int64_t j) const {
-        return static_cast<std::uint64_t>(i) * static_cast<std::uint64_t>(ny + 1) + static_cast<std::uint64_t>(j);
-    }
-    std::uint64_t cell_key(std::int64_t i, std::int64_t j) const {
-        return static_cast<std::uint64_t>(i) * static_cast<std::uint64_t>(ny) + static_cast<std::uint64_t>(j);
-    }
     /// The cell containing p (clamped to the grid).
     void locate(const Vec2& p, std::int32_t& i, std::int32_t& j) const {
         i = static_cast<std::int32_t>(std::clamp(std::floor((p.x() - x0) / h), 0.0, static_cast<double>(nx - 1)));

@@ -35,6 +35,7 @@ struct GvdOptions {
     int workers = 1;                ///< slice workers (threads); clamped to the column count
     SliceMode mode = SliceMode::Cooperative;
     bool visibility = true;         ///< the paper's visibility test for polygon edges
+    bool graph = true;              ///< build the cell adjacency and the roadmap now (else build_graph later)
 };
 
 /// First column of each of the K slices, plus nx at the end (slices of near-equal width).
@@ -117,12 +118,13 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         tracers.emplace_back(scene, index, grid, bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1]);
     std::vector<SliceSummary> summaries(static_cast<std::size_t>(workers));
     std::vector<std::promise<std::vector<std::int32_t>>> mail(static_cast<std::size_t>(workers));
-    std::vector<double> seconds(static_cast<std::size_t>(workers), 0.0);
+    std::vector<double> seconds(static_cast<std::size_t>(workers), 0.0), cpu(static_cast<std::size_t>(workers), 0.0);
     std::vector<std::uint64_t> lines(static_cast<std::size_t>(workers), 0);
     std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
 
     auto work = [&](int k) {
         const auto t0 = std::chrono::steady_clock::now();
+        const double c0 = thread_cpu_seconds();
         const auto uk = static_cast<std::size_t>(k);
         try {
             BorderChannel ch;
@@ -134,6 +136,7 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
             try { if (k > 0 && options.mode == SliceMode::Cooperative) mail[uk].set_value({}); } catch (...) {}
         }
         seconds[uk] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        cpu[uk] = thread_cpu_seconds() - c0;
     };
     if (workers == 1) {
         work(0);
@@ -163,9 +166,11 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
     }
     st.discarded_cells = st.traced_cells - kept.size();
     st.worker_seconds = seconds;
+    st.worker_cpu_seconds = cpu;
     tracers.clear();
     GridVoronoi r = assemble(scene, grid, std::move(kept), options.robot_radius);
     r.stats = std::move(st);
+    if (options.graph) build_graph(r);
     return r;
 }
 

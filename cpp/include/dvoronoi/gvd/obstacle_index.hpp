@@ -2,6 +2,9 @@
 // each convex part in every bucket its (slightly enlarged) bounding box overlaps, searched in square
 // rings around the query point with distance lower bounds.
 //
+// Each bucket also keeps the short list of parts that can be nearest to some point inside it
+// (build_candidates), so a query inside the grid evaluates only those, with no ring search.
+//
 // Why buckets and not a library kd-tree: the sites are shapes, not points, and the query must return
 // exactly the brute-force answer (same distances, ties to the lower label). A ring search visits a
 // part only if its bounding box is no farther than the best distance so far, and stops once the
@@ -32,6 +35,7 @@ struct QueryContext {
     std::uint32_t current = 0;
     DistanceCounters counters;
     std::uint64_t queries = 0;
+    std::int32_t hint = -1;  ///< part that answered the previous query (tried first: nearby queries share it)
 };
 
 class ObstacleIndex {
@@ -70,6 +74,7 @@ public:
             for (int j = j0; j <= j1; ++j)
                 for (int i = i0; i <= i1; ++i) items_[count[bucket(i, j)]++] = static_cast<std::uint32_t>(pi);
         }
+        build_candidates();
     }
 
     const Scene& scene() const { return *scene_; }
@@ -85,8 +90,36 @@ public:
     /// \note Thread-safe with one QueryContext per thread.
     Nearest nearest(const Vec2& p, QueryContext& ctx) const {
         ++ctx.queries;
+        const int bi = bx(p.x()), bj = by(p.y());
+        const double lx = x0_ + bi * cell_, ly = y0_ + bj * cell_;
+        if (p.x() >= lx && p.x() <= lx + cell_ && p.y() >= ly && p.y() <= ly + cell_) {
+            // Inside the bucket: its candidate list holds every part that can be nearest here.
+            Nearest best;
+            const std::size_t b = bucket(bi, bj);
+            if (ctx.hint >= 0) evaluate(static_cast<std::uint32_t>(ctx.hint), p, ctx, best);
+            for (std::uint32_t k = cand_start_[b]; k < cand_start_[b + 1]; ++k) {
+                const std::uint32_t pi = cand_items_[k];
+                if (static_cast<std::int32_t>(pi) != ctx.hint) evaluate(pi, p, ctx, best);
+            }
+            ctx.hint = best.part;
+            return best;
+        }
+        return nearest_by_rings(p, ctx);
+    }
+
+    /// The same answer by searching square rings of buckets (used outside the bucket grid).
+    Nearest nearest_by_rings(const Vec2& p, QueryContext& ctx) const {
         next_stamp(ctx);
         Nearest best;
+        // The previous answer first: consecutive queries are neighbouring corners, so this bound is
+        // usually tight and the bounding-box test skips most other parts. The answer does not depend
+        // on the order parts are looked at (smallest (distance, label) wins).
+        if (ctx.hint >= 0) {
+            const auto pi = static_cast<std::uint32_t>(ctx.hint);
+            ctx.stamp[pi] = ctx.current;
+            const ConvexPart& part = scene_->parts[pi];
+            best = Nearest{part.label, sq_distance(*scene_, part, p, visibility_, &ctx.counters), ctx.hint};
+        }
         const int ci = bx(p.x()), cj = by(p.y());
         const int max_ring = std::max({ci, nx_ - 1 - ci, cj, ny_ - 1 - cj});
         for (int r = 0; r <= max_ring; ++r) {
@@ -112,6 +145,7 @@ public:
             lb -= 2 * eps_;
             if (lb > 0 && lb * lb > best.sq) break;
         }
+        ctx.hint = best.part;
         return best;
     }
 
@@ -141,6 +175,68 @@ public:
     }
 
 private:
+    void evaluate(std::uint32_t pi, const Vec2& p, QueryContext& ctx, Nearest& best) const {
+        const ConvexPart& part = scene_->parts[pi];
+        if (part.box.sq_distance(p) > best.sq * (1.0 + 1e-12) + 1e-300) return;  // cannot win or tie
+        const double d = sq_distance(*scene_, part, p, visibility_, &ctx.counters);
+        if (d < best.sq || (d == best.sq && part.label < best.label)) {
+            best.sq = d;
+            best.label = part.label;
+            best.part = static_cast<std::int32_t>(pi);
+        }
+    }
+
+    static double box_box_distance(const Box& a, const Box& b) {
+        const double dx = std::max({0.0, a.x0 - b.x1, b.x0 - a.x1});
+        const double dy = std::max({0.0, a.y0 - b.y1, b.y0 - a.y1});
+        return std::sqrt(dx * dx + dy * dy);
+    }
+
+    /// Per bucket B, the parts that can be nearest to some point of B. The distance to a convex part
+    /// is a convex function, so its largest value over B is at one of B's corners; U = the smallest
+    /// such maximum over the parts bounds the nearest distance everywhere in B, and only parts whose
+    /// bounding box comes within U of B can win (or tie). Found by growing rings of buckets around B
+    /// until they are farther than U.
+    void build_candidates() {
+        const Scene& s = *scene_;
+        QueryContext ctx = context();
+        cand_start_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 1, 0);
+        std::vector<std::uint32_t> seen;
+        for (int bj = 0; bj < ny_; ++bj)
+            for (int bi = 0; bi < nx_; ++bi) {
+                Box B;
+                B.add(Vec2(x0_ + bi * cell_, y0_ + bj * cell_));
+                B.add(Vec2(x0_ + (bi + 1) * cell_, y0_ + (bj + 1) * cell_));
+                const Vec2 corner[4] = {Vec2(B.x0, B.y0), Vec2(B.x1, B.y0), Vec2(B.x1, B.y1), Vec2(B.x0, B.y1)};
+                next_stamp(ctx);
+                seen.clear();
+                double U = std::numeric_limits<double>::infinity();
+                const int max_ring = std::max({bi, nx_ - 1 - bi, bj, ny_ - 1 - bj});
+                for (int r = 0; r <= max_ring; ++r) {
+                    for (int j = std::max(bj - r, 0); j <= std::min(bj + r, ny_ - 1); ++j)
+                        for (int i = std::max(bi - r, 0); i <= std::min(bi + r, nx_ - 1); ++i) {
+                            if (std::max(std::abs(i - bi), std::abs(j - bj)) != r) continue;
+                            const std::size_t bk = bucket(i, j);
+                            for (std::uint32_t k = start_[bk]; k < start_[bk + 1]; ++k) {
+                                const std::uint32_t pi = items_[k];
+                                if (ctx.stamp[pi] == ctx.current) continue;
+                                ctx.stamp[pi] = ctx.current;
+                                seen.push_back(pi);
+                                double ub = 0.0;
+                                for (const Vec2& c : corner) ub = std::max(ub, sq_distance(s, s.parts[pi], c, false));
+                                U = std::min(U, std::sqrt(ub));
+                            }
+                        }
+                    // parts not seen yet lie outside the searched square: at least r * cell_ from B
+                    if (static_cast<double>(r) * cell_ > U * (1.0 + 1e-9) + 4 * eps_) break;
+                }
+                const double limit = U * (1.0 + 1e-9) + 4 * eps_;
+                for (std::uint32_t pi : seen)
+                    if (box_box_distance(s.parts[pi].box, B) <= limit) cand_items_.push_back(pi);
+                cand_start_[bucket(bi, bj) + 1] = static_cast<std::uint32_t>(cand_items_.size());
+            }
+    }
+
     static void next_stamp(QueryContext& ctx) {
         if (++ctx.current == 0) {
             std::fill(ctx.stamp.begin(), ctx.stamp.end(), 0u);
@@ -181,6 +277,7 @@ private:
     double cell_ = 1.0, x0_ = 0.0, y0_ = 0.0, eps_ = 0.0;
     int nx_ = 1, ny_ = 1;
     std::vector<std::uint32_t> start_, items_;
+    std::vector<std::uint32_t> cand_start_, cand_items_;
 };
 
 /// The nearest obstacle by scanning every part (the oracle's labelling; same distances, same ties).

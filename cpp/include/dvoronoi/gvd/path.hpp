@@ -55,7 +55,7 @@ inline void require_free(const Scene& scene, const ObstacleIndex& index, QueryCo
 
 /// The free traced cell `p` connects to by a clear straight segment, or -1.
 inline std::int64_t connect(const GridVoronoi& r, const Scene& scene, const ObstacleIndex& index,
-                            QueryContext& ctx, const Vec2& p, const FlatMap<std::int32_t>& where) {
+                            QueryContext& ctx, const Vec2& p, const LazyGrid<std::int32_t>& where) {
     const double rad = r.robot_radius;
     const Nearest near = index.nearest(p, ctx);
     const Vec2 q = closest_point(scene, scene.parts[static_cast<std::size_t>(near.part)], p);
@@ -70,9 +70,10 @@ inline std::int64_t connect(const GridVoronoi& r, const Scene& scene, const Obst
             if (x.x() < scene.box.x0 || x.x() > scene.box.x1 || x.y() < scene.box.y0 || x.y() > scene.box.y1) break;
             std::int32_t i, j;
             r.grid.locate(x, i, j);
-            if (const std::int32_t* k = where.find(r.grid.cell_key(i, j))) {
-                if (r.blocked[static_cast<std::size_t>(*k)]) continue;
-                if (index.segment_clear(p, r.center(static_cast<std::size_t>(*k)), rad, ctx)) return *k;
+            const std::int32_t k = where.get(i, j);
+            if (k >= 0) {
+                if (r.blocked[static_cast<std::size_t>(k)]) continue;
+                if (index.segment_clear(p, r.center(static_cast<std::size_t>(k)), rad, ctx)) return k;
                 break;
             }
         }
@@ -92,18 +93,20 @@ inline std::int64_t connect(const GridVoronoi& r, const Scene& scene, const Obst
 
 /// Shortest path from `start` to `goal` along the diagram for a disk robot of radius r.robot_radius.
 ///
+/// Needs r.has_graph (grid_voronoi builds it by default).
 /// \throws InputError naming `start` or `goal` when it lies outside the working area or within the
 /// robot radius of an obstacle (blocked). Returns an empty path when the two cannot be joined to the
 /// diagram or the free part of the diagram does not connect them.
 /// \note O(C log C) for C traced cells per A* round.
 inline PathResult find_path(const GridVoronoi& r, const Scene& scene, const ObstacleIndex& index,
                             const Vec2& start, const Vec2& goal) {
+    if (!r.has_graph) throw Error("find_path: the diagram's graph is not built (call build_graph first)");
     QueryContext ctx = index.context();
     detail::require_free(scene, index, ctx, start, r.robot_radius, "start");
     detail::require_free(scene, index, ctx, goal, r.robot_radius, "goal");
     PathResult out;
-    FlatMap<std::int32_t> where(r.size());
-    for (std::size_t k = 0; k < r.size(); ++k) where.insert(r.grid.cell_key(r.col[k], r.row[k]), static_cast<std::int32_t>(k));
+    LazyGrid<std::int32_t> where(0, r.grid.nx, r.grid.ny, -1);
+    for (std::size_t k = 0; k < r.size(); ++k) where.at(r.col[k], r.row[k]) = static_cast<std::int32_t>(k);
     std::set<std::pair<std::int64_t, std::int64_t>> bad;  // steps that failed the exact check
     const std::int64_t s = detail::connect(r, scene, index, ctx, start, where);
     const std::int64_t g = detail::connect(r, scene, index, ctx, goal, where);

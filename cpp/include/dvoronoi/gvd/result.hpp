@@ -5,14 +5,15 @@
 // result does not depend on the number of workers or the approach.
 #pragma once
 
-#include "dvoronoi/gvd/flat_map.hpp"
 #include "dvoronoi/gvd/grid.hpp"
+#include "dvoronoi/gvd/lazy_grid.hpp"
 #include "dvoronoi/gvd/slice_tracer.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -35,7 +36,17 @@ struct GvdStats {
     std::uint64_t border_lines_scanned = 0;
     std::uint64_t peak_worker_bytes = 0;  ///< largest per-worker tracing memory (labels, cells)
     std::vector<double> worker_seconds;   ///< wall time per worker
+    std::vector<double> worker_cpu_seconds;  ///< CPU time per worker thread (not inflated by other load)
 };
+
+/// CPU time of the calling thread in seconds (0 where the platform has no per-thread clock).
+inline double thread_cpu_seconds() {
+#if defined(__linux__) || defined(__APPLE__)
+    timespec ts{};
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0) return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+#endif
+    return 0.0;
+}
 
 /// The roadmap: nodes at Voronoi vertices, junctions and ends of the traced diagram; edges along the
 /// chains of traced cells between them.
@@ -62,6 +73,7 @@ struct GridVoronoi {
     std::vector<std::int64_t> vertices;       ///< cells whose corners carry >= 3 labels
     std::vector<std::array<std::int32_t, 4>> neighbors;  ///< per cell: traced neighbours across label changes (-1 none)
     Roadmap roadmap;
+    bool has_graph = false;  ///< neighbors and roadmap are built (build_graph)
     GvdStats stats;
 
     std::size_t size() const { return col.size(); }
@@ -98,10 +110,11 @@ inline void build_roadmap(GridVoronoi& r) {
     for (std::size_t k = 0; k < n; ++k)
         if (degree(k) != 2 || r.distinct_labels(k) >= 3) add_node(k);
     std::vector<std::uint8_t> on_chain(n, 0);
+    std::vector<std::int64_t> chain;
     auto walk_from = [&](std::size_t u) {
         for (std::int32_t first : r.neighbors[u]) {
             if (first < 0) continue;
-            std::vector<std::int64_t> chain;
+            chain.clear();
             std::size_t prev = u, cur = static_cast<std::size_t>(first);
             while (node_of[cur] < 0) {
                 chain.push_back(static_cast<std::int64_t>(cur));
@@ -145,13 +158,22 @@ inline void build_roadmap(GridVoronoi& r) {
 
 }  // namespace detail
 
-/// Builds the result from the kept cells of every worker.
-/// \note O(cells log cells).
+/// Builds the result from the kept cells of every worker (without the graph: see build_graph).
+/// \note O(cells + rows).
 inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vector<TracedCell> cells,
                             double robot_radius) {
-    std::sort(cells.begin(), cells.end(), [](const TracedCell& a, const TracedCell& b) {
-        return a.j != b.j ? a.j < b.j : a.i < b.i;
-    });
+    {  // sort by (row, col): counting sort by row, then each row by column (rows hold few cells)
+        std::vector<std::size_t> start(static_cast<std::size_t>(grid.ny) + 1, 0);
+        for (const TracedCell& c : cells) ++start[static_cast<std::size_t>(c.j) + 1];
+        for (std::size_t j = 1; j < start.size(); ++j) start[j] += start[j - 1];
+        std::vector<TracedCell> sorted(cells.size());
+        std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+        for (const TracedCell& c : cells) sorted[fill[static_cast<std::size_t>(c.j)]++] = c;
+        for (std::size_t j = 0; j + 1 < start.size(); ++j)
+            std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(start[j]), sorted.begin() + static_cast<std::ptrdiff_t>(start[j + 1]),
+                      [](const TracedCell& a, const TracedCell& b) { return a.i < b.i; });
+        cells.swap(sorted);
+    }
     GridVoronoi r;
     r.grid = grid;
     r.robot_radius = robot_radius;
@@ -164,7 +186,6 @@ inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vecto
     r.clearance.resize(n);
     r.blocked.resize(n);
     const double r2 = robot_radius * robot_radius;
-    FlatMap<std::int32_t> where(n);
     for (std::size_t k = 0; k < n; ++k) {
         const TracedCell& c = cells[k];
         r.col[k] = c.i;
@@ -173,25 +194,37 @@ inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vecto
         r.clearance[k] = std::sqrt(c.min_sq);
         // Paper: free only when every corner is farther than r from its nearest obstacle.
         r.blocked[k] = c.min_sq <= r2 ? 1 : 0;
-        where.insert(grid.cell_key(c.i, c.j), static_cast<std::int32_t>(k));
     }
+    for (std::size_t k = 0; k < n; ++k)
+        if (r.distinct_labels(k) >= 3) r.vertices.push_back(static_cast<std::int64_t>(k));
+    return r;
+}
+
+/// Builds the cell adjacency (neighbours across label-changing edges) and the roadmap, once.
+/// grid_voronoi does it unless told not to (Python builds it on first use of the roadmap or a path).
+/// \note O(cells).
+inline void build_graph(GridVoronoi& r) {
+    if (r.has_graph) return;
+    const std::size_t n = r.size();
+    const GridSpec& grid = r.grid;
+    LazyGrid<std::int32_t> where(0, grid.nx, grid.ny, -1);
+    for (std::size_t k = 0; k < n; ++k) where.at(r.col[k], r.row[k]) = static_cast<std::int32_t>(k);
     r.neighbors.assign(n, {{-1, -1, -1, -1}});
     for (std::size_t k = 0; k < n; ++k) {
-        const auto& l = cells[k].labels;
-        const std::int32_t i = cells[k].i, j = cells[k].j;
+        const std::int32_t* l = &r.labels[4 * k];
+        const std::int32_t i = r.col[k], j = r.row[k];
         auto at = [&](std::int32_t a, std::int32_t b) -> std::int32_t {
             if (a < 0 || b < 0 || a >= grid.nx || b >= grid.ny) return -1;
-            const std::int32_t* p = where.find(grid.cell_key(a, b));
-            return p ? *p : -1;
+            return where.get(a, b);
         };
         if (l[0] != l[1]) r.neighbors[k][0] = at(i, j - 1);
         if (l[1] != l[2]) r.neighbors[k][1] = at(i + 1, j);
         if (l[3] != l[2]) r.neighbors[k][2] = at(i, j + 1);
         if (l[0] != l[3]) r.neighbors[k][3] = at(i - 1, j);
-        if (r.distinct_labels(k) >= 3) r.vertices.push_back(static_cast<std::int64_t>(k));
     }
+    r.roadmap = Roadmap{};
     detail::build_roadmap(r);
-    return r;
+    r.has_graph = true;
 }
 
 }  // namespace dvoronoi::gvd

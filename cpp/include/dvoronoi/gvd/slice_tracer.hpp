@@ -6,8 +6,8 @@
 // neighbour across that edge (which then also has two labels), queued unless it was queued before
 // ("never re-enter"; the entrance edge is one of those). Cells outside the slice or the working area
 // are not entered. Corner labels are computed only for corners of queued cells and of the scanned
-// border lines, and kept in a hash map, so the work and the memory follow the diagram's length, not
-// the grid's area. Blocking by robot radius happens when results are assembled; a blocked cell is
+// border lines, and kept in lazily allocated tiles, so the work and the memory follow the diagram's length, not
+// the grid's area (lazy_grid.hpp). Blocking by robot radius happens when results are assembled; a blocked cell is
 // traced through like any other (the paper: "still inserted in the queue").
 //
 // Seeds: the cells at the working area's corners (anchors, all area corners are Voronoi vertices),
@@ -16,8 +16,8 @@
 // keep exactly the components the single-worker run reaches from the area corners.
 #pragma once
 
-#include "dvoronoi/gvd/flat_map.hpp"
 #include "dvoronoi/gvd/grid.hpp"
+#include "dvoronoi/gvd/lazy_grid.hpp"
 #include "dvoronoi/gvd/obstacle_index.hpp"
 
 #include <array>
@@ -46,17 +46,22 @@ class SliceTracer {
 public:
     SliceTracer(const Scene& scene, const ObstacleIndex& index, const GridSpec& grid, std::int32_t c0,
                 std::int32_t c1)
-        : scene_(&scene), index_(&index), grid_(grid), c0_(c0), c1_(c1), ctx_(index.context()) {}
+        : scene_(&scene), index_(&index), grid_(grid), c0_(c0), c1_(c1), ctx_(index.context()),
+          corners_(c0, static_cast<std::int64_t>(c1) - c0 + 1, static_cast<std::int64_t>(grid.ny) + 1, CornerLabel{}),
+          index_of_(c0, static_cast<std::int64_t>(c1) - c0, grid.ny, -1) {}
 
     std::int32_t c0() const { return c0_; }
     std::int32_t c1() const { return c1_; }
 
-    /// The label of corner (i, j), computed on first use.
-    const CornerLabel& corner(std::int32_t i, std::int32_t j) {
-        const std::uint64_t key = grid_.corner_key(i, j);
-        if (const CornerLabel* c = corners_.find(key)) return *c;
-        const Nearest n = index_->nearest(grid_.corner(i, j), ctx_);
-        return *corners_.insert(key, CornerLabel{n.label, n.sq}).first;
+    /// The label of corner (i, j), c0 <= i <= c1, computed on first use.
+    CornerLabel corner(std::int32_t i, std::int32_t j) {
+        CornerLabel& c = corners_.at(i, j);
+        if (c.label < 0) {
+            const Nearest n = index_->nearest(grid_.corner(i, j), ctx_);
+            c = CornerLabel{n.label, n.sq};
+            ++labelled_;
+        }
+        return c;
     }
 
     /// Rows j of the grid line x = x0 + line h where the edge from corner (line, j) to (line, j+1)
@@ -78,7 +83,7 @@ public:
     /// labels, and was not queued before. Returns whether it was queued.
     bool seed(std::int32_t i, std::int32_t j, bool anchor = false) {
         if (i < c0_ || i >= c1_ || j < 0 || j >= grid_.ny) return false;
-        if (index_of_.find(grid_.cell_key(i, j))) return false;
+        if (index_of_.get(i, j) >= 0) return false;
         if (!cell_in_area(*scene_, grid_, i, j)) return false;
         TracedCell c = make_cell(i, j);
         if (c.labels[0] == c.labels[1] && c.labels[1] == c.labels[2] && c.labels[2] == c.labels[3]) return false;
@@ -132,13 +137,14 @@ public:
         for (std::size_t k = 0; k < n; ++k) {
             const TracedCell& c = cells_[k];
             auto join = [&](std::int32_t i, std::int32_t j) {
-                if (const std::int32_t* o = index_of_.find(grid_.cell_key(i, j))) {
-                    const std::int32_t a = find(static_cast<std::int32_t>(k)), b = find(*o);
+                const std::int32_t o = index_of_.get(i, j);
+                if (o >= 0) {
+                    const std::int32_t a = find(static_cast<std::int32_t>(k)), b = find(o);
                     if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
                 }
             };
             if (c.labels[1] != c.labels[2] && c.i + 1 < c1_) join(c.i + 1, c.j);
-            if (c.labels[3] != c.labels[2]) join(c.i, c.j + 1);
+            if (c.labels[3] != c.labels[2] && c.j + 1 < grid_.ny) join(c.i, c.j + 1);
         }
         component_.assign(n, -1);
         std::vector<std::int32_t> id(n, -1);
@@ -156,14 +162,15 @@ public:
 
     /// Component of traced cell (i, j), or -1 if it was not traced.
     std::int32_t component_at(std::int32_t i, std::int32_t j) const {
-        const std::int32_t* k = index_of_.find(grid_.cell_key(i, j));
-        return k ? component_[static_cast<std::size_t>(*k)] : -1;
+        if (i < c0_ || i >= c1_ || j < 0 || j >= grid_.ny) return -1;
+        const std::int32_t k = index_of_.get(i, j);
+        return k >= 0 ? component_[static_cast<std::size_t>(k)] : -1;
     }
 
     const std::vector<TracedCell>& cells() const { return cells_; }
     const std::vector<std::int32_t>& components() const { return component_; }
     const std::vector<std::uint8_t>& anchored() const { return anchored_; }
-    std::size_t corners_labelled() const { return corners_.size(); }
+    std::size_t corners_labelled() const { return labelled_; }
     const QueryContext& context() const { return ctx_; }
     std::size_t memory_bytes() const {
         return corners_.memory_bytes() + index_of_.memory_bytes() + cells_.capacity() * sizeof(TracedCell) +
@@ -181,7 +188,7 @@ private:
         return c;
     }
     void push(const TracedCell& c) {
-        index_of_.insert(grid_.cell_key(c.i, c.j), static_cast<std::int32_t>(cells_.size()));
+        index_of_.at(c.i, c.j) = static_cast<std::int32_t>(cells_.size());
         cells_.push_back(c);
     }
 
@@ -190,8 +197,9 @@ private:
     GridSpec grid_;
     std::int32_t c0_, c1_;
     QueryContext ctx_;
-    FlatMap<CornerLabel> corners_;
-    FlatMap<std::int32_t> index_of_;
+    LazyGrid<CornerLabel> corners_;   // corner columns [c0, c1]
+    LazyGrid<std::int32_t> index_of_;  // cell -> position in cells_, -1 when not traced
+    std::size_t labelled_ = 0;
     std::vector<TracedCell> cells_;  // also the queue: cells_[head_..] are waiting
     std::size_t head_ = 0;
     std::vector<std::int32_t> component_;

@@ -24,8 +24,10 @@ namespace dvoronoi::io {
 
 inline const char* mode_name(gvd::SliceMode m) { return m == gvd::SliceMode::Cooperative ? "cooperative" : "independent"; }
 
+/// \throws Error when the graph is not built (gvd::build_graph).
 inline nlohmann::json gvd_to_json(const gvd::GridVoronoi& r) {
     using nlohmann::json;
+    if (!r.has_graph) throw Error("gvd_to_json: build the graph first (gvd::build_graph)");
     json j;
     j["kind"] = "grid_voronoi";
     j["grid"] = {{"x0", r.grid.x0}, {"y0", r.grid.y0}, {"cell_size", r.grid.h}, {"nx", r.grid.nx}, {"ny", r.grid.ny}};
@@ -57,7 +59,7 @@ inline nlohmann::json gvd_to_json(const gvd::GridVoronoi& r) {
                   {"part_evaluations", s.part_evaluations}, {"edge_evaluations", s.edge_evaluations},
                   {"traced_cells", s.traced_cells}, {"discarded_cells", s.discarded_cells},
                   {"border_lines_scanned", s.border_lines_scanned}, {"peak_worker_bytes", s.peak_worker_bytes},
-                  {"worker_seconds", s.worker_seconds}};
+                  {"worker_seconds", s.worker_seconds}, {"worker_cpu_seconds", s.worker_cpu_seconds}};
     return j;
 }
 
