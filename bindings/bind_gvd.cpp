@@ -15,6 +15,7 @@
 #include <pybind11/stl.h>
 
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,10 +26,16 @@ namespace gvd = dvoronoi::gvd;
 
 namespace {
 
-/// A parsed obstacle file with its nearest-obstacle index (for paths).
+/// A parsed obstacle file with its nearest-obstacle index for paths (built on the first path).
 struct PyScene {
     dvoronoi::io::ObstacleFile file;
     std::unique_ptr<gvd::ObstacleIndex> index;
+    std::mutex mutex;
+    const gvd::ObstacleIndex& path_index() {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!index) index = std::make_unique<gvd::ObstacleIndex>(file.scene);
+        return *index;
+    }
 };
 
 struct PyResult {
@@ -79,7 +86,6 @@ void bind_gvd(py::module_& m) {
                  } catch (const dvoronoi::InputError& e) {
                      throw py::value_error(e.what());
                  }
-                 s->index = std::make_unique<gvd::ObstacleIndex>(s->file.scene);
                  return s;
              }),
              py::arg("text"), py::arg("name"))
@@ -166,7 +172,7 @@ void bind_gvd(py::module_& m) {
             {
                 py::gil_scoped_release release;
                 try {
-                    res = gvd::find_path(p.r, p.scene->file.scene, *p.scene->index, s, g);
+                    res = gvd::find_path(p.r, p.scene->file.scene, p.scene->path_index(), s, g);
                 } catch (const dvoronoi::InputError& e) {
                     py::gil_scoped_acquire gil;
                     throw py::value_error(e.what());

@@ -22,6 +22,7 @@ obstacles (and area edges) whose regions meet obstacle ``i``'s along the traced 
 """
 from __future__ import annotations
 
+import functools
 import json
 import os
 from pathlib import Path
@@ -178,7 +179,7 @@ class GridVoronoi(Result):
         return self._dense(self.clearance, np.nan, np.float64)
 
     # -- roadmap and paths ----------------------------------------------------------------------
-    @property
+    @functools.cached_property
     def roadmap(self) -> "networkx.MultiGraph":
         """The roadmap as a ``networkx.MultiGraph``: nodes at Voronoi vertices, junctions and ends
         (attributes ``pos``, ``cell``, ``kind``), one edge per chain of diagram cells between them
@@ -188,15 +189,15 @@ class GridVoronoi(Result):
 
         c = self._core
         g = nx.MultiGraph()
-        cells = c.node_cell
-        kinds = c.node_kind
-        for v in range(len(cells)):
-            g.add_node(v, pos=tuple(self.centers[cells[v]]), cell=int(cells[v]), kind=_NODE_KINDS[kinds[v]])
+        cells, kinds = c.node_cell, c.node_kind
+        pos = self.centers[cells]
+        g.add_nodes_from((v, {"pos": (float(pos[v, 0]), float(pos[v, 1])), "cell": int(cells[v]), "kind": _NODE_KINDS[kinds[v]]})
+                         for v in range(len(cells)))
         ptr, chain = c.chain_ptr, c.chain_cells
-        for e, (u, v, length, mc, b) in enumerate(zip(c.edge_u, c.edge_v, c.edge_length, c.edge_min_clearance,
-                                                      c.edge_blocked)):
-            g.add_edge(int(u), int(v), length=float(length), min_clearance=float(mc), blocked=bool(b),
-                       cells=chain[ptr[e]:ptr[e + 1]])
+        g.add_edges_from((int(u), int(v), {"length": float(ln), "min_clearance": float(mc), "blocked": bool(b),
+                                           "cells": chain[ptr[e]:ptr[e + 1]]})
+                         for e, (u, v, ln, mc, b) in enumerate(zip(c.edge_u.tolist(), c.edge_v.tolist(), c.edge_length.tolist(),
+                                                                   c.edge_min_clearance.tolist(), c.edge_blocked.tolist())))
         return g
 
     def roadmap_csr(self, free_only: bool = False) -> "scipy.sparse.csr_matrix":

@@ -27,6 +27,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -139,9 +140,18 @@ inline ObstacleFile parse_obstacles(const std::string& text, const std::string& 
     try {
         doc = json::parse(text);
     } catch (const json::parse_error& e) {
+        // nlohmann reports the last byte it read (1-based); point at the first character of that token
+        std::size_t idx = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.empty() ? 0 : text.size() - 1);
+        auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+'; };
+        if (!text.empty() && text[idx] == '"' && idx > 0) {
+            std::size_t k = idx;
+            while (k > 0 && !(text[k - 1] == '"' && (k < 2 || text[k - 2] != '\\'))) --k;
+            if (k > 0) idx = k - 1;
+        } else if (!text.empty() && word(text[idx])) {
+            while (idx > 0 && word(text[idx - 1])) --idx;
+        }
         std::size_t line = 1, col = 1;
-        const std::size_t end = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
-        for (std::size_t k = 0; k < end; ++k) {
+        for (std::size_t k = 0; k < idx; ++k) {
             if (text[k] == '\n') { ++line; col = 1; } else ++col;
         }
         std::string what = e.what();

@@ -1,5 +1,6 @@
-"""Obstacle maps for the grid Voronoi tests and benchmarks: random mixes, the paper's "sea of
-triangles" and "mixed shapes", as documents in the JSON obstacle format."""
+"""Obstacle maps for examples, tests and benchmarks of the grid Voronoi diagram: random mixes and the
+paper's two arrangements ("sea of triangles", "mixed shapes"), as documents in the JSON obstacle format
+that :func:`dvoronoi.grid_voronoi` and ``dvoronoi gvd`` read."""
 from __future__ import annotations
 
 import math
