@@ -178,7 +178,7 @@ int run(const Args& a, int rank, int size) {
     // Statistics.
     const gvd::QueryContext& c = tracer.context();
     unsigned long long local[6] = {c.queries, c.counters.part_evaluations, c.counters.edge_evaluations,
-                                   tracer.cells().size(), lines, tracer.memory_bytes()};
+                                   tracer.size(), lines, tracer.memory_bytes()};
     unsigned long long sum[6] = {0, 0, 0, 0, 0, 0}, peak = 0;
     MPI_Reduce(local, sum, 5, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
     MPI_Reduce(&local[5], &peak, 1, MPI_UNSIGNED_LONG_LONG, MPI_MAX, 0, MPI_COMM_WORLD);

@@ -83,12 +83,23 @@ inline double sq_distance(const Scene& s, const ConvexPart& part, const Vec2& p,
                 const Vec2& a = v[i];
                 const Vec2& b = v[i + 1 == n ? 0 : i + 1];
                 // CCW polygon: p is strictly outside edge ab when cross(b - a, p - a) < 0, i.e. the
-                // outward normal and p - a point the same way (the paper's visibility test).
-                const bool out = detail::cross2(b - a, p - a) < 0.0;
+                // outward normal and p - a point the same way (the paper's visibility test). The cross
+                // product is reused below: the value equals sq_point_segment(p, a, b) exactly.
+                const Vec2 ab = b - a, ap = p - a;
+                const double c = detail::cross2(ab, ap);
+                const bool out = c < 0.0;
                 outside |= out;
                 if (visibility && !out) continue;
                 if (counters) ++counters->edge_evaluations;
-                best = std::min(best, detail::sq_point_segment(p, a, b));
+                const double t = ap.dot(ab);
+                double d;
+                if (t <= 0.0) {
+                    d = ap.squaredNorm();
+                } else {
+                    const double l2 = ab.squaredNorm();
+                    d = t >= l2 ? (p - b).squaredNorm() : c * c / l2;
+                }
+                best = std::min(best, d);
             }
             return outside ? best : 0.0;
         }

@@ -86,11 +86,10 @@ inline SliceSummary run_slice(SliceTracer& tracer, int k, int workers, SliceMode
 }
 
 /// The kept cells of one slice.
-inline void append_kept(const SliceTracer& t, const std::vector<std::uint8_t>& keep, std::vector<TracedCell>& out) {
-    const auto& cells = t.cells();
+inline void append_kept(SliceTracer& t, const std::vector<std::uint8_t>& keep, std::vector<TracedCell>& out) {
     const auto& comp = t.components();
-    for (std::size_t c = 0; c < cells.size(); ++c)
-        if (keep[static_cast<std::size_t>(comp[c])]) out.push_back(cells[c]);
+    for (std::size_t c = 0; c < t.size(); ++c)
+        if (keep[static_cast<std::size_t>(comp[c])]) out.push_back(t.cell(c));
 }
 
 inline void check_options(const GvdOptions& o) {
@@ -150,6 +149,11 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
 
     const auto keep = keep_components(summaries);
     std::vector<TracedCell> kept;
+    {
+        std::size_t total = 0;
+        for (const auto& t : tracers) total += t.size();
+        kept.reserve(total);
+    }
     GvdStats st;
     st.workers = workers;
     st.mode = options.mode;
@@ -160,7 +164,7 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         st.corners_labelled += c.queries;
         st.part_evaluations += c.counters.part_evaluations;
         st.edge_evaluations += c.counters.edge_evaluations;
-        st.traced_cells += tracers[uk].cells().size();
+        st.traced_cells += tracers[uk].size();
         st.border_lines_scanned += lines[uk];
         st.peak_worker_bytes = std::max<std::uint64_t>(st.peak_worker_bytes, tracers[uk].memory_bytes());
     }

@@ -7,7 +7,7 @@
 
 #include <array>
 #include <cstdint>
-#include <deque>
+#include <memory>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -22,29 +22,38 @@ public:
     /// Columns [i0, i0 + width), rows [0, height); `empty` is the value of entries never written.
     LazyGrid(std::int64_t i0, std::int64_t width, std::int64_t height, T empty)
         : i0_(i0), tw_((width + kMask) >> kShift), th_((height + kMask) >> kShift), empty_(empty),
-          dir_(static_cast<std::size_t>(tw_ * th_), 0) {}
+          dir_(static_cast<std::size_t>(tw_ * th_), nullptr) {}
 
     /// The entry at (i, j), or `empty` if its tile was never written. (i, j) must be in range.
     const T& get(std::int64_t i, std::int64_t j) const {
-        const std::uint32_t t = dir_[tile_index(i, j)];
-        if (t == 0) return empty_;
-        return tiles_[t - 1][slot(i - i0_, j)];
+        const Tile* t = dir_[tile_index(i, j)];
+        return t ? (*t)[slot(i - i0_, j)] : empty_;
     }
 
     /// A writable reference to the entry at (i, j), allocating its tile on first use.
     T& at(std::int64_t i, std::int64_t j) {
-        std::uint32_t& t = dir_[tile_index(i, j)];
-        if (t == 0) {
-            tiles_.emplace_back();
-            tiles_.back().fill(empty_);
-            t = static_cast<std::uint32_t>(tiles_.size());
-        }
-        return tiles_[t - 1][slot(i - i0_, j)];
+        Tile*& t = dir_[tile_index(i, j)];
+        if (!t) t = new_tile();
+        return (*t)[slot(i - i0_, j)];
     }
 
-    std::size_t memory_bytes() const { return dir_.capacity() * sizeof(std::uint32_t) + tiles_.size() * sizeof(Tile); }
+    std::size_t memory_bytes() const {
+        return dir_.capacity() * sizeof(Tile*) + chunks_.size() * kChunk * sizeof(Tile);
+    }
 
 private:
+    static constexpr std::size_t kChunk = 256;  // tiles allocated together
+
+    Tile* new_tile() {
+        if (used_ == kChunk || chunks_.empty()) {
+            chunks_.emplace_back(new Tile[kChunk]);
+            used_ = 0;
+        }
+        Tile* t = &chunks_.back()[used_++];
+        t->fill(empty_);
+        return t;
+    }
+
     std::size_t tile_index(std::int64_t i, std::int64_t j) const {
         return static_cast<std::size_t>(((i - i0_) >> kShift) * th_ + (j >> kShift));
     }
@@ -54,8 +63,9 @@ private:
 
     std::int64_t i0_ = 0, tw_ = 0, th_ = 0;
     T empty_{};
-    std::vector<std::uint32_t> dir_;
-    std::deque<Tile> tiles_;
+    std::vector<Tile*> dir_;                        // nullptr: never written
+    std::vector<std::unique_ptr<Tile[]>> chunks_;  // the tiles' storage
+    std::size_t used_ = 0;                          // tiles used in the last chunk
 };
 
 }  // namespace dvoronoi::gvd

@@ -9,7 +9,7 @@
 // exactly the brute-force answer (same distances, ties to the lower label). A ring search visits a
 // part only if its bounding box is no farther than the best distance so far, and stops once the
 // distance to the unsearched region exceeds it, so the answer equals a scan of all parts. With
-// about one part per bucket a query looks at O(1) buckets on evenly spread obstacles and O(log n)-ish
+// a few buckets per part a query looks at O(1) buckets on evenly spread obstacles and O(log n)-ish
 // on clustered ones (the paper scans every obstacle edge per corner).
 #pragma once
 
@@ -47,8 +47,8 @@ public:
         const Box& b = scene.box;
         const double w = b.x1 - b.x0, h = b.y1 - b.y0;
         const double n = static_cast<double>(std::max<std::size_t>(1, scene.parts.size()));
-        // about one part per bucket, at most 1024 x 1024 buckets
-        cell_ = std::max(w, h) / std::min(1024.0, std::max(1.0, std::ceil(std::sqrt(n))));
+        // about four buckets per part (short candidate lists), at most 1024 x 1024 buckets
+        cell_ = std::max(w, h) / std::min(1024.0, std::max(1.0, std::ceil(2.0 * std::sqrt(n))));
         nx_ = std::max(1, static_cast<int>(std::ceil(w / cell_)));
         ny_ = std::max(1, static_cast<int>(std::ceil(h / cell_)));
         x0_ = b.x0;

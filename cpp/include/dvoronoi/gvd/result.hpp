@@ -162,24 +162,24 @@ inline void build_roadmap(GridVoronoi& r) {
 /// \note O(cells + rows).
 inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vector<TracedCell> cells,
                             double robot_radius) {
-    {  // sort by (row, col): counting sort by row, then each row by column (rows hold few cells)
+    // Order by (row, col): counting sort by row, then each row by column (rows hold few cells).
+    const std::size_t n = cells.size();
+    std::vector<std::uint32_t> order(n);
+    {
         std::vector<std::size_t> start(static_cast<std::size_t>(grid.ny) + 1, 0);
         for (const TracedCell& c : cells) ++start[static_cast<std::size_t>(c.j) + 1];
         for (std::size_t j = 1; j < start.size(); ++j) start[j] += start[j - 1];
-        std::vector<TracedCell> sorted(cells.size());
         std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-        for (const TracedCell& c : cells) sorted[fill[static_cast<std::size_t>(c.j)]++] = c;
+        for (std::size_t k = 0; k < n; ++k) order[fill[static_cast<std::size_t>(cells[k].j)]++] = static_cast<std::uint32_t>(k);
         for (std::size_t j = 0; j + 1 < start.size(); ++j)
-            std::sort(sorted.begin() + static_cast<std::ptrdiff_t>(start[j]), sorted.begin() + static_cast<std::ptrdiff_t>(start[j + 1]),
-                      [](const TracedCell& a, const TracedCell& b) { return a.i < b.i; });
-        cells.swap(sorted);
+            std::sort(order.begin() + static_cast<std::ptrdiff_t>(start[j]), order.begin() + static_cast<std::ptrdiff_t>(start[j + 1]),
+                      [&](std::uint32_t a, std::uint32_t b) { return cells[a].i < cells[b].i; });
     }
     GridVoronoi r;
     r.grid = grid;
     r.robot_radius = robot_radius;
     r.n_obstacles = scene.n_obstacles;
     r.n_labels = scene.n_labels;
-    const std::size_t n = cells.size();
     r.col.resize(n);
     r.row.resize(n);
     r.labels.resize(4 * n);
@@ -187,7 +187,7 @@ inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vecto
     r.blocked.resize(n);
     const double r2 = robot_radius * robot_radius;
     for (std::size_t k = 0; k < n; ++k) {
-        const TracedCell& c = cells[k];
+        const TracedCell& c = cells[order[k]];
         r.col[k] = c.i;
         r.row[k] = c.j;
         for (int t = 0; t < 4; ++t) r.labels[4 * k + static_cast<std::size_t>(t)] = c.labels[static_cast<std::size_t>(t)];
@@ -195,6 +195,7 @@ inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vecto
         // Paper: free only when every corner is farther than r from its nearest obstacle.
         r.blocked[k] = c.min_sq <= r2 ? 1 : 0;
     }
+    std::vector<TracedCell>().swap(cells);
     for (std::size_t k = 0; k < n; ++k)
         if (r.distinct_labels(k) >= 3) r.vertices.push_back(static_cast<std::int64_t>(k));
     return r;

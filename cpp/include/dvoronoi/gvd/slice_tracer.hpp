@@ -27,19 +27,12 @@
 
 namespace dvoronoi::gvd {
 
-/// A corner's nearest obstacle.
-struct CornerLabel {
-    std::int32_t label = -1;
-    double sq = 0.0;  ///< squared distance to it
-};
-
-/// A traced cell: position, corner labels (bottom-left, bottom-right, top-right, top-left) and the
-/// smallest squared corner distance.
+/// A traced cell as handed to the result: position, corner labels (bottom-left, bottom-right,
+/// top-right, top-left) and the smallest squared corner distance.
 struct TracedCell {
     std::int32_t i = 0, j = 0;
     std::array<std::int32_t, 4> labels{{-1, -1, -1, -1}};
     double min_sq = 0.0;
-    bool anchor = false;
 };
 
 class SliceTracer {
@@ -47,21 +40,20 @@ public:
     SliceTracer(const Scene& scene, const ObstacleIndex& index, const GridSpec& grid, std::int32_t c0,
                 std::int32_t c1)
         : scene_(&scene), index_(&index), grid_(grid), c0_(c0), c1_(c1), ctx_(index.context()),
-          corners_(c0, static_cast<std::int64_t>(c1) - c0 + 1, static_cast<std::int64_t>(grid.ny) + 1, CornerLabel{}),
+          corners_(c0, static_cast<std::int64_t>(c1) - c0 + 1, static_cast<std::int64_t>(grid.ny) + 1, Corner{}),
           index_of_(c0, static_cast<std::int64_t>(c1) - c0, grid.ny, -1) {}
 
     std::int32_t c0() const { return c0_; }
     std::int32_t c1() const { return c1_; }
 
-    /// The label of corner (i, j), c0 <= i <= c1, computed on first use.
-    CornerLabel corner(std::int32_t i, std::int32_t j) {
-        CornerLabel& c = corners_.at(i, j);
-        if (c.label < 0) {
-            const Nearest n = index_->nearest(grid_.corner(i, j), ctx_);
-            c = CornerLabel{n.label, n.sq};
-            ++labelled_;
-        }
-        return c;
+    /// The convex part nearest to corner (i, j), c0 <= i <= c1, computed on first use. The part is
+    /// stored with its squared distance rounded to float (8 bytes a corner): the label and the exact
+    /// squared distance follow from the part.
+    std::int32_t corner_part(std::int32_t i, std::int32_t j) { return corner(i, j).part; }
+
+    /// The label (nearest obstacle) of corner (i, j).
+    std::int32_t label(std::int32_t i, std::int32_t j) {
+        return scene_->parts[static_cast<std::size_t>(corner_part(i, j))].label;
     }
 
     /// Rows j of the grid line x = x0 + line h where the edge from corner (line, j) to (line, j+1)
@@ -69,9 +61,9 @@ public:
     /// Labels ny + 1 corners.
     std::vector<std::int32_t> scan_line(std::int32_t line) {
         std::vector<std::int32_t> rows;
-        std::int32_t prev = corner(line, 0).label;
+        std::int32_t prev = label(line, 0);
         for (std::int32_t j = 0; j < grid_.ny; ++j) {
-            const std::int32_t next = corner(line, j + 1).label;
+            const std::int32_t next = label(line, j + 1);
             if (next != prev && cell_in_area(*scene_, grid_, line - 1, j) && cell_in_area(*scene_, grid_, line, j))
                 rows.push_back(j);
             prev = next;
@@ -85,10 +77,11 @@ public:
         if (i < c0_ || i >= c1_ || j < 0 || j >= grid_.ny) return false;
         if (index_of_.get(i, j) >= 0) return false;
         if (!cell_in_area(*scene_, grid_, i, j)) return false;
-        TracedCell c = make_cell(i, j);
-        if (c.labels[0] == c.labels[1] && c.labels[1] == c.labels[2] && c.labels[2] == c.labels[3]) return false;
-        c.anchor = anchor;
-        push(c);
+        const auto l = labels(i, j);
+        if (l[0] == l[1] && l[1] == l[2] && l[2] == l[3]) return false;
+        index_of_.at(i, j) = static_cast<std::int32_t>(cells_.size());
+        if (anchor) anchors_.push_back(static_cast<std::uint32_t>(cells_.size()));
+        cells_.push_back({i, j, l});
         return true;
     }
 
@@ -111,7 +104,7 @@ public:
     /// Runs the queue empty (Section 2's loop).
     void trace() {
         while (head_ < cells_.size()) {
-            const TracedCell c = cells_[head_++];
+            const Cell c = cells_[head_++];
             const auto& l = c.labels;
             if (l[0] != l[1]) seed(c.i, c.j - 1);  // bottom edge
             if (l[1] != l[2]) seed(c.i + 1, c.j);  // right edge
@@ -135,7 +128,8 @@ public:
             return x;
         };
         for (std::size_t k = 0; k < n; ++k) {
-            const TracedCell& c = cells_[k];
+            const Cell& c = cells_[k];
+            const auto& l = c.labels;
             auto join = [&](std::int32_t i, std::int32_t j) {
                 const std::int32_t o = index_of_.get(i, j);
                 if (o >= 0) {
@@ -143,8 +137,8 @@ public:
                     if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
                 }
             };
-            if (c.labels[1] != c.labels[2] && c.i + 1 < c1_) join(c.i + 1, c.j);
-            if (c.labels[3] != c.labels[2] && c.j + 1 < grid_.ny) join(c.i, c.j + 1);
+            if (l[1] != l[2] && c.i + 1 < c1_) join(c.i + 1, c.j);
+            if (l[3] != l[2] && c.j + 1 < grid_.ny) join(c.i, c.j + 1);
         }
         component_.assign(n, -1);
         std::vector<std::int32_t> id(n, -1);
@@ -155,8 +149,7 @@ public:
             component_[k] = id[r];
         }
         anchored_.assign(static_cast<std::size_t>(count), 0);
-        for (std::size_t k = 0; k < n; ++k)
-            if (cells_[k].anchor) anchored_[static_cast<std::size_t>(component_[k])] = 1;
+        for (std::uint32_t k : anchors_) anchored_[static_cast<std::size_t>(component_[k])] = 1;
         return count;
     }
 
@@ -167,29 +160,67 @@ public:
         return k >= 0 ? component_[static_cast<std::size_t>(k)] : -1;
     }
 
-    const std::vector<TracedCell>& cells() const { return cells_; }
+    std::size_t size() const { return cells_.size(); }
+
+    /// Traced cell k with its corner labels and exact smallest squared corner distance (recomputed
+    /// from the stored parts with the index's own distance function: the same doubles).
+    TracedCell cell(std::size_t k) {
+        const Cell c = cells_[k];
+        TracedCell t;
+        t.i = c.i;
+        t.j = c.j;
+        t.labels = c.labels;
+        const std::int32_t ci[4] = {c.i, c.i + 1, c.i + 1, c.i}, cj[4] = {c.j, c.j, c.j + 1, c.j + 1};
+        Corner q[4];
+        float fmin = std::numeric_limits<float>::infinity();
+        for (int k4 = 0; k4 < 4; ++k4) {
+            q[k4] = corner(ci[k4], cj[k4]);
+            fmin = std::min(fmin, q[k4].sq);
+        }
+        // Rounding to float is monotone, so the exact smallest distance is at a corner whose float
+        // equals the smallest float: only those are recomputed exactly.
+        t.min_sq = std::numeric_limits<double>::infinity();
+        for (int k4 = 0; k4 < 4; ++k4)
+            if (!(q[k4].sq > fmin)) {
+                const auto& part = scene_->parts[static_cast<std::size_t>(q[k4].part)];
+                t.min_sq = std::min(t.min_sq, sq_distance(*scene_, part, grid_.corner(ci[k4], cj[k4]), index_->visibility()));
+            }
+        return t;
+    }
     const std::vector<std::int32_t>& components() const { return component_; }
     const std::vector<std::uint8_t>& anchored() const { return anchored_; }
     std::size_t corners_labelled() const { return labelled_; }
     const QueryContext& context() const { return ctx_; }
     std::size_t memory_bytes() const {
-        return corners_.memory_bytes() + index_of_.memory_bytes() + cells_.capacity() * sizeof(TracedCell) +
+        return corners_.memory_bytes() + index_of_.memory_bytes() + cells_.capacity() * sizeof(Cell) +
                component_.capacity() * sizeof(std::int32_t);
     }
 
 private:
-    TracedCell make_cell(std::int32_t i, std::int32_t j) {
-        TracedCell c;
-        c.i = i;
-        c.j = j;
-        const CornerLabel a = corner(i, j), b = corner(i + 1, j), cc = corner(i + 1, j + 1), d = corner(i, j + 1);
-        c.labels = {a.label, b.label, cc.label, d.label};
-        c.min_sq = std::min(std::min(a.sq, b.sq), std::min(cc.sq, d.sq));
+    struct Corner {
+        std::int32_t part = -1;  // nearest convex part, -1 = not computed yet
+        float sq = 0.0f;         // its squared distance, rounded to float
+    };
+
+    Corner corner(std::int32_t i, std::int32_t j) {
+        Corner& c = corners_.at(i, j);
+        if (c.part < 0) {
+            const Nearest n = index_->nearest(grid_.corner(i, j), ctx_);
+            c.part = n.part;
+            c.sq = static_cast<float>(n.sq);
+            ++labelled_;
+        }
         return c;
     }
-    void push(const TracedCell& c) {
-        index_of_.at(c.i, c.j) = static_cast<std::int32_t>(cells_.size());
-        cells_.push_back(c);
+
+    struct Cell {
+        std::int32_t i, j;
+        std::array<std::int32_t, 4> labels;  // kept: the queue and the components read them again
+    };
+
+    /// Labels of cell (i, j)'s corners: bottom-left, bottom-right, top-right, top-left.
+    std::array<std::int32_t, 4> labels(std::int32_t i, std::int32_t j) {
+        return {label(i, j), label(i + 1, j), label(i + 1, j + 1), label(i, j + 1)};
     }
 
     const Scene* scene_;
@@ -197,10 +228,11 @@ private:
     GridSpec grid_;
     std::int32_t c0_, c1_;
     QueryContext ctx_;
-    LazyGrid<CornerLabel> corners_;   // corner columns [c0, c1]
+    LazyGrid<Corner> corners_;         // corner columns [c0, c1]
     LazyGrid<std::int32_t> index_of_;  // cell -> position in cells_, -1 when not traced
     std::size_t labelled_ = 0;
-    std::vector<TracedCell> cells_;  // also the queue: cells_[head_..] are waiting
+    std::vector<Cell> cells_;  // also the queue: cells_[head_..] are waiting
+    std::vector<std::uint32_t> anchors_;  // cells seeded at the area's corners
     std::size_t head_ = 0;
     std::vector<std::int32_t> component_;
     std::vector<std::uint8_t> anchored_;
