@@ -189,7 +189,9 @@ int run(const Args& a, int rank, int size) {
     if (rank != 0) return 0;
 
     const std::size_t kept = cells.size();
-    gvd::GridVoronoi r = gvd::assemble(file.scene, grid, std::move(cells), opt.robot_radius);
+    std::vector<std::vector<gvd::TracedCell>> slices(1);
+    slices[0].swap(cells);
+    gvd::GridVoronoi r = gvd::assemble(file.scene, grid, std::move(slices), opt.robot_radius);
     r.stats.workers = size;
     r.stats.mode = opt.mode;
     r.stats.corners_labelled = sum[0];

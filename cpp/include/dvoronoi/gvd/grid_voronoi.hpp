@@ -148,18 +148,11 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         if (e) std::rethrow_exception(e);
 
     const auto keep = keep_components(summaries);
-    std::vector<TracedCell> kept;
-    {
-        std::size_t total = 0;
-        for (const auto& t : tracers) total += t.size();
-        kept.reserve(total);
-    }
     GvdStats st;
     st.workers = workers;
     st.mode = options.mode;
     for (int k = 0; k < workers; ++k) {
         const auto uk = static_cast<std::size_t>(k);
-        append_kept(tracers[uk], keep[uk], kept);
         const QueryContext& c = tracers[uk].context();
         st.corners_labelled += c.queries;
         st.part_evaluations += c.counters.part_evaluations;
@@ -168,7 +161,26 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         st.border_lines_scanned += lines[uk];
         st.peak_worker_bytes = std::max<std::uint64_t>(st.peak_worker_bytes, tracers[uk].memory_bytes());
     }
-    st.discarded_cells = st.traced_cells - kept.size();
+    // Each worker hands over its kept cells (labels and exact clearance) and frees its slice.
+    std::vector<std::vector<TracedCell>> kept(static_cast<std::size_t>(workers));
+    auto hand_over = [&](int k) {
+        const auto uk = static_cast<std::size_t>(k);
+        const double c0 = thread_cpu_seconds();
+        kept[uk].reserve(tracers[uk].size());
+        append_kept(tracers[uk], keep[uk], kept[uk]);
+        tracers[uk] = SliceTracer();
+        cpu[uk] += thread_cpu_seconds() - c0;
+    };
+    if (workers == 1) {
+        hand_over(0);
+    } else {
+        std::vector<std::thread> team;
+        for (int k = 0; k < workers; ++k) team.emplace_back(hand_over, k);
+        for (auto& t : team) t.join();
+    }
+    std::size_t n_kept = 0;
+    for (const auto& v : kept) n_kept += v.size();
+    st.discarded_cells = st.traced_cells - n_kept;
     st.worker_seconds = seconds;
     st.worker_cpu_seconds = cpu;
     tracers.clear();

@@ -160,8 +160,20 @@ inline void build_roadmap(GridVoronoi& r) {
 
 /// Builds the result from the kept cells of every worker (without the graph: see build_graph).
 /// \note O(cells + rows).
-inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vector<TracedCell> cells,
+inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vector<std::vector<TracedCell>> slices,
                             double robot_radius) {
+    std::vector<TracedCell> cells;
+    if (slices.size() == 1) {
+        cells.swap(slices[0]);
+    } else {
+        std::size_t total = 0;
+        for (const auto& v : slices) total += v.size();
+        cells.reserve(total);
+        for (auto& v : slices) {
+            cells.insert(cells.end(), v.begin(), v.end());
+            std::vector<TracedCell>().swap(v);
+        }
+    }
     // Order by (row, col): counting sort by row, then each row by column (rows hold few cells).
     const std::size_t n = cells.size();
     std::vector<std::uint32_t> order(n);

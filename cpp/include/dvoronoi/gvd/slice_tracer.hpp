@@ -37,6 +37,7 @@ struct TracedCell {
 
 class SliceTracer {
 public:
+    SliceTracer() = default;
     SliceTracer(const Scene& scene, const ObstacleIndex& index, const GridSpec& grid, std::int32_t c0,
                 std::int32_t c1)
         : scene_(&scene), index_(&index), grid_(grid), c0_(c0), c1_(c1), ctx_(index.context()),
@@ -223,10 +224,10 @@ private:
         return {label(i, j), label(i + 1, j), label(i + 1, j + 1), label(i, j + 1)};
     }
 
-    const Scene* scene_;
-    const ObstacleIndex* index_;
+    const Scene* scene_ = nullptr;
+    const ObstacleIndex* index_ = nullptr;
     GridSpec grid_;
-    std::int32_t c0_, c1_;
+    std::int32_t c0_ = 0, c1_ = 0;
     QueryContext ctx_;
     LazyGrid<Corner> corners_;         // corner columns [c0, c1]
     LazyGrid<std::int32_t> index_of_;  // cell -> position in cells_, -1 when not traced
