@@ -25,7 +25,6 @@ import argparse
 import datetime as _dt
 import json
 import os
-import platform
 import resource
 import subprocess
 import sys
@@ -35,17 +34,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_limited import cpu_model  # noqa: E402
 from benchutil import best_of, git_describe  # noqa: E402
-
-
-def cpu_model() -> str:
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def make_map(n_obstacles: int, seed: int = 1):
@@ -222,6 +212,15 @@ def main() -> None:
     print("| route | best wall time | best process CPU time | diagram cells |\n|---|---|---|---|")
     print(f"| dv.grid_voronoi(resolution={n}) | {t_gvd:.3f} s | {c_gvd:.3f} s | {len(gv.cells)} |")
     print(f"| rasterise + distance_transform_edt(return_indices=True) + label changes | {t_edt:.3f} s | {c_edt:.3f} s | {int(mask.sum())} |")
+    if a.no_distances:
+        t_lean, c_lean = np.inf, np.inf
+        for _ in range(2):
+            t, (p0, _m, p1) = cpu(lambda: edt_route(doc, n, distances=False))
+            t_lean, c_lean = min(t_lean, t), min(c_lean, p1 - p0)
+        print(f"| same with return_distances=False (no clearance map) | {t_lean:.3f} s | {c_lean:.3f} s | |")
+        print(f"\n(against that leaner call: {t_lean / t_gvd:.1f}x by wall-clock, {c_lean / c_gvd:.1f}x by CPU time)")
+    t_r, (p0, _img, p1) = cpu(lambda: rasterise(doc, n))
+    print(f"\n(of the route, rasterising alone takes {t_r:.3f} s wall / {p1 - p0:.3f} s CPU)")
     print(f"\n**dvoronoi is {t_edt / t_gvd:.1f}x faster by wall-clock, {c_edt / c_gvd:.1f}x by CPU time.** {100 * inside:.1f}% of its cells lie within two pixels "
           f"of the route's label changes (the route labels pixel centers of a rasterised map; dvoronoi labels "
           f"corners by exact distances). Corners labelled: {gv.stats['corners_labelled']} of {(n + 1) ** 2} "

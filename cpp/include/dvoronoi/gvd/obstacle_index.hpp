@@ -249,14 +249,7 @@ private:
             const std::uint32_t pi = items_[k];
             if (ctx.stamp[pi] == ctx.current) continue;
             ctx.stamp[pi] = ctx.current;
-            const ConvexPart& part = scene_->parts[pi];
-            if (part.box.sq_distance(p) > best.sq * (1.0 + 1e-12) + 1e-300) continue;  // cannot win or tie
-            const double d = sq_distance(*scene_, part, p, visibility_, &ctx.counters);
-            if (d < best.sq || (d == best.sq && part.label < best.label)) {
-                best.sq = d;
-                best.label = part.label;
-                best.part = static_cast<std::int32_t>(pi);
-            }
+            evaluate(pi, p, ctx, best);
         }
     }
 

@@ -19,6 +19,7 @@
 #include "dvoronoi/gvd/grid.hpp"
 #include "dvoronoi/gvd/lazy_grid.hpp"
 #include "dvoronoi/gvd/obstacle_index.hpp"
+#include "dvoronoi/gvd/slice_merge.hpp"
 
 #include <array>
 #include <cstdint>
@@ -118,25 +119,13 @@ public:
     /// count. component(k) is cell k's component, anchored(c) whether c holds an area-corner seed.
     std::int32_t label_components() {
         const std::size_t n = cells_.size();
-        std::vector<std::int32_t> parent(n);
-        std::iota(parent.begin(), parent.end(), 0);
-        auto find = [&](std::int32_t x) {
-            while (parent[static_cast<std::size_t>(x)] != x) {
-                auto& p = parent[static_cast<std::size_t>(x)];
-                p = parent[static_cast<std::size_t>(p)];
-                x = p;
-            }
-            return x;
-        };
+        UnionFind sets(n);
         for (std::size_t k = 0; k < n; ++k) {
             const Cell& c = cells_[k];
             const auto& l = c.labels;
             auto join = [&](std::int32_t i, std::int32_t j) {
                 const std::int32_t o = index_of_.get(i, j);
-                if (o >= 0) {
-                    const std::int32_t a = find(static_cast<std::int32_t>(k)), b = find(o);
-                    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-                }
+                if (o >= 0) sets.join(static_cast<std::int32_t>(k), o);
             };
             if (l[1] != l[2] && c.i + 1 < c1_) join(c.i + 1, c.j);
             if (l[3] != l[2] && c.j + 1 < grid_.ny) join(c.i, c.j + 1);
@@ -145,7 +134,7 @@ public:
         std::vector<std::int32_t> id(n, -1);
         std::int32_t count = 0;
         for (std::size_t k = 0; k < n; ++k) {
-            const auto r = static_cast<std::size_t>(find(static_cast<std::int32_t>(k)));
+            const auto r = static_cast<std::size_t>(sets.find(static_cast<std::int32_t>(k)));
             if (id[r] < 0) id[r] = count++;
             component_[k] = id[r];
         }
