@@ -107,3 +107,46 @@ def limited_cells(
     threads: int = 0,
     progress: Optional[Callable[[int, int], object]] = None,
 ) -> LimitedPartition: ...
+
+# Grid Voronoi diagram of obstacles (private; use dvoronoi.grid_voronoi / dvoronoi.GridVoronoi)
+class _GvdScene:
+    def __init__(self, text: str, name: str) -> None: ...
+    @property
+    def n_obstacles(self) -> int: ...
+    @property
+    def n_labels(self) -> int: ...
+    @property
+    def area(self) -> np.ndarray: ...
+    @property
+    def names(self) -> List[str]: ...
+    def parts(self) -> list: ...
+    def nearest(self, point: object) -> Tuple[int, float]: ...
+
+class _GvdResult:
+    grid: Tuple[float, float, float, int, int]
+    robot_radius: float
+    n_obstacles: int
+    n_labels: int
+    col: np.ndarray
+    row: np.ndarray
+    labels: np.ndarray
+    clearance: np.ndarray
+    blocked: np.ndarray
+    vertices: np.ndarray
+    node_cell: np.ndarray
+    node_kind: np.ndarray
+    edge_u: np.ndarray
+    edge_v: np.ndarray
+    edge_length: np.ndarray
+    edge_min_clearance: np.ndarray
+    edge_blocked: np.ndarray
+    chain_ptr: np.ndarray
+    chain_cells: np.ndarray
+    stats: dict
+    def to_json(self, indent: int = ...) -> str: ...
+    def to_svg(self, path: Optional[object] = ...) -> str: ...
+    def path(self, start: object, goal: object) -> Tuple[np.ndarray, float]: ...
+
+def _gvd_run(scene: _GvdScene, resolution: int, robot_radius: float, workers: int, mode: str,
+             visibility: bool) -> _GvdResult: ...
+def _gvd_brute_force(scene: _GvdScene, resolution: int, visibility: bool = ...) -> Tuple[np.ndarray, np.ndarray, np.ndarray]: ...
