@@ -83,7 +83,7 @@ void check_against_oracle(const Scene& scene, std::int64_t res, const char* name
     CHECK(extra == 0);             // never a cell the oracle does not mark
     CHECK(missed_reachable == 0);  // everything connected to the area corners is found
     CHECK(traced > 0);
-    MESSAGE(name << " res " << res << ": recall " << traced << "/" << oracle);
+    MESSAGE(std::string(name) << " res " << res << ": recall " << traced << "/" << oracle);
     for (int workers : {2, 3, 4, 7})
         for (SliceMode mode : {SliceMode::Cooperative, SliceMode::Independent}) {
             CAPTURE(workers);
