@@ -10,4 +10,5 @@ cmake --build build -j "$(nproc)"
 ctest --test-dir build --output-on-failure
 DVORONOI_CGAL_ORACLE="$PWD/build/tests/oracle/dvoronoi_cgal_oracle" \
 DVORONOI_CLI="$PWD/build/cpp/cli/dvoronoi" \
+DVORONOI_GVD_MPI="$PWD/build/cpp/mpi/dvoronoi_gvd_mpi" \
   python3 -m pytest tests/python -q

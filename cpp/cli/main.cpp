@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     std::vector<cli::Command> commands;
     commands.push_back(cli::add_cells(app));
     commands.push_back(cli::add_voronoi(app));
+    commands.push_back(cli::add_gvd(app));
     app.footer("Run 'dvoronoi SUBCOMMAND --help' for a subcommand's options.");
 
     try {

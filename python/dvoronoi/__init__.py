@@ -17,6 +17,7 @@ from ._partition import LimitedPartition, limited_cells
 from ._core import ClippedCell, VoronoiCell, VoronoiEdge
 from ._voronoi import VoronoiPartition, voronoi_cell, voronoi_cells
 from . import datasets
+from .gvd import GridVoronoi, grid_voronoi, obstacles_from_occupancy_grid
 
 __all__ = [
     "limited_cell",
@@ -32,5 +33,8 @@ __all__ = [
     "Piece",
     "CoincidentError",
     "datasets",
+    "grid_voronoi",
+    "GridVoronoi",
+    "obstacles_from_occupancy_grid",
     "__version__",
 ]

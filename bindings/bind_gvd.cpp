@@ -1,0 +1,224 @@
+// The grid Voronoi diagram of obstacles in Python (dvoronoi.gvd wraps these private classes):
+// a compiled scene parsed from the one JSON schema (io/obstacles_json.hpp), the slice-parallel
+// tracer with the GIL released, the result's arrays, paths, JSON and SVG, and the brute-force oracle
+// for the tests.
+#include "arrays.hpp"
+
+#include "dvoronoi/gvd/brute_force.hpp"
+#include "dvoronoi/gvd/grid_voronoi.hpp"
+#include "dvoronoi/gvd/path.hpp"
+#include "dvoronoi/io/gvd_json.hpp"
+#include "dvoronoi/io/gvd_svg.hpp"
+#include "dvoronoi/io/obstacles_json.hpp"
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace dvoronoi_bindings;
+namespace gvd = dvoronoi::gvd;
+
+namespace {
+
+/// A parsed obstacle file with its nearest-obstacle index for paths (built on the first path).
+struct PyScene {
+    dvoronoi::io::ObstacleFile file;
+    std::unique_ptr<gvd::ObstacleIndex> index;
+    std::mutex mutex;
+    const gvd::ObstacleIndex& path_index() {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!index) index = std::make_unique<gvd::ObstacleIndex>(file.scene);
+        return *index;
+    }
+};
+
+struct PyResult {
+    gvd::GridVoronoi r;
+    std::shared_ptr<PyScene> scene;
+    /// The roadmap and cell adjacency are built on first use (the diagram itself is ready at once).
+    gvd::GridVoronoi& graph() {
+        if (!r.has_graph) {
+            py::gil_scoped_release release;
+            gvd::build_graph(r);
+        }
+        return r;
+    }
+};
+
+template <class T, class U>
+py::array copy_array(const std::vector<U>& v) {
+    py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
+    T* out = a.mutable_data();
+    for (std::size_t k = 0; k < v.size(); ++k) out[k] = static_cast<T>(v[k]);
+    return a;
+}
+
+py::array xy_array(const std::vector<Vec2>& v) {
+    py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{2}});
+    double* out = a.mutable_data();
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        out[2 * k] = v[k].x();
+        out[2 * k + 1] = v[k].y();
+    }
+    return a;
+}
+
+gvd::SliceMode parse_mode(const std::string& m) {
+    if (m == "cooperative") return gvd::SliceMode::Cooperative;
+    if (m == "independent") return gvd::SliceMode::Independent;
+    throw py::value_error("mode must be \"cooperative\" or \"independent\", got \"" + m + "\"");
+}
+
+}  // namespace
+
+void bind_gvd(py::module_& m) {
+    py::class_<PyScene, std::shared_ptr<PyScene>>(m, "_GvdScene", "Compiled obstacles and working area (private).")
+        .def(py::init([](const std::string& text, const std::string& name) {
+                 auto s = std::make_shared<PyScene>();
+                 try {
+                     s->file = dvoronoi::io::parse_obstacles(text, name);
+                 } catch (const dvoronoi::InputError& e) {
+                     throw py::value_error(e.what());
+                 }
+                 return s;
+             }),
+             py::arg("text"), py::arg("name"))
+        .def_property_readonly("n_obstacles", [](const PyScene& s) { return s.file.scene.n_obstacles; })
+        .def_property_readonly("n_labels", [](const PyScene& s) { return s.file.scene.n_labels; })
+        .def_property_readonly("area", [](const PyScene& s) { return xy_array(s.file.scene.area); })
+        .def_property_readonly("names", [](const PyScene& s) { return s.file.names; })
+        .def("parts", [](const PyScene& s) {
+            // (kind, label, vertices (k, 2), center, radius) per convex part, area edges included
+            py::list out;
+            const char* kinds[] = {"point", "segment", "polygon", "circle"};
+            for (const auto& p : s.file.scene.parts) {
+                std::vector<Vec2> v(s.file.scene.part_vertices(p), s.file.scene.part_vertices(p) + p.count);
+                out.append(py::make_tuple(kinds[static_cast<int>(p.kind)], p.label, xy_array(v),
+                                          py::make_tuple(p.center.x(), p.center.y()), p.radius));
+            }
+            return out;
+        })
+        .def("nearest", [](const PyScene& s, py::handle p) {
+            const Vec2 q = point_arg(p, "point");
+            const gvd::Nearest n = gvd::nearest_brute_force(s.file.scene, q, true);
+            return py::make_tuple(n.label, n.sq);
+        }, "Brute-force nearest obstacle (label, squared distance) of a point.");
+
+    py::class_<PyResult>(m, "_GvdResult", "Grid Voronoi diagram (private; see dvoronoi.GridVoronoi).")
+        .def_property_readonly("grid", [](const PyResult& p) {
+            const auto& g = p.r.grid;
+            return py::make_tuple(g.x0, g.y0, g.h, g.nx, g.ny);
+        })
+        .def_property_readonly("robot_radius", [](const PyResult& p) { return p.r.robot_radius; })
+        .def_property_readonly("n_obstacles", [](const PyResult& p) { return p.r.n_obstacles; })
+        .def_property_readonly("n_labels", [](const PyResult& p) { return p.r.n_labels; })
+        .def_property_readonly("col", [](const PyResult& p) { return copy_array<std::int32_t>(p.r.col); })
+        .def_property_readonly("row", [](const PyResult& p) { return copy_array<std::int32_t>(p.r.row); })
+        .def_property_readonly("labels", [](const PyResult& p) {
+            py::array_t<std::int32_t> a({static_cast<py::ssize_t>(p.r.size()), py::ssize_t{4}});
+            std::copy(p.r.labels.begin(), p.r.labels.end(), a.mutable_data());
+            return a;
+        })
+        .def_property_readonly("clearance", [](const PyResult& p) { return copy_array<double>(p.r.clearance); })
+        .def_property_readonly("blocked", [](const PyResult& p) { return copy_array<bool>(p.r.blocked); })
+        .def_property_readonly("vertices", [](const PyResult& p) { return copy_array<std::int64_t>(p.r.vertices); })
+        .def_property_readonly("node_cell", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.node_cell); })
+        .def_property_readonly("node_kind", [](PyResult& p) { return copy_array<std::uint8_t>(p.graph().roadmap.node_kind); })
+        .def_property_readonly("edge_u", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.edge_u); })
+        .def_property_readonly("edge_v", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.edge_v); })
+        .def_property_readonly("edge_length", [](PyResult& p) { return copy_array<double>(p.graph().roadmap.edge_length); })
+        .def_property_readonly("edge_min_clearance", [](PyResult& p) { return copy_array<double>(p.graph().roadmap.edge_min_clearance); })
+        .def_property_readonly("edge_blocked", [](PyResult& p) { return copy_array<bool>(p.graph().roadmap.edge_blocked); })
+        .def_property_readonly("chain_ptr", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.chain_ptr); })
+        .def_property_readonly("chain_cells", [](PyResult& p) { return copy_array<std::int64_t>(p.graph().roadmap.chain_cells); })
+        .def_property_readonly("stats", [](const PyResult& p) {
+            const auto& s = p.r.stats;
+            py::dict d;
+            d["workers"] = s.workers;
+            d["mode"] = dvoronoi::io::mode_name(s.mode);
+            d["corners_labelled"] = s.corners_labelled;
+            d["part_evaluations"] = s.part_evaluations;
+            d["edge_evaluations"] = s.edge_evaluations;
+            d["traced_cells"] = s.traced_cells;
+            d["discarded_cells"] = s.discarded_cells;
+            d["border_lines_scanned"] = s.border_lines_scanned;
+            d["peak_worker_bytes"] = s.peak_worker_bytes;
+            d["worker_seconds"] = s.worker_seconds;
+            d["worker_cpu_seconds"] = s.worker_cpu_seconds;
+            return d;
+        })
+        .def("to_json", [](PyResult& p, int indent) { return dvoronoi::io::gvd_to_json(p.graph()).dump(indent); },
+             py::arg("indent") = -1)
+        .def("to_svg", [](PyResult& p, py::object path) {
+            std::vector<Vec2> pts;
+            if (!path.is_none()) {
+                PointsArg a = points_arg(path, "path");
+                for (Eigen::Index k = 0; k < a.ref().rows(); ++k) pts.emplace_back(a.ref()(k, 0), a.ref()(k, 1));
+            }
+            std::ostringstream os;
+            dvoronoi::io::write_gvd_svg(os, p.scene->file.scene, p.r, pts);
+            return os.str();
+        }, py::arg("path") = py::none())
+        .def("path", [](PyResult& p, py::handle start, py::handle goal) {
+            const Vec2 s = point_arg(start, "start"), g = point_arg(goal, "goal");
+            p.graph();
+            gvd::PathResult res;
+            {
+                py::gil_scoped_release release;
+                try {
+                    res = gvd::find_path(p.r, p.scene->file.scene, p.scene->path_index(), s, g);
+                } catch (const dvoronoi::InputError& e) {
+                    py::gil_scoped_acquire gil;
+                    throw py::value_error(e.what());
+                }
+            }
+            return py::make_tuple(xy_array(res.points), res.length);
+        }, py::arg("start"), py::arg("goal"));
+
+    m.def("_gvd_run", [](std::shared_ptr<PyScene> scene, std::int64_t resolution, double robot_radius, int workers,
+                         const std::string& mode, bool visibility) {
+        gvd::GvdOptions o;
+        o.resolution = resolution;
+        o.robot_radius = robot_radius;
+        o.workers = workers;
+        o.mode = parse_mode(mode);
+        o.visibility = visibility;
+        o.graph = false;  // built on first use of the roadmap or a path
+        auto out = std::make_unique<PyResult>();
+        out->scene = scene;
+        {
+            py::gil_scoped_release release;
+            try {
+                out->r = gvd::grid_voronoi(scene->file.scene, o);
+            } catch (const dvoronoi::InputError& e) {
+                py::gil_scoped_acquire gil;
+                throw py::value_error(e.what());
+            }
+        }
+        return out;
+    }, py::arg("scene"), py::arg("resolution"), py::arg("robot_radius"), py::arg("workers"), py::arg("mode"),
+       py::arg("visibility"));
+
+    m.def("_gvd_brute_force", [](std::shared_ptr<PyScene> scene, std::int64_t resolution, bool visibility) {
+        gvd::BruteForceLabels b;
+        {
+            py::gil_scoped_release release;
+            b = gvd::brute_force_labels(scene->file.scene, resolution, visibility);
+        }
+        const auto w = static_cast<py::ssize_t>(b.grid.nx) + 1, h = static_cast<py::ssize_t>(b.grid.ny) + 1;
+        py::array_t<std::int32_t> lab({h, w});
+        std::copy(b.corner_label.begin(), b.corner_label.end(), lab.mutable_data());
+        py::array_t<double> sq({h, w});
+        std::copy(b.corner_sq.begin(), b.corner_sq.end(), sq.mutable_data());
+        py::array_t<bool> mixed({h - 1, w - 1});
+        std::copy(b.mixed.begin(), b.mixed.end(), mixed.mutable_data());
+        return py::make_tuple(lab, sq, mixed);
+    }, py::arg("scene"), py::arg("resolution"), py::arg("visibility") = true,
+       "Brute-force oracle: corner labels (ny+1, nx+1), squared distances, mixed cells (ny, nx).");
+}

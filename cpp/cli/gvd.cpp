@@ -1,0 +1,120 @@
+// `dvoronoi gvd OBSTACLES.json --grid N`: the grid Voronoi diagram of obstacles (Mendes et al.),
+// traced by K slice workers (threads), with clearance, roadmap and an optional path.
+#include "common.hpp"
+
+#include "dvoronoi/gvd/grid_voronoi.hpp"
+#include "dvoronoi/gvd/path.hpp"
+#include "dvoronoi/io/gvd_json.hpp"
+#include "dvoronoi/io/gvd_svg.hpp"
+#include "dvoronoi/io/obstacles_json.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dvoronoi::cli {
+namespace {
+
+struct GvdCliOptions {
+    std::string obstacles;
+    std::int64_t grid = 0;
+    int workers = 1;
+    std::string mode = "cooperative";
+    double robot_radius = 0.0;
+    bool no_visibility = false;
+    std::vector<double> path;
+    std::string output;
+    std::string svg;
+    bool quiet = false;
+};
+
+int run_gvd(const GvdCliOptions& o) {
+    if (o.grid < 1) throw UsageError("--grid: must be at least 1, got " + std::to_string(o.grid));
+    if (o.workers < 1) throw UsageError("--workers: must be at least 1, got " + std::to_string(o.workers));
+    if (!std::isfinite(o.robot_radius) || o.robot_radius < 0.0)
+        throw UsageError("--robot-radius: must be a finite number >= 0, got " + show(o.robot_radius));
+    if (!o.path.empty() && o.path.size() != 4) throw UsageError("--path: expects SX SY GX GY");
+    for (double v : o.path)
+        if (!std::isfinite(v)) throw UsageError("--path: coordinates must be finite");
+    const bool to_stdout = o.output.empty() || o.output == "-";
+    if (!to_stdout && lower_extension(o.output) != ".json")
+        throw UsageError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
+    if (!to_stdout && !o.svg.empty() && o.output == o.svg) throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
+
+    const io::ObstacleFile file = io::read_obstacles(o.obstacles);
+    std::unique_ptr<io::AtomicFile> out, svg;
+    if (!to_stdout) out = open_output(o.output, "-o/--output");
+    if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
+
+    gvd::GvdOptions opt;
+    opt.resolution = o.grid;
+    opt.workers = o.workers;
+    opt.mode = o.mode == "independent" ? gvd::SliceMode::Independent : gvd::SliceMode::Cooperative;
+    opt.robot_radius = o.robot_radius;
+    opt.visibility = !o.no_visibility;
+    const auto t0 = std::chrono::steady_clock::now();
+    const gvd::GridVoronoi r = gvd::grid_voronoi(file.scene, opt);
+    nlohmann::json doc = io::gvd_to_json(r);
+    std::vector<Vec2> path_points;
+    if (!o.path.empty()) {
+        const gvd::ObstacleIndex index(file.scene);
+        gvd::PathResult p;
+        try {
+            p = gvd::find_path(r, file.scene, index, Vec2(o.path[0], o.path[1]), Vec2(o.path[2], o.path[3]));
+        } catch (const InputError& e) {
+            throw UsageError(std::string("--path: ") + e.what());
+        }
+        path_points = p.points;
+        nlohmann::json pts = nlohmann::json::array();
+        for (const Vec2& q : p.points) pts.push_back({q.x(), q.y()});
+        doc["path"] = {{"found", p.found()}, {"length", p.length}, {"points", pts}};
+    }
+    if (!o.quiet)
+        std::fprintf(stderr, "gvd: %zu diagram cells, %zu vertices, %llu corners labelled, %d worker(s), %.3f s\n",
+                     r.size(), r.vertices.size(), static_cast<unsigned long long>(r.stats.corners_labelled),
+                     r.stats.workers, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (svg) io::write_gvd_svg(svg->stream(), file.scene, r, path_points);
+    if (out) out->stream() << doc.dump() << '\n';
+    if (out) out->commit();
+    if (svg) svg->commit();
+    if (to_stdout) {
+        std::cout << doc.dump() << '\n';
+        std::cout.flush();
+        if (!std::cout) {
+            std::cerr << "dvoronoi: error: writing to stdout failed\n";
+            return 1;
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+Command add_gvd(CLI::App& parent) {
+    auto o = std::make_shared<GvdCliOptions>();
+    CLI::App* sub = parent.add_subcommand(
+        "gvd", "grid Voronoi diagram of obstacles (Mendes et al.): diagram cells, clearance, blocked cells, "
+               "Voronoi vertices, roadmap; slice-parallel workers");
+    sub->add_option("OBSTACLES", o->obstacles,
+                    "obstacle file (JSON: {\"area\": {\"box\": [x0, y0, x1, y1]}, \"obstacles\": [{\"type\": "
+                    "\"polygon\"|\"circle\"|\"point\"|\"segment\"|\"union\", ...}]}; see the README)")
+        ->required();
+    sub->add_option("-g,--grid", o->grid, "cells along the longer side of the working area")->required();
+    sub->add_option("-w,--workers", o->workers, "slice workers (threads); same diagram for any count")->capture_default_str();
+    sub->add_option("-m,--mode", o->mode, "slice approach: cooperative (each border scanned once, seeds sent "
+                                          "to the left neighbour) or independent (no communication)")
+        ->check(CLI::IsMember({"cooperative", "independent"}))
+        ->capture_default_str();
+    sub->add_option("-r,--robot-radius", o->robot_radius, "robot radius: diagram cells with a corner this close "
+                                                          "to an obstacle are blocked")->capture_default_str();
+    sub->add_flag("--no-visibility", o->no_visibility, "turn the paper's edge visibility test off");
+    sub->add_option("--path", o->path, "also plan a path SX SY GX GY along the diagram")->expected(4);
+    sub->add_option("-o,--output", o->output, "output JSON file (default or '-': stdout)");
+    sub->add_option("--svg", o->svg, "also draw the diagram into this SVG file");
+    sub->add_flag("-q,--quiet", o->quiet, "no summary line on stderr");
+    return {sub, [o] { return run_gvd(*o); }};
+}
+
+}  // namespace dvoronoi::cli

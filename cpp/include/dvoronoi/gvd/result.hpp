@@ -1,0 +1,243 @@
+// The grid Voronoi diagram as returned to users: the traced cells with their corner labels,
+// clearance and blocked flags, the Voronoi vertices, and the roadmap graph along the diagram.
+//
+// Assembled from the cells every worker kept (threads or MPI ranks), sorted by (row, column), so the
+// result does not depend on the number of workers or the approach.
+#pragma once
+
+#include "dvoronoi/gvd/grid.hpp"
+#include "dvoronoi/gvd/lazy_grid.hpp"
+#include "dvoronoi/gvd/slice_tracer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <ctime>
+#include <vector>
+
+namespace dvoronoi::gvd {
+
+/// Slice approaches of Section 3.
+enum class SliceMode {
+    Independent,  ///< no communication: each worker scans both border lines of its slice
+    Cooperative,  ///< each border line scanned once (by the right worker), seeds sent to the left one
+};
+
+/// What a run did (summed over workers unless stated).
+struct GvdStats {
+    std::int32_t workers = 1;
+    SliceMode mode = SliceMode::Cooperative;
+    std::uint64_t corners_labelled = 0;   ///< nearest-obstacle queries (lazy corner labels)
+    std::uint64_t part_evaluations = 0;   ///< convex-part distance evaluations
+    std::uint64_t edge_evaluations = 0;   ///< polygon edge / segment distance evaluations
+    std::uint64_t traced_cells = 0;       ///< cells traced before the slices were joined
+    std::uint64_t discarded_cells = 0;    ///< traced from border seeds but not reached from the area corners
+    std::uint64_t border_lines_scanned = 0;
+    std::uint64_t peak_worker_bytes = 0;  ///< largest per-worker tracing memory (labels, cells)
+    std::vector<double> worker_seconds;   ///< wall time per worker
+    std::vector<double> worker_cpu_seconds;  ///< CPU time per worker thread (not inflated by other load)
+};
+
+/// CPU time of the calling thread in seconds (0 where the platform has no per-thread clock).
+inline double thread_cpu_seconds() {
+#if defined(__linux__) || defined(__APPLE__)
+    timespec ts{};
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0) return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+#endif
+    return 0.0;
+}
+
+/// The roadmap: nodes at Voronoi vertices, junctions and ends of the traced diagram; edges along the
+/// chains of traced cells between them.
+struct Roadmap {
+    std::vector<std::int64_t> node_cell;  ///< traced-cell index of each node
+    std::vector<std::uint8_t> node_kind;  ///< 0 vertex (>= 3 labels), 1 end (<= 1 neighbour), 2 junction
+    std::vector<std::int64_t> edge_u, edge_v;   ///< node indices
+    std::vector<double> edge_length;            ///< along cell centers
+    std::vector<double> edge_min_clearance;     ///< smallest cell clearance along the edge (ends included)
+    std::vector<std::uint8_t> edge_blocked;     ///< some cell on the edge is blocked
+    std::vector<std::int64_t> chain_ptr{0};     ///< CSR: interior cells of edge e are
+    std::vector<std::int64_t> chain_cells;      ///<   chain_cells[chain_ptr[e] .. chain_ptr[e+1])
+};
+
+/// The result of grid_voronoi.
+struct GridVoronoi {
+    GridSpec grid;
+    double robot_radius = 0.0;
+    std::int32_t n_obstacles = 0, n_labels = 0;
+    std::vector<std::int32_t> col, row;       ///< traced cells, sorted by (row, col)
+    std::vector<std::int32_t> labels;         ///< 4 per cell: corner labels BL, BR, TR, TL
+    std::vector<double> clearance;            ///< per cell: smallest corner distance to its nearest obstacle
+    std::vector<std::uint8_t> blocked;        ///< per cell: clearance <= robot_radius
+    std::vector<std::int64_t> vertices;       ///< cells whose corners carry >= 3 labels
+    std::vector<std::array<std::int32_t, 4>> neighbors;  ///< per cell: traced neighbours across label changes (-1 none)
+    Roadmap roadmap;
+    bool has_graph = false;  ///< neighbors and roadmap are built (build_graph)
+    GvdStats stats;
+
+    std::size_t size() const { return col.size(); }
+    Vec2 center(std::size_t k) const { return grid.center(col[k], row[k]); }
+    int distinct_labels(std::size_t k) const {
+        const std::int32_t* l = &labels[4 * k];
+        int d = 1;
+        for (int a = 1; a < 4; ++a) {
+            bool seen = false;
+            for (int b = 0; b < a; ++b) seen |= l[a] == l[b];
+            d += !seen;
+        }
+        return d;
+    }
+};
+
+namespace detail {
+
+inline void build_roadmap(GridVoronoi& r) {
+    const std::size_t n = r.size();
+    Roadmap& m = r.roadmap;
+    std::vector<std::int64_t> node_of(n, -1);
+    auto degree = [&](std::size_t k) {
+        int d = 0;
+        for (std::int32_t x : r.neighbors[k]) d += x >= 0;
+        return d;
+    };
+    auto add_node = [&](std::size_t k) {
+        node_of[k] = static_cast<std::int64_t>(m.node_cell.size());
+        m.node_cell.push_back(static_cast<std::int64_t>(k));
+        const int d = degree(k);
+        m.node_kind.push_back(r.distinct_labels(k) >= 3 ? 0 : (d <= 1 ? 1 : 2));
+    };
+    for (std::size_t k = 0; k < n; ++k)
+        if (degree(k) != 2 || r.distinct_labels(k) >= 3) add_node(k);
+    std::vector<std::uint8_t> on_chain(n, 0);
+    std::vector<std::int64_t> chain;
+    auto walk_from = [&](std::size_t u) {
+        for (std::int32_t first : r.neighbors[u]) {
+            if (first < 0) continue;
+            chain.clear();
+            std::size_t prev = u, cur = static_cast<std::size_t>(first);
+            while (node_of[cur] < 0) {
+                chain.push_back(static_cast<std::int64_t>(cur));
+                std::size_t next = cur;
+                for (std::int32_t x : r.neighbors[cur])
+                    if (x >= 0 && static_cast<std::size_t>(x) != prev) { next = static_cast<std::size_t>(x); break; }
+                if (next == cur) break;  // cannot happen for degree-2 cells
+                prev = cur;
+                cur = next;
+            }
+            if (node_of[cur] < 0) continue;
+            // Each chain is added once: a direct node-node step from the lower node, a longer chain
+            // from the end that walks it first (its cells are then marked).
+            if (chain.empty() ? !(node_of[u] < node_of[cur]) : on_chain[static_cast<std::size_t>(chain.front())] != 0)
+                continue;
+            double minc = std::min(r.clearance[u], r.clearance[cur]);
+            bool blocked = r.blocked[u] || r.blocked[cur];
+            for (std::int64_t c : chain) {
+                on_chain[static_cast<std::size_t>(c)] = 1;
+                minc = std::min(minc, r.clearance[static_cast<std::size_t>(c)]);
+                blocked = blocked || r.blocked[static_cast<std::size_t>(c)];
+            }
+            m.edge_u.push_back(node_of[u]);
+            m.edge_v.push_back(node_of[cur]);
+            m.edge_length.push_back(static_cast<double>(chain.size() + 1) * r.grid.h);
+            m.edge_min_clearance.push_back(minc);
+            m.edge_blocked.push_back(blocked ? 1 : 0);
+            m.chain_cells.insert(m.chain_cells.end(), chain.begin(), chain.end());
+            m.chain_ptr.push_back(static_cast<std::int64_t>(m.chain_cells.size()));
+        }
+    };
+    const std::size_t initial_nodes = m.node_cell.size();
+    for (std::size_t t = 0; t < initial_nodes; ++t) walk_from(static_cast<std::size_t>(m.node_cell[t]));
+    // Closed loops without any node: make one of their cells a node.
+    for (std::size_t k = 0; k < n; ++k)
+        if (node_of[k] < 0 && !on_chain[k]) {
+            add_node(k);
+            walk_from(k);
+        }
+}
+
+}  // namespace detail
+
+/// Builds the result from the kept cells of every worker (without the graph: see build_graph).
+/// \note O(cells + rows).
+inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vector<std::vector<TracedCell>> slices,
+                            double robot_radius) {
+    std::vector<TracedCell> cells;
+    if (slices.size() == 1) {
+        cells.swap(slices[0]);
+    } else {
+        std::size_t total = 0;
+        for (const auto& v : slices) total += v.size();
+        cells.reserve(total);
+        for (auto& v : slices) {
+            cells.insert(cells.end(), v.begin(), v.end());
+            std::vector<TracedCell>().swap(v);
+        }
+    }
+    // Order by (row, col): counting sort by row, then each row by column (rows hold few cells).
+    const std::size_t n = cells.size();
+    std::vector<std::uint32_t> order(n);
+    {
+        std::vector<std::size_t> start(static_cast<std::size_t>(grid.ny) + 1, 0);
+        for (const TracedCell& c : cells) ++start[static_cast<std::size_t>(c.j) + 1];
+        for (std::size_t j = 1; j < start.size(); ++j) start[j] += start[j - 1];
+        std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+        for (std::size_t k = 0; k < n; ++k) order[fill[static_cast<std::size_t>(cells[k].j)]++] = static_cast<std::uint32_t>(k);
+        for (std::size_t j = 0; j + 1 < start.size(); ++j)
+            std::sort(order.begin() + static_cast<std::ptrdiff_t>(start[j]), order.begin() + static_cast<std::ptrdiff_t>(start[j + 1]),
+                      [&](std::uint32_t a, std::uint32_t b) { return cells[a].i < cells[b].i; });
+    }
+    GridVoronoi r;
+    r.grid = grid;
+    r.robot_radius = robot_radius;
+    r.n_obstacles = scene.n_obstacles;
+    r.n_labels = scene.n_labels;
+    r.col.resize(n);
+    r.row.resize(n);
+    r.labels.resize(4 * n);
+    r.clearance.resize(n);
+    r.blocked.resize(n);
+    const double r2 = robot_radius * robot_radius;
+    for (std::size_t k = 0; k < n; ++k) {
+        const TracedCell& c = cells[order[k]];
+        r.col[k] = c.i;
+        r.row[k] = c.j;
+        for (int t = 0; t < 4; ++t) r.labels[4 * k + static_cast<std::size_t>(t)] = c.labels[static_cast<std::size_t>(t)];
+        r.clearance[k] = std::sqrt(c.min_sq);
+        // Paper: free only when every corner is farther than r from its nearest obstacle.
+        r.blocked[k] = c.min_sq <= r2 ? 1 : 0;
+    }
+    std::vector<TracedCell>().swap(cells);
+    for (std::size_t k = 0; k < n; ++k)
+        if (r.distinct_labels(k) >= 3) r.vertices.push_back(static_cast<std::int64_t>(k));
+    return r;
+}
+
+/// Builds the cell adjacency (neighbours across label-changing edges) and the roadmap, once.
+/// grid_voronoi does it unless told not to (Python builds it on first use of the roadmap or a path).
+/// \note O(cells).
+inline void build_graph(GridVoronoi& r) {
+    if (r.has_graph) return;
+    const std::size_t n = r.size();
+    const GridSpec& grid = r.grid;
+    LazyGrid<std::int32_t> where(0, grid.nx, grid.ny, -1);
+    for (std::size_t k = 0; k < n; ++k) where.at(r.col[k], r.row[k]) = static_cast<std::int32_t>(k);
+    r.neighbors.assign(n, {{-1, -1, -1, -1}});
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::int32_t* l = &r.labels[4 * k];
+        const std::int32_t i = r.col[k], j = r.row[k];
+        auto at = [&](std::int32_t a, std::int32_t b) -> std::int32_t {
+            if (a < 0 || b < 0 || a >= grid.nx || b >= grid.ny) return -1;
+            return where.get(a, b);
+        };
+        if (l[0] != l[1]) r.neighbors[k][0] = at(i, j - 1);
+        if (l[1] != l[2]) r.neighbors[k][1] = at(i + 1, j);
+        if (l[3] != l[2]) r.neighbors[k][2] = at(i, j + 1);
+        if (l[0] != l[3]) r.neighbors[k][3] = at(i - 1, j);
+    }
+    r.roadmap = Roadmap{};
+    detail::build_roadmap(r);
+    r.has_graph = true;
+}
+
+}  // namespace dvoronoi::gvd

@@ -1,0 +1,257 @@
+// dvoronoi_gvd_mpi: the grid Voronoi diagram of obstacles traced by a team of MPI ranks, one
+// vertical slice each (Mendes et al., Section 3), as the paper ran it on a cluster.
+//
+//   mpirun -n K dvoronoi_gvd_mpi OBSTACLES.json --grid N [--mode cooperative|independent]
+//          [--robot-radius R] [-o OUT.json] [--svg OUT.svg]
+//
+// Rank 0 reads the obstacle file and broadcasts it (the paper broadcasts the obstacle data to every
+// robot). Each rank runs gvd::run_slice on its slice: in the cooperative approach a rank sends the
+// rows of the label changes on its left border to its left neighbour (one small message). Each rank
+// then sends a summary of its traced components to rank 0, which joins them across the borders and
+// answers which to keep; the kept cells go to rank 0, which writes the same JSON as `dvoronoi gvd`.
+// The diagram is identical for every K and both approaches.
+//
+// Exit codes as the CLI: 0 success, 2 bad command line or input (rank 0 prints the message), 1 other.
+#include "dvoronoi/gvd/grid_voronoi.hpp"
+#include "dvoronoi/io/atomic_write.hpp"
+#include "dvoronoi/io/gvd_json.hpp"
+#include "dvoronoi/io/gvd_svg.hpp"
+#include "dvoronoi/io/obstacles_json.hpp"
+
+#include <CLI/CLI.hpp>
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace dvoronoi;
+
+struct Args {
+    std::string obstacles;
+    std::int64_t grid = 0;
+    std::string mode = "cooperative";
+    double robot_radius = 0.0;
+    bool no_visibility = false;
+    std::string output, svg;
+};
+
+std::vector<std::int32_t> pack(const gvd::SliceSummary& s) {
+    std::vector<std::int32_t> v{s.n_components};
+    for (auto a : s.anchored) v.push_back(a);
+    v.push_back(static_cast<std::int32_t>(s.left_links.size()));
+    v.insert(v.end(), s.left_links.begin(), s.left_links.end());
+    v.push_back(static_cast<std::int32_t>(s.right_links.size()));
+    v.insert(v.end(), s.right_links.begin(), s.right_links.end());
+    return v;
+}
+
+gvd::SliceSummary unpack(const std::int32_t* v) {
+    gvd::SliceSummary s;
+    std::size_t k = 0;
+    s.n_components = v[k++];
+    for (std::int32_t c = 0; c < s.n_components; ++c) s.anchored.push_back(static_cast<std::uint8_t>(v[k++]));
+    const std::int32_t nl = v[k++];
+    s.left_links.assign(v + k, v + k + nl);
+    k += static_cast<std::size_t>(nl);
+    const std::int32_t nr = v[k++];
+    s.right_links.assign(v + k, v + k + nr);
+    return s;
+}
+
+/// Gathers variable-length arrays of T (as bytes) on rank 0.
+template <class T>
+std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vector<int>* counts_out = nullptr) {
+    const int bytes = static_cast<int>(mine.size() * sizeof(T));
+    std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
+    MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    std::vector<T> all;
+    if (rank == 0) {
+        int total = 0;
+        for (int r = 0; r < size; ++r) {
+            displs[static_cast<std::size_t>(r)] = total;
+            total += counts[static_cast<std::size_t>(r)];
+        }
+        all.resize(static_cast<std::size_t>(total) / sizeof(T));
+    }
+    MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+    if (counts_out) *counts_out = counts;
+    return all;
+}
+
+int run(const Args& a, int rank, int size) {
+    // Rank 0 reads the file and broadcasts its text; every rank parses it (same scene everywhere).
+    std::string text;
+    int ok = 1;
+    std::string error;
+    if (rank == 0) {
+        std::ifstream in(a.obstacles, std::ios::binary);
+        if (!in) {
+            ok = 0;
+            error = a.obstacles + ": cannot open file";
+        } else {
+            std::ostringstream s;
+            s << in.rdbuf();
+            text = s.str();
+        }
+    }
+    MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (!ok) throw InputError(error);
+    unsigned long long len = text.size();
+    MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    text.resize(len);
+    MPI_Bcast(text.data(), static_cast<int>(len), MPI_CHAR, 0, MPI_COMM_WORLD);
+    const io::ObstacleFile file = io::parse_obstacles(text, a.obstacles);
+
+    gvd::GvdOptions opt;
+    opt.resolution = a.grid;
+    opt.robot_radius = a.robot_radius;
+    opt.workers = size;
+    opt.mode = a.mode == "independent" ? gvd::SliceMode::Independent : gvd::SliceMode::Cooperative;
+    opt.visibility = !a.no_visibility;
+    gvd::check_options(opt);
+    const gvd::GridSpec grid = gvd::make_grid(file.scene, opt.resolution);
+    if (size > grid.nx) throw InputError("more ranks (" + std::to_string(size) + ") than grid columns (" + std::to_string(grid.nx) + ")");
+
+    MPI_Barrier(MPI_COMM_WORLD);
+    const auto t0 = std::chrono::steady_clock::now();
+    const double cpu0 = gvd::thread_cpu_seconds();
+    const gvd::ObstacleIndex index(file.scene, opt.visibility);
+    const auto bounds = gvd::slice_bounds(grid.nx, size);
+    gvd::SliceTracer tracer(file.scene, index, grid, bounds[static_cast<std::size_t>(rank)], bounds[static_cast<std::size_t>(rank) + 1]);
+    MPI_Request send_req = MPI_REQUEST_NULL;
+    std::vector<std::int32_t> outbox;
+    gvd::BorderChannel ch;
+    ch.send_left = [&](const std::vector<std::int32_t>& rows) {
+        outbox = rows;
+        MPI_Isend(outbox.data(), static_cast<int>(outbox.size()), MPI_INT32_T, rank - 1, 1, MPI_COMM_WORLD, &send_req);
+    };
+    ch.receive_right = [&]() {
+        MPI_Status st;
+        MPI_Probe(rank + 1, 1, MPI_COMM_WORLD, &st);
+        int n = 0;
+        MPI_Get_count(&st, MPI_INT32_T, &n);
+        std::vector<std::int32_t> rows(static_cast<std::size_t>(n));
+        MPI_Recv(rows.data(), n, MPI_INT32_T, rank + 1, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        return rows;
+    };
+    std::uint64_t lines = 0;
+    const gvd::SliceSummary summary = gvd::run_slice(tracer, rank, size, opt.mode, ch, lines);
+    MPI_Wait(&send_req, MPI_STATUS_IGNORE);
+    const double traced_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double traced_cpu = gvd::thread_cpu_seconds() - cpu0;
+
+    // Join on rank 0: summaries in, keep flags out.
+    std::vector<int> counts;
+    const std::vector<std::int32_t> packed = gather(pack(summary), rank, size, &counts);
+    std::vector<std::uint8_t> keep_all;
+    std::vector<int> keep_counts(static_cast<std::size_t>(size)), keep_displs(static_cast<std::size_t>(size));
+    if (rank == 0) {
+        std::vector<gvd::SliceSummary> all;
+        std::size_t off = 0;
+        for (int r = 0; r < size; ++r) {
+            all.push_back(unpack(packed.data() + off));
+            off += static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]) / sizeof(std::int32_t);
+        }
+        const auto keep = gvd::keep_components(all);
+        int total = 0;
+        for (int r = 0; r < size; ++r) {
+            keep_counts[static_cast<std::size_t>(r)] = static_cast<int>(keep[static_cast<std::size_t>(r)].size());
+            keep_displs[static_cast<std::size_t>(r)] = total;
+            total += keep_counts[static_cast<std::size_t>(r)];
+            keep_all.insert(keep_all.end(), keep[static_cast<std::size_t>(r)].begin(), keep[static_cast<std::size_t>(r)].end());
+        }
+    }
+    std::vector<std::uint8_t> keep(static_cast<std::size_t>(summary.n_components));
+    MPI_Scatterv(keep_all.data(), keep_counts.data(), keep_displs.data(), MPI_UINT8_T, keep.data(), summary.n_components,
+                 MPI_UINT8_T, 0, MPI_COMM_WORLD);
+    std::vector<gvd::TracedCell> mine;
+    gvd::append_kept(tracer, keep, mine);
+    std::vector<gvd::TracedCell> cells = gather(mine, rank, size);  // same binary on every rank: bytes are fine
+
+    // Statistics.
+    const gvd::QueryContext& c = tracer.context();
+    unsigned long long local[6] = {c.queries, c.counters.part_evaluations, c.counters.edge_evaluations,
+                                   tracer.size(), lines, tracer.memory_bytes()};
+    unsigned long long sum[6] = {0, 0, 0, 0, 0, 0}, peak = 0;
+    MPI_Reduce(local, sum, 5, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    MPI_Reduce(&local[5], &peak, 1, MPI_UNSIGNED_LONG_LONG, MPI_MAX, 0, MPI_COMM_WORLD);
+    std::vector<double> seconds(static_cast<std::size_t>(size));
+    MPI_Gather(&traced_seconds, 1, MPI_DOUBLE, seconds.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    std::vector<double> cpu_seconds(static_cast<std::size_t>(size));
+    MPI_Gather(&traced_cpu, 1, MPI_DOUBLE, cpu_seconds.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    if (rank != 0) return 0;
+
+    const std::size_t kept = cells.size();
+    std::vector<std::vector<gvd::TracedCell>> slices(1);
+    slices[0].swap(cells);
+    gvd::GridVoronoi r = gvd::assemble(file.scene, grid, std::move(slices), opt.robot_radius);
+    r.stats.workers = size;
+    r.stats.mode = opt.mode;
+    r.stats.corners_labelled = sum[0];
+    r.stats.part_evaluations = sum[1];
+    r.stats.edge_evaluations = sum[2];
+    r.stats.traced_cells = sum[3];
+    r.stats.border_lines_scanned = sum[4];
+    r.stats.discarded_cells = sum[3] - kept;
+    r.stats.peak_worker_bytes = peak;
+    r.stats.worker_seconds = seconds;
+    r.stats.worker_cpu_seconds = cpu_seconds;
+    gvd::build_graph(r);
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    nlohmann::json doc = io::gvd_to_json(r);
+    doc["stats"]["total_seconds"] = total;
+    if (!a.svg.empty()) io::write_atomically(a.svg, [&](std::ostream& os) { io::write_gvd_svg(os, file.scene, r); });
+    if (a.output.empty() || a.output == "-") {
+        std::cout << doc.dump() << '\n';
+    } else {
+        io::write_atomically(a.output, [&](std::ostream& os) { os << doc.dump() << '\n'; });
+    }
+    std::fprintf(stderr, "dvoronoi_gvd_mpi: %zu diagram cells, %d ranks (%s), %.3f s\n", r.size(), size,
+                 io::mode_name(opt.mode), total);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    MPI_Init(&argc, &argv);
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    Args a;
+    CLI::App app{"dvoronoi_gvd_mpi: grid Voronoi diagram of obstacles, one slice per MPI rank", "dvoronoi_gvd_mpi"};
+    app.add_option("OBSTACLES", a.obstacles, "obstacle file (JSON, as for `dvoronoi gvd`)")->required();
+    app.add_option("-g,--grid", a.grid, "cells along the longer side of the working area")->required();
+    app.add_option("-m,--mode", a.mode, "cooperative or independent")->check(CLI::IsMember({"cooperative", "independent"}));
+    app.add_option("-r,--robot-radius", a.robot_radius, "robot radius (blocked cells)");
+    app.add_flag("--no-visibility", a.no_visibility, "turn the paper's edge visibility test off");
+    app.add_option("-o,--output", a.output, "output JSON file (default: stdout)");
+    app.add_option("--svg", a.svg, "also draw the diagram into this SVG file");
+    int code = 0;
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        code = rank == 0 ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 2);
+        if (code != 0) code = 2;
+        MPI_Finalize();
+        return code;
+    }
+    try {
+        code = run(a, rank, size);
+    } catch (const InputError& e) {
+        if (rank == 0) std::cerr << "dvoronoi_gvd_mpi: error: " << e.what() << "\n";
+        code = 2;
+    } catch (const std::exception& e) {
+        std::cerr << "dvoronoi_gvd_mpi: error (rank " << rank << "): " << e.what() << "\n";
+        MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+    MPI_Finalize();
+    return code;
+}

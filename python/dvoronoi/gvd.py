@@ -1,0 +1,459 @@
+"""Grid Voronoi diagram of obstacles for path planning (Mendes, Aude, Pinto & Aude), traced by
+slice-parallel workers.
+
+>>> import dvoronoi as dv
+>>> obstacles = [{"type": "circle", "center": [30, 40], "radius": 8},
+...              {"type": "polygon", "vertices": [[60, 10], [80, 10], [70, 35]]},
+...              {"type": "point", "position": [75, 75]}]
+>>> gv = dv.grid_voronoi(obstacles, area=(0, 0, 100, 100), resolution=512, robot_radius=2.0, workers=2)
+>>> gv.diagram_mask, gv.blocked_mask, gv.clearance, gv.vertex_points
+>>> G = gv.roadmap                      # networkx.MultiGraph (nodes at vertices and ends)
+>>> route = gv.path((5, 5), (95, 95))   # (k, 2) array; empty when no collision-free route exists
+>>> gv.plot(path=route)
+
+Obstacles use the JSON format of ``dvoronoi gvd`` (README, "Grid Voronoi diagram of obstacles"):
+a list of shape dicts (``polygon`` — convex or not, ``circle``, ``point``, ``segment``, ``union``),
+a dict ``{"area": ..., "obstacles": [...]}``, or a path to such a JSON file. The working area's
+edges are obstacles too, labelled after the user's obstacles. Labels of corners are the nearest
+obstacle by Euclidean distance to its region (squared doubles compared, ties to the lower label).
+
+The result relates obstacles like every dvoronoi result relates agents: ``neighbors(i)`` are the
+obstacles (and area edges) whose regions meet obstacle ``i``'s along the traced diagram.
+"""
+from __future__ import annotations
+
+import functools
+import json
+import os
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._io import PathLike, atomic_write_text
+from ._result import Result
+
+if TYPE_CHECKING:  # pragma: no cover
+    import matplotlib.axes
+    import networkx
+    import scipy.sparse
+
+__all__ = ["grid_voronoi", "GridVoronoi", "obstacles_from_occupancy_grid", "load_obstacles"]
+
+_NODE_KINDS = ("vertex", "end", "junction")
+
+
+def _to_plain(obj: Any) -> Any:
+    """numpy scalars/arrays -> Python numbers/lists, for json.dumps."""
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, np.generic):
+        return obj.item()
+    raise TypeError(f"object of type {type(obj).__name__} is not JSON serialisable")
+
+
+def _area_json(area: Any) -> Dict[str, Any]:
+    if isinstance(area, dict):
+        return area
+    arr = np.asarray(area, dtype=np.float64)
+    if arr.shape == (4,):
+        return {"box": arr.tolist()}
+    if arr.ndim == 2 and arr.shape[1] == 2:
+        return {"polygon": arr.tolist()}
+    raise ValueError("area must be a box (xmin, ymin, xmax, ymax), a convex polygon as a (k, 2) array, "
+                     f"or a dict as in the JSON format; got shape {arr.shape}")
+
+
+def load_obstacles(obstacles: Any, area: Any = None) -> "_core._GvdScene":
+    """Parse and check obstacles (and area) into a compiled scene; errors name the field
+    (``ValueError: obstacles: obstacles[3].radius: must be a positive finite number, got -1``)."""
+    if isinstance(obstacles, _core._GvdScene):
+        return obstacles
+    name = "obstacles"
+    if isinstance(obstacles, (str, os.PathLike)):
+        name = os.fspath(obstacles)
+        try:
+            doc = json.loads(Path(name).read_text())
+        except json.JSONDecodeError as e:
+            raise ValueError(f"{name}:{e.lineno}:{e.colno}: invalid JSON: {e.msg}") from None
+        except OSError as e:
+            raise ValueError(f"{name}: cannot read file ({e.strerror})") from None
+    elif isinstance(obstacles, dict):
+        doc = dict(obstacles)
+    else:
+        doc = {"obstacles": list(obstacles)}
+    if area is not None:
+        doc["area"] = _area_json(area)
+    elif "area" not in doc:
+        raise ValueError("area: required (a box (xmin, ymin, xmax, ymax) or a convex polygon), "
+                         "either as the area= argument or in the obstacle document")
+    return _core._GvdScene(json.dumps(doc, default=_to_plain), name)
+
+
+class GridVoronoi(Result):
+    """The grid Voronoi diagram (see :func:`grid_voronoi`).
+
+    Per traced cell ``k`` (cells sorted by row, then column): ``cells[k] = (col, row)``,
+    ``centers[k]``, ``labels[k]`` (nearest obstacle of the corners bottom-left, bottom-right,
+    top-right, top-left), ``clearance[k]`` (smallest corner distance to its nearest obstacle) and
+    ``blocked[k]`` (``clearance <= robot_radius``). ``vertices`` are the cells with three or more
+    labels. Dense ``(ny, nx)`` pictures: ``diagram_mask``, ``blocked_mask``, ``clearance_map``
+    (row ``j`` is ``y0 + j h``; use ``origin="lower"`` with imshow).
+    """
+
+    def __init__(self, core: "_core._GvdResult", scene: "_core._GvdScene") -> None:
+        self._core = core
+        self._scene = scene
+        x0, y0, h, nx, ny = core.grid
+        self.origin = (float(x0), float(y0))
+        self.cell_size = float(h)
+        self.shape = (int(ny), int(nx))
+        self.robot_radius = float(core.robot_radius)
+        self.n_obstacles = int(core.n_obstacles)
+        self.n_labels = int(core.n_labels)
+        col, row = core.col, core.row
+        self.cells = np.stack([col, row], axis=1).astype(np.int64)
+        self.centers = np.stack([x0 + (col + 0.5) * h, y0 + (row + 0.5) * h], axis=1)
+        self.labels = core.labels
+        self.clearance = core.clearance
+        self.blocked = core.blocked
+        self.vertices = core.vertices
+        self.stats: Dict[str, Any] = core.stats
+        self._relation: Optional[Tuple[np.ndarray, np.ndarray]] = None
+
+    @property
+    def indptr(self) -> np.ndarray:  # type: ignore[override]
+        """CSR of the obstacle relation (labels sharing a diagram cell), computed on first use."""
+        return self._obstacle_relation()[0]
+
+    @property
+    def indices(self) -> np.ndarray:  # type: ignore[override]
+        return self._obstacle_relation()[1]
+
+    def _obstacle_relation(self) -> Tuple[np.ndarray, np.ndarray]:
+        if self._relation is not None:
+            return self._relation
+        n = self.n_labels
+        lab = np.sort(self.labels, axis=1)
+        pairs = []
+        for a in range(4):
+            for b in range(a + 1, 4):
+                d = lab[:, a] != lab[:, b]
+                pairs.append(np.stack([lab[d, a], lab[d, b]], axis=1))
+        p = np.concatenate(pairs) if pairs else np.zeros((0, 2), np.int64)
+        p = np.concatenate([p, p[:, ::-1]]).astype(np.int64)
+        p = np.unique(p, axis=0) if len(p) else p.reshape(0, 2)
+        indptr = np.zeros(n + 1, dtype=np.int64)
+        np.add.at(indptr, p[:, 0] + 1, 1)
+        self._relation = (np.cumsum(indptr), p[:, 1].copy())
+        return self._relation
+
+    # -- sizes and pictures ---------------------------------------------------------------------
+    def __len__(self) -> int:
+        return self.n_labels
+
+    @property
+    def vertex_points(self) -> np.ndarray:
+        """Centers of the Voronoi vertex cells, shape (m, 2)."""
+        return self.centers[self.vertices]
+
+    def _dense(self, values: np.ndarray, fill: Any, dtype: Any) -> np.ndarray:
+        out = np.full(self.shape, fill, dtype=dtype)
+        out[self.cells[:, 1], self.cells[:, 0]] = values
+        return out
+
+    @property
+    def diagram_mask(self) -> np.ndarray:
+        """(ny, nx) bool: the traced diagram cells."""
+        return self._dense(True, False, bool)
+
+    @property
+    def blocked_mask(self) -> np.ndarray:
+        """(ny, nx) bool: diagram cells blocked by the robot radius."""
+        return self._dense(self.blocked, False, bool)
+
+    @property
+    def clearance_map(self) -> np.ndarray:
+        """(ny, nx) float64: clearance of diagram cells, NaN elsewhere."""
+        return self._dense(self.clearance, np.nan, np.float64)
+
+    # -- roadmap and paths ----------------------------------------------------------------------
+    @functools.cached_property
+    def roadmap(self) -> "networkx.MultiGraph":
+        """The roadmap as a ``networkx.MultiGraph``: nodes at Voronoi vertices, junctions and ends
+        (attributes ``pos``, ``cell``, ``kind``), one edge per chain of diagram cells between them
+        (``length``, ``min_clearance``, ``blocked``, ``cells``). Needs networkx; see
+        :meth:`roadmap_csr` otherwise."""
+        import networkx as nx
+
+        c = self._core
+        g = nx.MultiGraph()
+        cells, kinds = c.node_cell, c.node_kind
+        pos = self.centers[cells]
+        g.add_nodes_from((v, {"pos": (float(pos[v, 0]), float(pos[v, 1])), "cell": int(cells[v]), "kind": _NODE_KINDS[kinds[v]]})
+                         for v in range(len(cells)))
+        ptr, chain = c.chain_ptr, c.chain_cells
+        g.add_edges_from((int(u), int(v), {"length": float(ln), "min_clearance": float(mc), "blocked": bool(b),
+                                           "cells": chain[ptr[e]:ptr[e + 1]]})
+                         for e, (u, v, ln, mc, b) in enumerate(zip(c.edge_u.tolist(), c.edge_v.tolist(), c.edge_length.tolist(),
+                                                                   c.edge_min_clearance.tolist(), c.edge_blocked.tolist())))
+        return g
+
+    def roadmap_csr(self, free_only: bool = False) -> "scipy.sparse.csr_matrix":
+        """The roadmap as a symmetric ``scipy.sparse.csr_matrix`` of edge lengths (the shortest of
+        parallel edges); with `free_only`, edges through blocked cells are left out."""
+        import scipy.sparse
+
+        c = self._core
+        keep = ~c.edge_blocked if free_only else np.ones(len(c.edge_u), bool)
+        u, v, w = c.edge_u[keep], c.edge_v[keep], c.edge_length[keep]
+        n = len(c.node_cell)
+        best: Dict[Tuple[int, int], float] = {}
+        for a, b, x in zip(np.r_[u, v], np.r_[v, u], np.r_[w, w]):
+            k = (int(a), int(b))
+            best[k] = min(best.get(k, np.inf), float(x))
+        if not best:
+            return scipy.sparse.csr_matrix((n, n))
+        keys = np.array(list(best.keys()))
+        return scipy.sparse.csr_matrix((np.array(list(best.values())), (keys[:, 0], keys[:, 1])), shape=(n, n))
+
+    def path(self, start: Sequence[float], goal: Sequence[float]) -> np.ndarray:
+        """Shortest collision-free path for a disk robot of radius ``robot_radius`` along the diagram.
+
+        Returns the path as a (k, 2) array: `start`, cell centers along free diagram cells, `goal`
+        (every segment exactly farther than the robot radius from every obstacle). Returns an empty
+        (0, 2) array when no such route exists (start or goal cannot reach the free diagram, or the
+        free diagram does not connect them).
+
+        Raises ValueError naming `start` or `goal` when it lies outside the working area or within
+        the robot radius of an obstacle (blocked).
+        """
+        pts, _ = self._core.path(start, goal)
+        return pts
+
+    def path_length(self, start: Sequence[float], goal: Sequence[float]) -> float:
+        """Length of :meth:`path` (inf when there is none)."""
+        pts, length = self._core.path(start, goal)
+        return float(length) if len(pts) else float("inf")
+
+    # -- export and pictures ----------------------------------------------------------------------
+    def _json_text(self, indent: Optional[int]) -> str:
+        return self._core.to_json(-1 if indent is None else indent)
+
+    def to_svg(self, path: Optional[PathLike] = None, route: Optional[np.ndarray] = None) -> Optional[str]:
+        """The picture ``dvoronoi gvd --svg`` draws (optionally with a route); text or written atomically."""
+        text = self._core.to_svg(route)
+        if path is None:
+            return text
+        atomic_write_text(path, text)
+        return None
+
+    def plot(self, ax: "Optional[matplotlib.axes.Axes]" = None, path: Optional[np.ndarray] = None,
+             obstacles: bool = True, **kwargs: Any) -> "matplotlib.axes.Axes":
+        """Draw obstacles (grey), free diagram cells (blue), blocked ones (light red), Voronoi
+        vertices (dark red) and an optional path (green); returns the axes."""
+        import matplotlib.pyplot as plt
+        from matplotlib.colors import ListedColormap
+        from matplotlib.patches import Circle, Polygon
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=kwargs.pop("figsize", (7, 7)))
+        x0, y0 = self.origin
+        h = self.cell_size
+        ny, nx = self.shape
+        img = np.zeros(self.shape, dtype=np.int8)
+        img[self.cells[:, 1], self.cells[:, 0]] = np.where(self.blocked, 2, 1)
+        cmap = ListedColormap([(1, 1, 1, 0), (0.12, 0.47, 0.71, 1), (0.96, 0.65, 0.65, 1)])
+        ax.imshow(img, origin="lower", extent=(x0, x0 + nx * h, y0, y0 + ny * h), cmap=cmap, vmin=0, vmax=2,
+                  interpolation="nearest", zorder=2, gid="dvoronoi-gvd-cells")
+        if obstacles:
+            for kind, label, verts, center, radius in self._scene.parts():
+                if label >= self.n_obstacles:
+                    continue
+                if kind == "polygon":
+                    ax.add_patch(Polygon(verts, closed=True, fc="0.6", ec="0.35", lw=0.5, zorder=1))
+                elif kind == "circle":
+                    ax.add_patch(Circle(center, radius, fc="0.6", ec="0.35", lw=0.5, zorder=1))
+                elif kind == "segment":
+                    ax.plot(verts[:, 0], verts[:, 1], color="0.35", lw=2, zorder=1)
+                else:
+                    ax.plot(verts[:, 0], verts[:, 1], "o", color="0.35", ms=3, zorder=1)
+        area = self._scene.area
+        ax.add_patch(Polygon(area, closed=True, fill=False, ec="k", lw=1, zorder=3))
+        vp = self.vertex_points
+        ax.plot(vp[:, 0], vp[:, 1], "o", color="#b71c1c", ms=3, zorder=4, gid="dvoronoi-gvd-vertices")
+        if path is not None and len(path):
+            p = np.asarray(path)
+            ax.plot(p[:, 0], p[:, 1], "-", color="#2e7d32", lw=2, zorder=5, gid="dvoronoi-gvd-path")
+        ax.set_aspect("equal")
+        ax.set_xlim(area[:, 0].min(), area[:, 0].max())
+        ax.set_ylim(area[:, 1].min(), area[:, 1].max())
+        return ax
+
+    def __repr__(self) -> str:
+        return (f"GridVoronoi({len(self.cells)} cells on a {self.shape[1]}x{self.shape[0]} grid, "
+                f"{len(self.vertices)} vertices, {int(self.blocked.sum())} blocked, "
+                f"robot_radius={self.robot_radius})")
+
+
+def grid_voronoi(obstacles: Any, area: Any = None, resolution: int = 512, robot_radius: float = 0.0,
+                 workers: int = 1, mode: str = "cooperative", visibility: bool = True) -> GridVoronoi:
+    """The grid Voronoi diagram of obstacles, traced by `workers` slice threads.
+
+    Parameters
+    ----------
+    obstacles : list of shape dicts, a dict ``{"area": ..., "obstacles": [...]}``, a JSON file path,
+        or the output of :func:`obstacles_from_occupancy_grid`.
+    area : ``(xmin, ymin, xmax, ymax)`` box, a convex polygon ``(k, 2)``, or None when `obstacles`
+        carries it. Its edges are obstacles of their own (labels ``n_obstacles + k``).
+    resolution : cells along the longer side of the area's bounding box.
+    robot_radius : diagram cells with a corner within this distance of an obstacle are blocked (kept,
+        marked, traced through); paths keep this clearance.
+    workers : slice workers (threads); the diagram is the same for every count.
+    mode : ``"cooperative"`` (each border scanned once, seeds passed to the left neighbour) or
+        ``"independent"`` (no communication; each worker scans both borders).
+    visibility : the paper's visibility test for polygon edges (same labels, fewer edge distances).
+
+    Raises ValueError naming the argument, or the obstacle and field of a bad obstacle.
+    """
+    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)):
+        raise TypeError(f"resolution must be an integer, got {type(resolution).__name__}")
+    if resolution < 1:
+        raise ValueError(f"resolution must be at least 1, got {resolution}")
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ValueError(f"workers must be a positive integer, got {workers!r}")
+    robot_radius = float(robot_radius)
+    if not np.isfinite(robot_radius) or robot_radius < 0:
+        raise ValueError(f"robot_radius must be a finite number >= 0, got {robot_radius}")
+    if mode not in ("cooperative", "independent"):
+        raise ValueError(f'mode must be "cooperative" or "independent", got {mode!r}')
+    scene = load_obstacles(obstacles, area)
+    core = _core._gvd_run(scene, int(resolution), robot_radius, int(workers), mode, bool(visibility))
+    return GridVoronoi(core, scene)
+
+
+# -- occupancy grids ------------------------------------------------------------------------------
+
+def _read_pgm(path: Path) -> np.ndarray:
+    """A binary (P5) or ASCII (P2) PGM image as a 2-d uint array (row 0 at the top)."""
+    data = path.read_bytes()
+    tokens = []
+    pos = 0
+    while len(tokens) < 4:
+        while pos < len(data) and data[pos:pos + 1].isspace():
+            pos += 1
+        if data[pos:pos + 1] == b"#":
+            while pos < len(data) and data[pos:pos + 1] not in (b"\n", b"\r"):
+                pos += 1
+            continue
+        start = pos
+        while pos < len(data) and not data[pos:pos + 1].isspace():
+            pos += 1
+        tokens.append(data[start:pos])
+    magic = tokens[0]
+    w, h, maxval = int(tokens[1]), int(tokens[2]), int(tokens[3])
+    if magic == b"P5":
+        dtype = np.uint8 if maxval < 256 else np.dtype(">u2")
+        px = np.frombuffer(data, dtype=dtype, count=w * h, offset=pos + 1)
+    elif magic == b"P2":
+        px = np.array(data[pos:].split()[: w * h], dtype=np.int64)
+    else:
+        raise ValueError(f"{path}: not a PGM image (magic {magic!r})")
+    if px.size != w * h:
+        raise ValueError(f"{path}: truncated PGM image ({px.size} of {w * h} pixels)")
+    return px.reshape(h, w).astype(np.float64) / maxval
+
+
+def _read_image(path: Path) -> np.ndarray:
+    """Grey levels in [0, 1] (row 0 at the top)."""
+    if path.suffix.lower() == ".pgm":
+        return _read_pgm(path)
+    import matplotlib.image as mpimg
+
+    img = np.asarray(mpimg.imread(path), dtype=np.float64)
+    if img.dtype.kind in "ui" or img.max() > 1.0:
+        img = img / 255.0
+    if img.ndim == 3:
+        img = img[..., :3].mean(axis=2)
+    return img
+
+
+def _rectangles(mask: np.ndarray) -> list:
+    """Cover a boolean region by axis-aligned rectangles: row runs, merged downwards while a run of
+    the next row has the same extent. Returns (row0, row1, col0, col1) half-open."""
+    rects = []
+    open_runs: Dict[Tuple[int, int], int] = {}
+    rows = mask.shape[0]
+    for r in range(rows + 1):
+        runs = set()
+        if r < rows:
+            line = np.concatenate([[False], mask[r], [False]])
+            d = np.flatnonzero(line[1:] != line[:-1])
+            runs = set(zip(d[0::2].tolist(), d[1::2].tolist()))
+        for run in list(open_runs):
+            if run not in runs:
+                rects.append((open_runs.pop(run), r, run[0], run[1]))
+        for run in runs:
+            open_runs.setdefault(run, r)
+    return rects
+
+
+def obstacles_from_occupancy_grid(source: Union[PathLike, np.ndarray], resolution: Optional[float] = None,
+                                  origin: Sequence[float] = (0.0, 0.0), occupied_thresh: float = 0.65,
+                                  negate: bool = False) -> Dict[str, Any]:
+    """Obstacles from an occupancy-grid map (ROS map_server): each connected occupied region (8-connected)
+    becomes one obstacle (a ``union`` of rectangles, one label), the map's extent the working area.
+
+    `source` is a map_server YAML file (``image``, ``resolution``, ``origin``, ``negate``,
+    ``occupied_thresh``), an image file (PGM or PNG; then give `resolution`), or a 2-d array of
+    occupancy probabilities in [0, 1] (row 0 at the top, as in the image). A pixel is occupied when
+    its probability ``(1 - grey)`` (``grey`` with ``negate``) exceeds `occupied_thresh`.
+    Obstacles are numbered in the order scipy.ndimage.label finds the regions (the first occupied
+    pixel in the image's row-major order, top row first). Returns the document :func:`grid_voronoi` takes.
+    """
+    from scipy import ndimage
+
+    if isinstance(source, np.ndarray):
+        occ = np.asarray(source, dtype=np.float64)
+        if resolution is None:
+            raise ValueError("resolution: required with an array")
+    else:
+        path = Path(os.fspath(source))
+        if path.suffix.lower() in (".yaml", ".yml"):
+            import yaml
+
+            meta = yaml.safe_load(path.read_text())
+            for key in ("image", "resolution"):
+                if key not in meta:
+                    raise ValueError(f"{path}: missing field '{key}'")
+            resolution = float(meta["resolution"])
+            origin = meta.get("origin", [0.0, 0.0, 0.0])[:2]
+            negate = bool(meta.get("negate", 0))
+            occupied_thresh = float(meta.get("occupied_thresh", occupied_thresh))
+            path = path.parent / meta["image"]
+        elif resolution is None:
+            raise ValueError("resolution: required with an image file (or give the map's YAML)")
+        grey = _read_image(path)
+        occ = grey if negate else 1.0 - grey
+    if occ.ndim != 2:
+        raise ValueError(f"occupancy grid must be 2-d, got shape {occ.shape}")
+    res = float(resolution)
+    if not np.isfinite(res) or res <= 0:
+        raise ValueError(f"resolution must be a positive finite number, got {resolution}")
+    rows, cols = occ.shape
+    ox, oy = float(origin[0]), float(origin[1])
+    labels, n = ndimage.label(occ > occupied_thresh, structure=np.ones((3, 3), bool))
+    obstacles = []
+    for region, sl in enumerate(ndimage.find_objects(labels), start=1):
+        sub = labels[sl] == region
+        parts = []
+        for r0, r1, c0, c1 in _rectangles(sub):
+            # image row r spans y in [oy + (rows - 1 - r) res, oy + (rows - r) res]
+            ya = oy + (rows - (sl[0].start + r1)) * res
+            yb = oy + (rows - (sl[0].start + r0)) * res
+            xa = ox + (sl[1].start + c0) * res
+            xb = ox + (sl[1].start + c1) * res
+            parts.append({"type": "polygon", "vertices": [[xa, ya], [xb, ya], [xb, yb], [xa, yb]]})
+        obstacles.append(parts[0] if len(parts) == 1 else {"type": "union", "parts": parts})
+    return {"area": {"box": [ox, oy, ox + cols * res, oy + rows * res]}, "obstacles": obstacles}

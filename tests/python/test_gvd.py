@@ -1,0 +1,444 @@
+"""Grid Voronoi diagram of obstacles (dv.grid_voronoi, `dvoronoi gvd`, dvoronoi_gvd_mpi).
+
+Against the brute-force oracle (every corner labelled by scanning every obstacle part, same tie
+rule): traced cells are oracle cells; recall is reported and complete on connected diagrams; thread
+and MPI runs (K = 1..4, both approaches) give the single worker's cells; every diagram cell is within
+one cell diagonal of a point equidistant from two obstacles, checked with exact (rational / 80-digit)
+distances; paths are collision-free for the robot radius; bad input names the obstacle and field.
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+from collections import deque
+from decimal import Decimal, getcontext
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dvoronoi as dv
+from dvoronoi import _core
+
+from dvoronoi.gvd_maps import mixed_shapes, random_mixed, sea_of_triangles
+
+ROOT = Path(__file__).resolve().parents[2]
+getcontext().prec = 80
+
+
+# -- oracle helpers -------------------------------------------------------------------------------
+
+def oracle(doc, resolution):
+    scene = dv.gvd.load_obstacles(doc)
+    labels, sq, mixed = _core._gvd_brute_force(scene, resolution)
+    return scene, labels, sq, mixed
+
+
+def reachable_from_corners(scene, labels, mixed, grid):
+    """Oracle cells reachable from the area-corner cells across label-changing edges."""
+    x0, y0, h, nx, ny = grid
+    seen = np.zeros_like(mixed)
+    q = deque()
+    for vx, vy in scene.area:
+        for j in range(ny):
+            for i in range(nx):
+                if x0 + i * h <= vx <= x0 + (i + 1) * h and y0 + j * h <= vy <= y0 + (j + 1) * h and mixed[j, i] and not seen[j, i]:
+                    seen[j, i] = True
+                    q.append((i, j))
+    while q:
+        i, j = q.popleft()
+        L = labels
+        for change, a, b in ((L[j, i] != L[j, i + 1], i, j - 1), (L[j, i + 1] != L[j + 1, i + 1], i + 1, j),
+                             (L[j + 1, i] != L[j + 1, i + 1], i, j + 1), (L[j, i] != L[j + 1, i], i - 1, j)):
+            if change and 0 <= a < nx and 0 <= b < ny and mixed[b, a] and not seen[b, a]:
+                seen[b, a] = True
+                q.append((a, b))
+    return seen
+
+
+def check_against_oracle(doc, resolution):
+    gv = dv.grid_voronoi(doc, resolution=resolution)
+    scene, labels, sq, mixed = oracle(doc, resolution)
+    grid = (gv.origin[0], gv.origin[1], gv.cell_size, gv.shape[1], gv.shape[0])
+    traced = gv.diagram_mask
+    assert not np.any(traced & ~mixed), "traced a cell the oracle does not mark"
+    reach = reachable_from_corners(scene, labels, mixed, grid)
+    assert np.array_equal(traced, reach), "missed a cell connected to the area corners"
+    # the traced cells' corner labels are the oracle's
+    c = gv.cells
+    assert np.array_equal(gv.labels[:, 0], labels[c[:, 1], c[:, 0]])
+    assert np.array_equal(gv.labels[:, 2], labels[c[:, 1] + 1, c[:, 0] + 1])
+    return gv, int(traced.sum()), int(mixed.sum())
+
+
+# -- exact distances (rationals; circles through 80-digit square roots) ----------------------------
+
+def _sq_seg(p, a, b):
+    ab = (b[0] - a[0], b[1] - a[1])
+    ap = (p[0] - a[0], p[1] - a[1])
+    t = ap[0] * ab[0] + ap[1] * ab[1]
+    if t <= 0:
+        return ap[0] ** 2 + ap[1] ** 2
+    l2 = ab[0] ** 2 + ab[1] ** 2
+    if t >= l2:
+        return (p[0] - b[0]) ** 2 + (p[1] - b[1]) ** 2
+    cr = ab[0] * ap[1] - ab[1] * ap[0]
+    return cr * cr / l2
+
+
+def exact_distance(parts_of_label, p):
+    """Exact distance (Decimal, 80 digits) from rational point p to the union of convex parts."""
+    best = None
+    for kind, verts, center, radius in parts_of_label:
+        V = [(Fraction(x), Fraction(y)) for x, y in verts]
+        if kind == "point":
+            d = Decimal((p[0] - V[0][0]) ** 2 + (p[1] - V[0][1]) ** 2).sqrt() if False else _dec_sqrt((p[0] - V[0][0]) ** 2 + (p[1] - V[0][1]) ** 2)
+        elif kind == "segment":
+            d = _dec_sqrt(_sq_seg(p, V[0], V[1]))
+        elif kind == "circle":
+            c = (Fraction(center[0]), Fraction(center[1]))
+            d = max(Decimal(0), _dec_sqrt((p[0] - c[0]) ** 2 + (p[1] - c[1]) ** 2) - _dec(Fraction(radius)))
+        else:
+            n = len(V)
+            outside = any((V[(k + 1) % n][0] - V[k][0]) * (p[1] - V[k][1]) - (V[(k + 1) % n][1] - V[k][1]) * (p[0] - V[k][0]) < 0
+                          for k in range(n))
+            d = _dec_sqrt(min(_sq_seg(p, V[k], V[(k + 1) % n]) for k in range(n))) if outside else Decimal(0)
+        best = d if best is None else min(best, d)
+    return best
+
+
+def _dec(f: Fraction) -> Decimal:
+    return Decimal(f.numerator) / Decimal(f.denominator)
+
+
+def _dec_sqrt(f: Fraction) -> Decimal:
+    return _dec(f).sqrt()
+
+
+def parts_by_label(scene):
+    out = {}
+    for kind, label, verts, center, radius in scene.parts():
+        out.setdefault(label, []).append((kind, np.asarray(verts).tolist(), center, radius))
+    return out
+
+
+def check_equidistant(gv, scene):
+    """Every diagram cell has two adjacent corners p, q labelled a != b with d_a(p) <= d_b(p) and
+    d_b(q) <= d_a(q) exactly, so d_a - d_b vanishes on the edge pq: a point equidistant from two
+    obstacles lies within one cell diagonal of every point of the cell."""
+    parts = parts_by_label(scene)
+    x0, y0 = gv.origin
+    h = gv.cell_size
+    corner_offsets = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    for k, (i, j) in enumerate(gv.cells):
+        lab = gv.labels[k]
+        e = next(e for e in range(4) if lab[e] != lab[(e + 1) % 4])
+        a, b = int(lab[e]), int(lab[(e + 1) % 4])
+        pts = []
+        for t in (e, (e + 1) % 4):
+            di, dj = corner_offsets[t]
+            pts.append((Fraction(x0 + float(i + di) * h), Fraction(y0 + float(j + dj) * h)))
+        p, q = pts
+        assert exact_distance(parts[a], p) <= exact_distance(parts[b], p), (k, a, b)
+        assert exact_distance(parts[b], q) <= exact_distance(parts[a], q), (k, a, b)
+
+
+# -- tests ----------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("seed", [1, 2, 3, 4])
+def test_random_maps_match_oracle(seed):
+    res = [40, 56, 64, 72][seed - 1]
+    gv, traced, marked = check_against_oracle(random_mixed(seed, 18, size=5.0), res)
+    print(f"random seed {seed} res {res}: recall {traced}/{marked}")
+    assert traced > 0
+
+
+def test_paper_maps_match_oracle_and_are_complete():
+    for name, doc, res in (("sea of triangles", sea_of_triangles(2), 96), ("mixed shapes", mixed_shapes(), 96)):
+        gv, traced, marked = check_against_oracle(doc, res)
+        print(f"{name}: recall {traced}/{marked}")
+        assert traced == marked  # connected diagrams: every oracle cell is traced
+
+
+def test_convex_polygon_area():
+    doc = random_mixed(8, 12, size=5.0)
+    doc["area"] = {"polygon": [[50, -5], [105, 25], [105, 75], [50, 105], [-5, 75], [-5, 25]]}
+    gv, traced, marked = check_against_oracle(doc, 60)
+    assert gv.n_labels == gv.n_obstacles + 6
+    assert traced >= 0.98 * marked
+
+
+@pytest.mark.parametrize("doc_name", ["random", "sea", "mixed"])
+def test_diagram_cells_are_near_equidistant_points_exactly(doc_name):
+    doc = {"random": random_mixed(5, 15, size=5.0), "sea": sea_of_triangles(4, per_side=5), "mixed": mixed_shapes()}[doc_name]
+    gv = dv.grid_voronoi(doc, resolution=48)
+    check_equidistant(gv, dv.gvd.load_obstacles(doc))
+
+
+def test_corner_labels_are_exact_nearest_obstacles_on_a_sample():
+    doc = mixed_shapes()
+    scene = dv.gvd.load_obstacles(doc)
+    parts = parts_by_label(scene)
+    labels = _core._gvd_brute_force(scene, 40)[0]
+    rng = np.random.default_rng(3)
+    x0, y0, h = 0.0, 0.0, 100.0 / 40
+    for j, i in zip(rng.integers(0, 41, 60), rng.integers(0, 41, 60)):
+        p = (Fraction(x0 + float(i) * h), Fraction(y0 + float(j) * h))
+        d = {lab: exact_distance(pl, p) for lab, pl in parts.items()}
+        best = min(d.values())
+        assert d[int(labels[j, i])] == best
+        assert int(labels[j, i]) == min(lab for lab, v in d.items() if v == best)  # ties: lower label
+
+
+@pytest.mark.parametrize("mode", ["cooperative", "independent"])
+def test_threads_give_the_single_worker_diagram(mode):
+    for doc, res in ((sea_of_triangles(5), 120), (random_mixed(6, 25), 100)):
+        one = dv.grid_voronoi(doc, resolution=res)
+        for k in (2, 3, 4, 6):
+            many = dv.grid_voronoi(doc, resolution=res, workers=k, mode=mode)
+            assert np.array_equal(many.cells, one.cells)
+            assert np.array_equal(many.labels, one.labels)
+            assert np.array_equal(many.clearance, one.clearance)
+            assert many.stats["workers"] == k
+        if mode == "independent":
+            assert many.stats["border_lines_scanned"] == 2 * (6 - 1)
+        else:
+            assert many.stats["border_lines_scanned"] == 6 - 1
+
+
+def _mpi_exe():
+    env = os.environ.get("DVORONOI_GVD_MPI")
+    if env:  # tools/test.sh sets it; MPI is optional, so a missing build skips
+        return env if Path(env).is_file() else None
+    for c in [ROOT / "build" / "cpp" / "mpi" / "dvoronoi_gvd_mpi", *sorted(ROOT.glob("build*/cpp/mpi/dvoronoi_gvd_mpi"))]:
+        if c.is_file():
+            return str(c)
+    return shutil.which("dvoronoi_gvd_mpi")
+
+
+@pytest.mark.skipif(_mpi_exe() is None or shutil.which("mpirun") is None,
+                    reason="dvoronoi_gvd_mpi or mpirun not found (cmake --build build --target dvoronoi_gvd_mpi)")
+def test_mpi_ranks_give_the_single_worker_diagram(tmp_path):
+    doc = random_mixed(7, 30)
+    path = tmp_path / "map.json"
+    path.write_text(json.dumps(doc))
+    one = json.loads(dv.grid_voronoi(doc, resolution=96, robot_radius=1.0).to_json())
+    flags = ["--oversubscribe"] + (["--allow-run-as-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else [])
+    for k in (1, 2, 3, 4):
+        for mode in ("cooperative", "independent"):
+            out = tmp_path / f"out{k}{mode}.json"
+            proc = subprocess.run(["mpirun", *flags, "-n", str(k), _mpi_exe(), str(path), "--grid", "96", "--mode", mode,
+                                   "--robot-radius", "1", "-o", str(out)], capture_output=True, text=True, timeout=120)
+            assert proc.returncode == 0, proc.stderr
+            got = json.loads(out.read_text())
+            assert got["cells"] == one["cells"], (k, mode)
+            assert got["roadmap"] == one["roadmap"]
+            assert got["stats"]["workers"] == k
+
+
+def test_visibility_test_gives_the_same_diagram_with_fewer_edge_distances():
+    doc = sea_of_triangles(6)
+    a = dv.grid_voronoi(doc, resolution=128, visibility=True)
+    b = dv.grid_voronoi(doc, resolution=128, visibility=False)
+    assert np.array_equal(a.cells, b.cells) and np.array_equal(a.labels, b.labels)
+    assert a.stats["edge_evaluations"] < b.stats["edge_evaluations"]
+
+
+def test_sparse_labelling():
+    gv = dv.grid_voronoi(mixed_shapes(), resolution=512)
+    assert gv.stats["corners_labelled"] < 0.05 * 513 * 513  # only corners near the diagram
+    assert gv.stats["corners_labelled"] >= len(gv.cells)
+
+
+def test_blocked_clearance_vertices_roadmap():
+    gv = dv.grid_voronoi(mixed_shapes(), resolution=100, robot_radius=3.0)
+    assert np.array_equal(gv.blocked, gv.clearance <= 3.0)
+    assert 0 < gv.blocked.sum() < len(gv.cells)
+    assert gv.blocked_mask.sum() == gv.blocked.sum() and gv.diagram_mask.sum() == len(gv.cells)
+    cm = gv.clearance_map
+    assert np.array_equal(np.isnan(cm), ~gv.diagram_mask)
+    # vertices: cells with >= 3 distinct corner labels
+    distinct = np.array([len(set(r)) for r in gv.labels.tolist()])
+    assert np.array_equal(np.flatnonzero(distinct >= 3), gv.vertices)
+    assert len(gv.vertices) >= 8
+    # roadmap: every cell is a node or interior to exactly one edge; lengths are steps of one cell
+    G = gv.roadmap
+    cover = [d["cell"] for _, d in G.nodes(data=True)]
+    for _, _, d in G.edges(data=True):
+        cover += list(d["cells"])
+        assert d["length"] == pytest.approx((len(d["cells"]) + 1) * gv.cell_size)
+        cl = [gv.clearance[c] for c in d["cells"]]
+        assert d["min_clearance"] <= min(cl, default=np.inf)
+    assert sorted(cover) == list(range(len(gv.cells)))
+    assert {d["kind"] for _, d in G.nodes(data=True)} <= {"vertex", "end", "junction"}
+    # the area corners (where two area edges meet) are ends of the roadmap
+    ends = {tuple(gv.cells[d["cell"]]) for _, d in G.nodes(data=True) if d["kind"] == "end"}
+    assert {(0, 0), (99, 0), (99, 99), (0, 99)} <= ends
+    csr = gv.roadmap_csr()
+    assert csr.shape == (G.number_of_nodes(),) * 2 and (csr != csr.T).nnz == 0
+    # obstacle relation: neighbours share a diagram cell
+    assert 1 in gv.neighbors(0) or len(gv.neighbors(0)) > 0
+    assert all(0 in gv.neighbors(j) for j in gv.neighbors(0))
+
+
+def _segment_clearance(doc, a, b):
+    """Smallest distance from segment ab to the obstacles (shapely; circles exactly)."""
+    import shapely
+
+    seg = shapely.LineString([a, b])
+    best = np.inf
+    for o in doc["obstacles"]:
+        for s in o.get("parts", [o]):
+            if s["type"] == "circle":
+                c = np.asarray(s["center"])
+                pa, pb = np.asarray(a), np.asarray(b)
+                t = np.clip(np.dot(c - pa, pb - pa) / max(np.dot(pb - pa, pb - pa), 1e-300), 0, 1)
+                best = min(best, max(0.0, np.linalg.norm(pa + t * (pb - pa) - c) - s["radius"]))
+            elif s["type"] == "point":
+                best = min(best, seg.distance(shapely.Point(s["position"])))
+            elif s["type"] == "segment":
+                best = min(best, seg.distance(shapely.LineString(s["vertices"])))
+            else:
+                best = min(best, seg.distance(shapely.Polygon(s["vertices"])))
+    x0, y0, x1, y1 = doc["area"]["box"]
+    for p in (a, b):
+        best = min(best, p[0] - x0, x1 - p[0], p[1] - y0, y1 - p[1])
+    return best
+
+
+@pytest.mark.parametrize("radius", [0.0, 1.0, 2.5])
+def test_paths_are_collision_free(radius):
+    doc = mixed_shapes()
+    gv = dv.grid_voronoi(doc, resolution=128, robot_radius=radius)
+    rng = np.random.default_rng(int(radius * 10))
+    found = 0
+    for _ in range(12):
+        s, g = rng.uniform(3, 97, 2), rng.uniform(3, 97, 2)
+        try:
+            p = gv.path(s, g)
+        except ValueError as e:
+            assert "blocked" in str(e)
+            continue
+        if len(p) == 0:
+            continue
+        found += 1
+        assert np.array_equal(p[0], s) and np.array_equal(p[-1], g)
+        for a, b in zip(p[:-1], p[1:]):
+            assert _segment_clearance(doc, a, b) > radius
+        assert gv.path_length(s, g) == pytest.approx(np.sum(np.linalg.norm(np.diff(p, axis=0), axis=1)))
+    assert found >= 4
+
+
+def test_path_errors_and_no_route():
+    doc = mixed_shapes()
+    gv = dv.grid_voronoi(doc, resolution=128, robot_radius=1.5)
+    with pytest.raises(ValueError, match="start .* is blocked"):
+        gv.path((45.0, 40.5), (95, 95))  # 0.5 from a point obstacle
+    with pytest.raises(ValueError, match="goal .* is blocked"):
+        gv.path((5, 5), (70, 72))  # inside a circle
+    with pytest.raises(ValueError, match="start .* outside the working area"):
+        gv.path((-1, 5), (95, 95))
+    # a wall with a gap of width 2: a robot of radius 0.3 passes (diagram cells in the gap have corner
+    # clearance 0.5 at h = 0.5), one of radius 1.5 does not
+    wall = {"area": {"box": [0, 0, 100, 100]}, "obstacles": [
+        {"type": "polygon", "vertices": [[48, 0], [52, 0], [52, 49], [48, 49]]},
+        {"type": "polygon", "vertices": [[48, 51], [52, 51], [52, 100], [48, 100]]}]}
+    thin = dv.grid_voronoi(wall, resolution=200, robot_radius=0.3)
+    p = thin.path((20, 50), (80, 50))
+    assert len(p) > 2
+    for a, b in zip(p[:-1], p[1:]):
+        assert _segment_clearance(wall, a, b) > 0.3
+    thick = dv.grid_voronoi(wall, resolution=200, robot_radius=1.5)
+    assert thick.path((20, 50), (80, 50)).shape == (0, 2)
+    assert thick.path_length((20, 50), (80, 50)) == np.inf
+
+
+@pytest.mark.parametrize("doc, message", [
+    ({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "circle", "center": [1, 1], "radius": -1}]},
+     r"obstacles\[0\]\.radius: must be a positive finite number, got -1"),
+    ({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "point", "position": [1, 1]}, {"type": "circle", "center": [1], "radius": 1}]},
+     r"obstacles\[1\]\.center: expected a point \[x, y\]"),
+    ({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "polygon", "vertices": [[0, 0], [2, 2], [2, 0], [0, 2]]}]},
+     r"obstacles\[0\]\.vertices: polygon is not simple"),
+    ({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "circle", "center": [1, 1], "raduis": 1}]},
+     r"obstacles\[0\]: unknown field 'raduis'"),
+    ({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "blob"}]}, r"obstacles\[0\]\.type: unknown obstacle type 'blob'"),
+    ({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "union", "parts": [{"type": "point", "position": [1, "x"]}]}]},
+     r"obstacles\[0\]\.parts\[0\]\.position\[1\]: expected a number"),
+    ({"area": {"polygon": [[0, 0], [10, 0], [5, 2], [10, 10], [0, 10]]}, "obstacles": []}, r"area: the working area must be a convex polygon"),
+    ({"obstacles": []}, r"area: required"),
+])
+def test_bad_obstacles_name_index_and_field(doc, message):
+    with pytest.raises(ValueError, match=message):
+        dv.grid_voronoi(doc, resolution=16)
+
+
+def test_bad_arguments_and_files(tmp_path):
+    doc = mixed_shapes()
+    with pytest.raises(ValueError, match="resolution"):
+        dv.grid_voronoi(doc, resolution=0)
+    with pytest.raises(ValueError, match="workers"):
+        dv.grid_voronoi(doc, resolution=16, workers=0)
+    with pytest.raises(ValueError, match="robot_radius"):
+        dv.grid_voronoi(doc, resolution=16, robot_radius=-1)
+    with pytest.raises(ValueError, match="mode"):
+        dv.grid_voronoi(doc, resolution=16, mode="greedy")
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"area": {"box": [0, 0, 1, 1]},\n "obstacles": [,]}')
+    with pytest.raises(ValueError, match=r"bad.json:2:16: invalid JSON"):
+        dv.grid_voronoi(bad, resolution=16)
+
+
+def test_json_file_and_area_argument(tmp_path):
+    doc = mixed_shapes()
+    f = tmp_path / "m.json"
+    f.write_text(json.dumps(doc))
+    a = dv.grid_voronoi(f, resolution=64)
+    b = dv.grid_voronoi(doc["obstacles"], area=(0, 0, 100, 100), resolution=64)
+    assert np.array_equal(a.cells, b.cells)
+    out = json.loads(a.to_json())
+    assert out["kind"] == "grid_voronoi" and out["cells"]["col"] == a.cells[:, 0].tolist()
+
+
+def test_occupancy_grid_pgm_yaml(tmp_path):
+    img = np.full((60, 80), 254, np.uint8)  # free
+    img[10:20, 10:30] = 0                    # region 1 (rows from the top)
+    img[15:40, 25:30] = 0                    # joined to region 1: one L-shaped obstacle
+    img[45:55, 60:70] = 0                    # region 2
+    img[5, 70] = 0                           # region 3, one pixel
+    pgm = tmp_path / "map.pgm"
+    pgm.write_bytes(b"P5\n# test\n80 60\n255\n" + img.tobytes())
+    (tmp_path / "map.yaml").write_text("image: map.pgm\nresolution: 0.05\norigin: [-1.0, -2.0, 0.0]\n"
+                                       "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    doc = dv.obstacles_from_occupancy_grid(tmp_path / "map.yaml")
+    assert len(doc["obstacles"]) == 3
+    assert doc["area"]["box"] == pytest.approx([-1.0, -2.0, -1.0 + 80 * 0.05, -2.0 + 60 * 0.05])
+    gv = dv.grid_voronoi(doc, resolution=160)
+    scene = dv.gvd.load_obstacles(doc)
+    labels = _core._gvd_brute_force(scene, 160)[0]
+    # a corner at the center of an occupied pixel carries its region's label
+    # regions are numbered in scan order of the image (top row first): the pixel at row 5 comes first
+    for (r, c), region in (((12, 12), 1), ((30, 27), 1), ((50, 65), 2), ((5, 70), 0)):
+        x, y = -1.0 + (c + 0.5) * 0.05, -2.0 + (60 - r - 0.5) * 0.05
+        assert scene.nearest((x, y)) == (region, 0.0)
+    assert len(gv.cells) > 0 and set(np.unique(gv.labels)) >= {0, 1, 2}
+    # PNG read through matplotlib gives the same obstacles
+    import matplotlib.image as mpimg
+    mpimg.imsave(tmp_path / "map.png", img, cmap="gray", vmin=0, vmax=255)
+    doc2 = dv.obstacles_from_occupancy_grid(tmp_path / "map.png", resolution=0.05, origin=(-1.0, -2.0))
+    assert doc2 == doc
+
+
+def test_plot_and_svg(tmp_path):
+    import matplotlib
+    matplotlib.use("Agg")
+    gv = dv.grid_voronoi(mixed_shapes(), resolution=64, robot_radius=2)
+    route = gv.path((5, 5), (95, 95))
+    ax = gv.plot(path=route)
+    gids = {a.get_gid() for a in ax.get_children()}
+    assert {"dvoronoi-gvd-cells", "dvoronoi-gvd-vertices", "dvoronoi-gvd-path"} <= gids
+    svg = gv.to_svg(route=route)
+    assert svg.startswith("<svg") and "polyline" in svg and svg.count("<rect") > 5

@@ -1,0 +1,94 @@
+"""`dvoronoi gvd`: the same JSON as the Python API, SVG, a path, and errors that name the obstacle
+and field or the file position, exit code 2, nothing written."""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dvoronoi as dv
+from dvoronoi.gvd_maps import mixed_shapes, random_mixed
+
+
+def _find_cli():
+    env = os.environ.get("DVORONOI_CLI")
+    if env:
+        return env if Path(env).is_file() else None
+    return shutil.which("dvoronoi")
+
+
+CLI = _find_cli()
+pytestmark = pytest.mark.skipif(CLI is None, reason="no dvoronoi executable (set DVORONOI_CLI or pip install .)")
+
+
+def run(*args):
+    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=120)
+
+
+def test_cli_matches_python_for_every_worker_count(tmp_path):
+    doc = random_mixed(3, 20)
+    src = tmp_path / "map.json"
+    src.write_text(json.dumps(doc))
+    py = json.loads(dv.grid_voronoi(doc, resolution=80, robot_radius=1.0).to_json())
+    for k, mode in ((1, "cooperative"), (3, "independent"), (4, "cooperative")):
+        out = tmp_path / f"o{k}.json"
+        p = run("gvd", src, "--grid", 80, "--workers", k, "--mode", mode, "--robot-radius", 1.0, "-o", out, "-q")
+        assert p.returncode == 0, p.stderr
+        got = json.loads(out.read_text())
+        assert got["cells"] == py["cells"] and got["vertices"] == py["vertices"] and got["roadmap"] == py["roadmap"]
+        assert got["stats"]["workers"] == k and got["stats"]["mode"] == mode
+
+
+def test_cli_svg_and_path(tmp_path):
+    src = tmp_path / "map.json"
+    src.write_text(json.dumps(mixed_shapes()))
+    svg, out = tmp_path / "g.svg", tmp_path / "g.json"
+    p = run("gvd", src, "--grid", 128, "-r", 1.5, "--path", 5, 5, 95, 95, "--svg", svg, "-o", out)
+    assert p.returncode == 0, p.stderr
+    assert "diagram cells" in p.stderr  # summary line
+    root = ET.parse(svg).getroot()
+    assert root.tag.endswith("svg")
+    doc = json.loads(out.read_text())
+    assert doc["path"]["found"] and doc["path"]["points"][0] == [5, 5] and doc["path"]["points"][-1] == [95, 95]
+    pts = np.array(doc["path"]["points"])
+    assert doc["path"]["length"] == pytest.approx(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum())
+
+
+@pytest.mark.parametrize("text, message", [
+    ('{"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "circle", "center": [1, 1], "radius": 0}]}',
+     r"map.json: obstacles\[0\].radius: must be a positive finite number, got 0"),
+    ('{"area": {"box": [0, 0, 10, 10]},\n "obstacles": [\n  {"type": "point" "position": [1, 1]}]}', r"map.json:3:20: invalid JSON"),
+    ('{"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "point", "position": [1, 1]}, {"type": "polygon", "vertices": [[0, 0], [1, 1]]}]}',
+     r"obstacles\[1\].vertices: needs at least 3 points"),
+])
+def test_cli_bad_input_names_the_field_and_writes_nothing(tmp_path, text, message):
+    import re
+
+    src = tmp_path / "map.json"
+    src.write_text(text)
+    out, svg = tmp_path / "o.json", tmp_path / "o.svg"
+    p = run("gvd", src, "--grid", 16, "-o", out, "--svg", svg)
+    assert p.returncode == 2
+    assert re.search(message, p.stderr), p.stderr
+    assert not out.exists() and not svg.exists()
+    assert [f.name for f in tmp_path.iterdir()] == ["map.json"]  # no temporary files left
+
+
+def test_cli_bad_arguments(tmp_path):
+    src = tmp_path / "map.json"
+    src.write_text(json.dumps(mixed_shapes()))
+    for args, message in ((["--grid", 0], "--grid"), (["--grid", 8, "--workers", 0], "--workers"),
+                          (["--grid", 8, "--mode", "greedy"], "--mode"), (["--grid", 8, "-r", -1], "--robot-radius"),
+                          (["--grid", 8, "-o", tmp_path / "x.csv"], "-o/--output"),
+                          (["--grid", 64, "-r", 1.5, "--path", 45, 40.5, 95, 95], "--path: start")):
+        p = run("gvd", src, *args)
+        assert p.returncode == 2, (args, p.stderr)
+        assert message in p.stderr
+    p = run("gvd", tmp_path / "missing.json", "--grid", 8)
+    assert p.returncode == 2 and "missing.json" in p.stderr
