@@ -1,0 +1,96 @@
+// Every robot's Voronoi neighbours from the detection graph (distance-only algorithm of Elwin, Freeman
+// & Lynch), in parallel (OpenMP), then optionally the consistency step. Results in input order.
+#pragma once
+
+#include "dvoronoi/distances/consistency.hpp"
+#include "dvoronoi/distances/voronoi_neighbors.hpp"
+#include "dvoronoi/partition/limited_partition.hpp"  // ProgressFn, ProgressTracker, thread team
+
+#include <algorithm>
+#include <vector>
+
+namespace dvoronoi::dist {
+
+/// All robots' answers. Row i of the CSR pair (indptr, indices) starts with robot i's own answer in
+/// Delaunay-path order (`path_length[i]` entries); entries the consistency step added follow,
+/// ascending (`added[i]` of them).
+struct DistanceNeighbors {
+    Index n = 0;
+    bool consistency = false;         ///< the consistency step was applied
+    std::vector<Index> indptr{0};
+    std::vector<Index> indices;
+    std::vector<char> on_hull;        ///< the robot found an end of its Delaunay path (o = Hull)
+    std::vector<Index> path_length;   ///< entries of row i found by the robot itself
+    std::vector<Index> added;         ///< entries of row i added by the consistency step
+    std::vector<Index> detected;      ///< detection neighbours per robot
+
+    Index size() const noexcept { return n; }
+    std::pair<const Index*, const Index*> neighbors(Index i) const {
+        if (i < 0 || i >= n)
+            throw InputError("robot index " + std::to_string(i) + " out of range [0, " + std::to_string(n) + ")");
+        return {indices.data() + indptr[static_cast<std::size_t>(i)], indices.data() + indptr[static_cast<std::size_t>(i) + 1]};
+    }
+};
+
+/// VORONOI-NEIGHBORS for every robot of `g`, then (if `consistency`) the consistency step.
+///
+/// \param threads OpenMP threads, 0 = all cores. Results do not depend on it.
+/// \param progress optional (done, total) callback, called from the calling thread.
+/// \note O(sum over robots of (sum of detected robots' degrees + |V_i| m_i)); memory O(n + E) plus
+///       one m x m table per thread. Thread-safe.
+inline DistanceNeighbors neighbors_from_distances(const DistanceGraph& g, bool consistency = true, int threads = 0,
+                                                  const ProgressFn& progress = nullptr) {
+    const Index n = g.n;
+    DistanceNeighbors out;
+    out.n = n;
+    out.consistency = consistency;
+    out.on_hull.assign(static_cast<std::size_t>(n), 1);
+    out.path_length.assign(static_cast<std::size_t>(n), 0);
+    out.detected.assign(static_cast<std::size_t>(n), 0);
+    if (n == 0) return out;
+    const Index block = ::dvoronoi::detail::kBlock;
+    const Index nblocks = (n + block - 1) / block;
+    const int team = ::dvoronoi::detail::thread_team(threads, nblocks);
+    std::vector<std::vector<Index>> rows(static_cast<std::size_t>(nblocks));  // per block, flat
+    ::dvoronoi::detail::ProgressTracker tracker(progress, n);
+
+#pragma omp parallel num_threads(team)
+    {
+        std::vector<int> slot(static_cast<std::size_t>(n), -1);
+        LocalTable t;
+        NeighborPath path;
+        NeighborWorkspace ws;
+#pragma omp for schedule(dynamic, 1)
+        for (Index b = 0; b < nblocks; ++b) {
+            if (tracker.cancelled()) continue;
+            std::vector<Index>& flat = rows[static_cast<std::size_t>(b)];
+            const Index lo = b * block, hi = std::min(n, lo + block);
+            for (Index i = lo; i < hi; ++i) {
+                const auto ii = static_cast<std::size_t>(i);
+                local_table(g, i, t, slot);
+                voronoi_neighbors(t, path, ws);
+                const Index base = g.indptr[ii];
+                for (int v : path.order) flat.push_back(g.indices[static_cast<std::size_t>(base + v)]);
+                out.on_hull[ii] = path.hull ? 1 : 0;
+                out.path_length[ii] = static_cast<Index>(path.order.size());
+                out.detected[ii] = t.m;
+            }
+            tracker.block_done(hi - lo);
+        }
+    }
+    tracker.rethrow_if_failed();
+
+    out.indptr.assign(static_cast<std::size_t>(n) + 1, 0);
+    for (Index i = 0; i < n; ++i)
+        out.indptr[static_cast<std::size_t>(i) + 1] = out.indptr[static_cast<std::size_t>(i)] + out.path_length[static_cast<std::size_t>(i)];
+    out.indices.reserve(static_cast<std::size_t>(out.indptr.back()));
+    for (const auto& flat : rows) out.indices.insert(out.indices.end(), flat.begin(), flat.end());
+    if (consistency)
+        make_consistent(out.indptr, out.indices, out.added);
+    else
+        out.added.assign(static_cast<std::size_t>(n), 0);
+    tracker.report_all();
+    return out;
+}
+
+}  // namespace dvoronoi::dist
