@@ -16,6 +16,8 @@ from ._core import CoincidentError, LimitedCell, Piece, __version__, limited_cel
 from ._partition import LimitedPartition, limited_cells
 from ._voronoi import VoronoiPartition, voronoi_cell, voronoi_cells
 from . import datasets
+from . import distances
+from .distances import DistanceNeighbors, neighbors_from_distances
 
 __all__ = [
     "limited_cell",
@@ -28,5 +30,8 @@ __all__ = [
     "Piece",
     "CoincidentError",
     "datasets",
+    "distances",
+    "neighbors_from_distances",
+    "DistanceNeighbors",
     "__version__",
 ]

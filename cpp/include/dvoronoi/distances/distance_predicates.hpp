@@ -37,7 +37,7 @@
 
 namespace dvoronoi::dist {
 
-using detail::filtered_sign;
+using ::dvoronoi::detail::filtered_sign;
 
 namespace detail {
 /// The squared length of a side from an input value: v itself, or v * v formed exactly.

@@ -32,6 +32,31 @@ struct DistanceNeighbors {
     }
 };
 
+namespace detail {
+/// The robots in breadth-first order of the detection graph (each component from its lowest index).
+inline std::vector<Index> breadth_first_order(const DistanceGraph& g) {
+    std::vector<Index> order;
+    order.reserve(static_cast<std::size_t>(g.n));
+    std::vector<char> seen(static_cast<std::size_t>(g.n), 0);
+    for (Index s = 0; s < g.n; ++s) {
+        if (seen[static_cast<std::size_t>(s)]) continue;
+        seen[static_cast<std::size_t>(s)] = 1;
+        order.push_back(s);
+        for (std::size_t head = order.size() - 1; head < order.size(); ++head) {  // `order` is the queue
+            const Index v = order[head];
+            for (Index q = g.indptr[static_cast<std::size_t>(v)]; q < g.indptr[static_cast<std::size_t>(v) + 1]; ++q) {
+                const Index w = g.indices[static_cast<std::size_t>(q)];
+                if (!seen[static_cast<std::size_t>(w)]) {
+                    seen[static_cast<std::size_t>(w)] = 1;
+                    order.push_back(w);
+                }
+            }
+        }
+    }
+    return order;
+}
+}  // namespace detail
+
 /// VORONOI-NEIGHBORS for every robot of `g`, then (if `consistency`) the consistency step.
 ///
 /// \param threads OpenMP threads, 0 = all cores. Results do not depend on it.
@@ -48,10 +73,18 @@ inline DistanceNeighbors neighbors_from_distances(const DistanceGraph& g, bool c
     out.path_length.assign(static_cast<std::size_t>(n), 0);
     out.detected.assign(static_cast<std::size_t>(n), 0);
     if (n == 0) return out;
+    // Robots are processed in breadth-first order of the detection graph: consecutive robots then
+    // share most detected robots, whose rows stay in cache (input order is often random, and building
+    // the local tables from scattered rows would otherwise cost more than the algorithm itself).
+    const std::vector<Index> order = detail::breadth_first_order(g);
     const Index block = ::dvoronoi::detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
     const int team = ::dvoronoi::detail::thread_team(threads, nblocks);
-    std::vector<std::vector<Index>> rows(static_cast<std::size_t>(nblocks));  // per block, flat
+    struct Block {
+        std::vector<Index> flat;   // the block's answers, one after another
+        std::vector<Index> first;  // per robot of the block: offset of its answer in `flat`
+    };
+    std::vector<Block> blocks(static_cast<std::size_t>(nblocks));
     ::dvoronoi::detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)
@@ -63,14 +96,16 @@ inline DistanceNeighbors neighbors_from_distances(const DistanceGraph& g, bool c
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             if (tracker.cancelled()) continue;
-            std::vector<Index>& flat = rows[static_cast<std::size_t>(b)];
+            Block& blk = blocks[static_cast<std::size_t>(b)];
             const Index lo = b * block, hi = std::min(n, lo + block);
-            for (Index i = lo; i < hi; ++i) {
+            for (Index pos = lo; pos < hi; ++pos) {
+                const Index i = order[static_cast<std::size_t>(pos)];
                 const auto ii = static_cast<std::size_t>(i);
                 local_table(g, i, t, slot);
                 voronoi_neighbors(t, path, ws);
                 const Index base = g.indptr[ii];
-                for (int v : path.order) flat.push_back(g.indices[static_cast<std::size_t>(base + v)]);
+                blk.first.push_back(static_cast<Index>(blk.flat.size()));
+                for (int v : path.order) blk.flat.push_back(g.indices[static_cast<std::size_t>(base + v)]);
                 out.on_hull[ii] = path.hull ? 1 : 0;
                 out.path_length[ii] = static_cast<Index>(path.order.size());
                 out.detected[ii] = t.m;
@@ -83,8 +118,13 @@ inline DistanceNeighbors neighbors_from_distances(const DistanceGraph& g, bool c
     out.indptr.assign(static_cast<std::size_t>(n) + 1, 0);
     for (Index i = 0; i < n; ++i)
         out.indptr[static_cast<std::size_t>(i) + 1] = out.indptr[static_cast<std::size_t>(i)] + out.path_length[static_cast<std::size_t>(i)];
-    out.indices.reserve(static_cast<std::size_t>(out.indptr.back()));
-    for (const auto& flat : rows) out.indices.insert(out.indices.end(), flat.begin(), flat.end());
+    out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
+    for (Index pos = 0; pos < n; ++pos) {
+        const Index i = order[static_cast<std::size_t>(pos)];
+        const Block& blk = blocks[static_cast<std::size_t>(pos / block)];
+        const Index* src = blk.flat.data() + blk.first[static_cast<std::size_t>(pos % block)];
+        std::copy(src, src + out.path_length[static_cast<std::size_t>(i)], out.indices.begin() + out.indptr[static_cast<std::size_t>(i)]);
+    }
     if (consistency)
         make_consistent(out.indptr, out.indices, out.added);
     else
