@@ -114,8 +114,8 @@ int main(int argc, char** argv) {
     std::vector<Index> sample;
     for (Index i = 0; i < n && sample.size() < 1000; ++i)
         if (g.degree(i) == k) sample.push_back(i);
-    std::vector<dd::LocalTable> tables(sample.size());
     std::vector<int> slot(size_t(n), -1);
+    std::vector<dd::LocalTable> tables(sample.size());
     for (size_t s = 0; s < sample.size(); ++s) dd::local_table(g, sample[s], tables[s], slot);
     dd::NeighborPath path;
     dd::NeighborWorkspace ws;
@@ -157,17 +157,39 @@ int main(int argc, char** argv) {
     }
     size_t agree = 0;
     double best_alt = 1e9;
+    std::vector<std::set<int>> alt(sample.size());
     for (int r = 0; r < 3; ++r) {
         auto t0 = Clock::now();
-        agree = 0;
-        for (size_t s = 0; s < d2s.size(); ++s) agree += mds_delaunay(d2s[s]) == ours[s];
+        for (size_t s = 0; s < d2s.size(); ++s) alt[s] = mds_delaunay(d2s[s]);
         best_alt = std::min(best_alt, secs(t0, Clock::now()) / double(d2s.size()));
+    }
+    for (size_t s = 0; s < d2s.size(); ++s) agree += alt[s] == ours[s];
+    // The exact answer: CGAL's Delaunay triangulation of all n robots (outside the timings).
+    std::vector<std::pair<K::Point_2, int>> all;
+    for (Index i = 0; i < n; ++i) all.push_back({K::Point_2(x[size_t(i)], y[size_t(i)]), int(i)});
+    const Delaunay full(all.begin(), all.end());
+    std::vector<std::set<Index>> truth(static_cast<size_t>(n));
+    for (auto e = full.finite_edges_begin(); e != full.finite_edges_end(); ++e) {
+        const int a = e->first->vertex(full.cw(e->second))->info(), b = e->first->vertex(full.ccw(e->second))->info();
+        truth[size_t(a)].insert(b);
+        truth[size_t(b)].insert(a);
+    }
+    size_t ours_exact = 0, alt_exact = 0;
+    for (size_t s = 0; s < sample.size(); ++s) {
+        const Index base = g.indptr[size_t(sample[s])];
+        std::set<Index> go, ga;
+        for (int v : ours[s]) go.insert(g.indices[size_t(base + v)]);
+        for (int v : alt[s]) ga.insert(g.indices[size_t(base + v)]);
+        ours_exact += go == truth[size_t(sample[s])];
+        alt_exact += ga == truth[size_t(sample[s])];
     }
     std::printf("\n(a/b) one robot with %d detected robots (%zu robots, best of 5):\n", k, sample.size());
     std::printf("  dvoronoi voronoi_neighbors (table given)      %8.2f us\n", 1e6 * best_alg);
     std::printf("  dvoronoi incl. table from the CSR graph        %8.2f us\n", 1e6 * best_tab);
     std::printf("  MDS (Eigen) + CGAL Delaunay                    %8.2f us   ratio %.1fx\n", 1e6 * best_alt, best_alt / best_tab);
     std::printf("  MDS+Delaunay answer equal to ours: %zu / %zu robots\n", agree, sample.size());
+    std::printf("  equal to the exact answer (CGAL Delaunay of all robots): dvoronoi %zu, MDS+Delaunay %zu of %zu\n",
+                ours_exact, alt_exact, sample.size());
 
     // (c) all robots.
     double t1th = 1e9, tth = 1e9;

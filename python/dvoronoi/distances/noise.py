@@ -13,10 +13,12 @@ weight is e_ij = (sigma_ij + sigma_ji) / 2 (Elwin, Freeman & Lynch, Section II-A
   range; the measured distance is d(RSSI). Beyond 33 cm robots do not detect each other. The raw
   experimental data are not published, so the spread ``sigma`` (default 2 dB) is our assumption;
   the quantisation makes distances near the range limit very coarse (the fit flattens out at
-  32.84 cm), as in the experiment.
+  32.84 cm), as in the experiment. The experiment starts at 8.89 cm: robots closer than that measure
+  like robots 8.89 cm apart (the closest data the paper's model can draw from).
 
-Measured values are floored at a tiny positive number (a measured distance of 0 or less would claim
-coinciding robots). Everything draws from ``numpy.random.default_rng(seed)``.
+Gaussian draws that come out negative are reflected (|sigma|): a measured distance of 0 or less would
+claim coinciding robots; an exact 0 becomes the smallest positive double. Everything draws from
+``numpy.random.default_rng(seed)``.
 """
 from __future__ import annotations
 
@@ -24,10 +26,11 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-__all__ = ["detection_pairs", "measure", "rssi_to_distance", "distance_to_rssi", "RSSI_FIT", "RSSI_RANGE_CM"]
+__all__ = ["detection_pairs", "measure", "rssi_to_distance", "distance_to_rssi", "RSSI_FIT", "RSSI_RANGE_CM", "RSSI_MIN_CM"]
 
 RSSI_FIT = (-0.0141, 1.9614, -35.365)  # d(x) = a x^2 + b x + c, x = RSSI in -dBm, d in cm (paper, Fig. 7)
 RSSI_RANGE_CM = 33.0                   # robots farther apart cannot sense or communicate (paper, V-B)
+RSSI_MIN_CM = 8.89                     # closest distance of the experiment (paper, V-A)
 _X_PEAK = -RSSI_FIT[1] / (2.0 * RSSI_FIT[0])  # 69.55 dBm: the fit's maximum, 32.84 cm
 # Smallest RSSI where the fit gives a positive distance (the root of d(x) = 0 below the peak).
 _X_ZERO = (-RSSI_FIT[1] + np.sqrt(RSSI_FIT[1] ** 2 - 4.0 * RSSI_FIT[0] * RSSI_FIT[2])) / (2.0 * RSSI_FIT[0])
@@ -77,7 +80,7 @@ def _one_direction(d: np.ndarray, model: str, sigma: float, rng: np.random.Gener
     if model == "multiplicative":
         return d * (1.0 + rng.normal(0.0, sigma, size=d.shape))
     if model == "rssi":
-        x = distance_to_rssi(d) + rng.normal(0.0, sigma, size=d.shape)
+        x = distance_to_rssi(np.maximum(d, RSSI_MIN_CM)) + rng.normal(0.0, sigma, size=d.shape)
         x = np.clip(np.rint(x), np.ceil(_X_ZERO), np.floor(_X_PEAK))
         return rssi_to_distance(x)
     raise ValueError(f"model must be 'exact', 'additive', 'multiplicative' or 'rssi', got {model!r}")
@@ -106,7 +109,7 @@ def measure(points, radius: Optional[float] = None, model: str = "exact", sigma:
     i, j, d = detection_pairs(points, radius)
     s_ij = _one_direction(d, model, sigma, rng)
     s_ji = _one_direction(d, model, sigma, rng)
-    e = 0.5 * (s_ij + s_ji)
+    e = 0.5 * (np.abs(s_ij) + np.abs(s_ji))
     e = np.maximum(e, np.finfo(float).tiny)
     n = len(np.asarray(points))
     m = sp.coo_matrix((np.concatenate([e, e]), (np.concatenate([i, j]), np.concatenate([j, i]))), shape=(n, n))
