@@ -334,7 +334,8 @@ struct RobotNeighbors {
 /// \throws InputError for an index out of range. O(sum of the detected robots' degrees + |V_i| m).
 inline RobotNeighbors voronoi_neighbors(const DistanceGraph& g, Index i) {
     g.check_index(i);
-    std::vector<int> slot(static_cast<std::size_t>(g.n), -1);
+    thread_local std::vector<int> slot;  // all -1 between calls (local_table restores it)
+    if (slot.size() < static_cast<std::size_t>(g.n)) slot.assign(static_cast<std::size_t>(g.n), -1);
     LocalTable t;
     local_table(g, i, t, slot);
     const NeighborPath p = voronoi_neighbors(t);
