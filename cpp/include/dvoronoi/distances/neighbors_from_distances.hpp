@@ -73,10 +73,24 @@ inline DistanceNeighbors neighbors_from_distances(const DistanceGraph& g, bool c
     out.path_length.assign(static_cast<std::size_t>(n), 0);
     out.detected.assign(static_cast<std::size_t>(n), 0);
     if (n == 0) return out;
-    // Robots are processed in breadth-first order of the detection graph: consecutive robots then
-    // share most detected robots, whose rows stay in cache (input order is often random, and building
-    // the local tables from scattered rows would otherwise cost more than the algorithm itself).
+    // Robots are renumbered in breadth-first order of the detection graph and processed in that
+    // order: consecutive robots then share most detected robots, whose rows (and scratch entries) sit
+    // next to each other in memory. Input order is often random, and building the local tables from
+    // scattered rows would otherwise cost as much as the algorithm. Rows keep their entry order, so
+    // local indices (and tie-breaking) are those of the one-robot call.
     const std::vector<Index> order = detail::breadth_first_order(g);
+    std::vector<Index> rank(static_cast<std::size_t>(n)), ptr(static_cast<std::size_t>(n) + 1, 0), idx(g.indices.size());
+    std::vector<double> val(g.values.size());
+    for (Index p = 0; p < n; ++p) rank[static_cast<std::size_t>(order[static_cast<std::size_t>(p)])] = p;
+    for (Index p = 0; p < n; ++p) {
+        const auto i = static_cast<std::size_t>(order[static_cast<std::size_t>(p)]);
+        auto dst = static_cast<std::size_t>(ptr[static_cast<std::size_t>(p)]);
+        for (Index q = g.indptr[i]; q < g.indptr[i + 1]; ++q, ++dst) {
+            idx[dst] = rank[static_cast<std::size_t>(g.indices[static_cast<std::size_t>(q)])];
+            val[dst] = g.values[static_cast<std::size_t>(q)];
+        }
+        ptr[static_cast<std::size_t>(p) + 1] = static_cast<Index>(dst);
+    }
     const Index block = ::dvoronoi::detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
     const int team = ::dvoronoi::detail::thread_team(threads, nblocks);
@@ -101,7 +115,7 @@ inline DistanceNeighbors neighbors_from_distances(const DistanceGraph& g, bool c
             for (Index pos = lo; pos < hi; ++pos) {
                 const Index i = order[static_cast<std::size_t>(pos)];
                 const auto ii = static_cast<std::size_t>(i);
-                local_table(g, i, t, slot);
+                local_table(ptr.data(), idx.data(), val.data(), pos, g.squared, t, slot);
                 voronoi_neighbors(t, path, ws);
                 const Index base = g.indptr[ii];
                 blk.first.push_back(static_cast<Index>(blk.flat.size()));
