@@ -45,6 +45,23 @@ template <class T>
 T sq(double v, bool squared) {
     return squared ? T::from(v) : T::from(v) * T::from(v);
 }
+
+/// H = 16 Area^2 = 4 a b - (a + b - c)^2 of a triangle with squared sides a, b, c (Heron).
+template <class T>
+T heron(const T& a, const T& b, const T& c) {
+    const T e = a + b - c;
+    return T::from(4.0) * a * b - e * e;
+}
+
+/// The squared sides of two triangles (i, j, k) and (i, j, l) on a common edge: a = d_ij^2,
+/// b_t = d_it^2, c_t = d_jt^2, and their Heron values H_k, H_l.
+template <class T>
+struct EdgePair {
+    T a, bk, ck, bl, cl, hk, hl;
+    EdgePair(double dij, double dik, double djk, double dil, double djl, bool squared)
+        : a(sq<T>(dij, squared)), bk(sq<T>(dik, squared)), ck(sq<T>(djk, squared)), bl(sq<T>(dil, squared)),
+          cl(sq<T>(djl, squared)), hk(heron(a, bk, ck)), hl(heron(a, bl, cl)) {}
+};
 }  // namespace detail
 
 // ------------------------------------------------------------------------------------------ values
@@ -87,9 +104,7 @@ inline double opposite_sides_value(double dij, double dik, double djk, double di
 inline int triangle_sign(double dij, double dit, double djt, bool squared) {
     return filtered_sign([&](auto tag) {
         using T = typename decltype(tag)::type;
-        const T a = detail::sq<T>(dij, squared), b = detail::sq<T>(dit, squared), c = detail::sq<T>(djt, squared);
-        const T e = a + b - c;
-        return T::from(4.0) * a * b - e * e;
+        return detail::heron(detail::sq<T>(dij, squared), detail::sq<T>(dit, squared), detail::sq<T>(djt, squared));
     });
 }
 
@@ -117,13 +132,8 @@ inline int opposite_sides(double dij, double dik, double djk, double dil, double
 /// b_k c_k H_l with b_l c_l H_k (the common factor a dropped). MIN-RADIUS.
 inline int compare_radius(double dij, double dik, double djk, double dil, double djl, bool squared) {
     return filtered_sign([&](auto tag) {
-        using T = typename decltype(tag)::type;
-        using detail::sq;
-        const T a = sq<T>(dij, squared), bk = sq<T>(dik, squared), ck = sq<T>(djk, squared);
-        const T bl = sq<T>(dil, squared), cl = sq<T>(djl, squared);
-        const T ek = a + bk - ck, el = a + bl - cl;
-        const T hk = T::from(4.0) * a * bk - ek * ek, hl = T::from(4.0) * a * bl - el * el;
-        return bk * ck * hl - bl * cl * hk;
+        const detail::EdgePair<typename decltype(tag)::type> p(dij, dik, djk, dil, djl, squared);
+        return p.bk * p.ck * p.hl - p.bl * p.cl * p.hk;
     });
 }
 
@@ -135,14 +145,9 @@ inline int compare_signed_radius(double dij, double dik, double djk, double dil,
     if (sk != sl) return sk < sl ? -1 : 1;
     if (sk == 0) return 0;  // both right angles: both circumcenters on the line, radius d_ij / 2
     const int mag = filtered_sign([&](auto tag) {  // sign(s_k^2 H_l - s_l^2 H_k)
-        using T = typename decltype(tag)::type;
-        using detail::sq;
-        const T a = sq<T>(dij, squared), bk = sq<T>(dik, squared), ck = sq<T>(djk, squared);
-        const T bl = sq<T>(dil, squared), cl = sq<T>(djl, squared);
-        const T ek = a + bk - ck, el = a + bl - cl;
-        const T hk = T::from(4.0) * a * bk - ek * ek, hl = T::from(4.0) * a * bl - el * el;
-        const T s_k = bk + ck - a, s_l = bl + cl - a;
-        return s_k * s_k * hl - s_l * s_l * hk;
+        const detail::EdgePair<typename decltype(tag)::type> p(dij, dik, djk, dil, djl, squared);
+        const auto s_k = p.bk + p.ck - p.a, s_l = p.bl + p.cl - p.a;
+        return s_k * s_k * p.hl - s_l * s_l * p.hk;
     });
     return sk > 0 ? mag : -mag;
 }

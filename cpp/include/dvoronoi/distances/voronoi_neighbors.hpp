@@ -259,9 +259,8 @@ private:
         using E = ::dvoronoi::detail::ErrDouble;
         const E a = dist::detail::sq<E>(ci(j), t_.squared), b = dist::detail::sq<E>(ci(l), t_.squared);
         const E c = dist::detail::sq<E>(t_.d(j, l), t_.squared);
-        const E e = a + b - c;
         SignedKey k;
-        k.h = E::from(4.0) * a * b - e * e;
+        k.h = dist::detail::heron(a, b, c);
         k.s = b + c - a;
         int hs = k.h.sign();
         if (hs == 2) hs = triangle_sign(ci(j), ci(l), t_.d(j, l), t_.squared);
