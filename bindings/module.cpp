@@ -8,6 +8,7 @@ void bind_core(py::module_& m);
 void bind_cells(py::module_& m);
 void bind_voronoi(py::module_& m);
 void bind_gvd(py::module_& m);
+void bind_distances(py::module_& m);
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "dvoronoi compiled core (use the `dvoronoi` package, which re-exports it).";
@@ -15,4 +16,5 @@ PYBIND11_MODULE(_core, m) {
     bind_cells(m);
     bind_voronoi(m);
     bind_gvd(m);
+    bind_distances(m);
 }

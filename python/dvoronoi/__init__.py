@@ -18,6 +18,8 @@ from ._core import ClippedCell, VoronoiCell, VoronoiEdge
 from ._voronoi import VoronoiPartition, voronoi_cell, voronoi_cells
 from . import datasets
 from .gvd import GridVoronoi, grid_voronoi, obstacles_from_occupancy_grid
+from . import distances
+from .distances import DistanceNeighbors, neighbors_from_distances
 
 __all__ = [
     "limited_cell",
@@ -36,5 +38,8 @@ __all__ = [
     "grid_voronoi",
     "GridVoronoi",
     "obstacles_from_occupancy_grid",
+    "distances",
+    "neighbors_from_distances",
+    "DistanceNeighbors",
     "__version__",
 ]

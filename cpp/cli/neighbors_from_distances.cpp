@@ -1,0 +1,102 @@
+// `dvoronoi neighbors-from-distances DISTFILE`: every robot's Voronoi neighbours (Delaunay-path order)
+// and hull flag from measured inter-robot distances only (Elwin, Freeman & Lynch), then the
+// consistency step.
+#include "common.hpp"
+
+#include "dvoronoi/distances/neighbors_from_distances.hpp"
+#include "dvoronoi/io/distance_file.hpp"
+
+#include <iostream>
+#include <memory>
+#include <string>
+
+namespace dvoronoi::cli {
+namespace {
+
+struct DistOptions {
+    std::string file;
+    std::string output;
+    long long n = -1;
+    bool squared = false;
+    bool average = false;
+    bool no_consistency = false;
+    int threads = 0;
+    bool quiet = false;
+};
+
+void write(std::ostream& os, bool csv, const dist::DistanceNeighbors& r, bool squared) {
+    if (csv) {
+        io::write_csv(os, r);
+    } else {
+        io::write_json(os, r, squared);
+        os << '\n';
+    }
+}
+
+int run_distances(const DistOptions& o) {
+    const bool to_stdout = o.output.empty() || o.output == "-";
+    bool csv = false;
+    if (!to_stdout) {
+        const Format f = output_format(o.output, "-o/--output");
+        if (f == Format::GeoJson)
+            throw UsageError("-o/--output: robots known only by distances have no coordinates, so no GeoJSON; use .json or .csv");
+        csv = f == Format::Csv;
+    }
+    const io::DistanceFile file = io::read_distance_file(o.file);
+    if (o.n >= 0)
+        for (std::size_t k = 0; k < file.rows.size(); ++k)
+            if (file.rows[k] >= o.n || file.cols[k] >= o.n)
+                throw InputError(file.where(k) + ": robot index " + std::to_string(std::max(file.rows[k], file.cols[k])) +
+                                 " is not below --n " + std::to_string(o.n));
+    const dist::DistanceGraph g = io::distance_graph(file, static_cast<Index>(o.n), o.squared, o.average);
+    std::unique_ptr<io::AtomicFile> out;
+    if (!to_stdout) out = open_output(o.output, "-o/--output");
+
+    Progress progress("neighbors", g.n, o.quiet);
+    dist::DistanceNeighbors result;
+    try {
+        result = dist::neighbors_from_distances(g, !o.no_consistency, o.threads,
+                                                [&progress](Index done, Index total) { progress(done, total); });
+    } catch (...) {
+        progress.abort();
+        throw;
+    }
+    progress.finish();
+    if (out) {
+        write(out->stream(), csv, result, g.squared);
+        out->commit();
+    } else {
+        write(std::cout, false, result, g.squared);
+        std::cout.flush();
+        if (!std::cout) {
+            std::cerr << "dvoronoi: error: writing to stdout failed\n";
+            return 1;
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+Command add_neighbors_from_distances(CLI::App& parent) {
+    auto o = std::make_shared<DistOptions>();
+    CLI::App* sub = parent.add_subcommand(
+        "neighbors-from-distances",
+        "every robot's Voronoi neighbours (Delaunay-path order) and hull flag from measured inter-robot "
+        "distances only (Elwin, Freeman & Lynch), then the consistency step");
+    sub->add_option("DISTFILE", o->file,
+                    "distance file: 'i j d' per line (0-based robot indices, measured distance d > 0), "
+                    "whitespace- or comma-separated, '#' comments, optional header; a pair once or in both "
+                    "directions; undetected pairs left out; '-' reads stdin")
+        ->required();
+    sub->add_option("-o,--output", o->output, "output file: .json or .csv (robot,on_hull,detected,neighbors); default or '-': JSON on stdout");
+    sub->add_option("-n,--n", o->n, "number of robots (default: largest index + 1)")->check(CLI::NonNegativeNumber);
+    sub->add_flag("--squared", o->squared, "the values are squared distances (exact decisions for exact squared distances)");
+    sub->add_flag("--average", o->average, "average the two directions of a pair, e_ij = (s_ij + s_ji) / 2 (default: they must agree)");
+    sub->add_flag("--no-consistency", o->no_consistency, "skip the consistency step (the relation may then be asymmetric)");
+    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
+    sub->add_flag("-q,--quiet", o->quiet, "no progress counter on stderr");
+    return {sub, [o] { return run_distances(*o); }};
+}
+
+}  // namespace dvoronoi::cli
