@@ -177,7 +177,7 @@ void bind_coverage(py::module_& m) {
                 q = dvoronoi::coverage_quadrature(s.swarm(), s.environment(), order);
             }
             return quadrature_tuple(q);
-        }, py::arg("order") = 6, "(x, y, w, ptr): quadrature nodes of every clipped cell.")
+        }, py::arg("order") = 8, "(x, y, w, ptr): quadrature nodes of every clipped cell.")
         .def("cells", [](const LloydStepper& s) {
             LimitedPartition p;
             {
@@ -230,7 +230,7 @@ void bind_coverage(py::module_& m) {
               }
               return quadrature_tuple(q);
           },
-          py::arg("points"), py::arg("radius"), py::arg("order") = 6, py::arg("bounds") = py::none(),
+          py::arg("points"), py::arg("radius"), py::arg("order") = 8, py::arg("bounds") = py::none(),
           py::arg("ids") = py::none(), py::arg("owned") = -1, py::arg("threads") = 0);
     m.def("coverage_cells",
           [](py::handle points, double radius, const py::object& bounds, const py::object& ids, Index owned, int threads) {
@@ -253,7 +253,7 @@ void bind_coverage(py::module_& m) {
               if (!env) throw py::value_error("bounds must not be None");
               return quadrature_tuple(dvoronoi::environment_quadrature(*env, order));
           },
-          py::arg("bounds"), py::arg("order") = 6);
+          py::arg("bounds"), py::arg("order") = 8);
     m.def("lloyd_move",
           [](py::handle points, py::handle targets, double gain, const py::object& bounds) {
               const PointsArg p = points_arg(points, "points");

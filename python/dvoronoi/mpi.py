@@ -77,7 +77,7 @@ class DistributedLloyd:
     """
 
     def __init__(self, comm: Any, ids: Any, points: Any, radius: float, gain: float = 1.0,
-                 bounds: BoundsArg = None, density: Any = None, order: int = 6,
+                 bounds: BoundsArg = None, density: Any = None, order: int = 8,
                  x_range: Optional[Tuple[float, float]] = None, threads: int = 0) -> None:
         MPI = _mpi()
         self.comm = comm
@@ -249,7 +249,7 @@ def _check_on_root(comm: Any, root: int, check) -> None:
 
 
 def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bounds: BoundsArg = None,
-          density: Any = None, order: int = 6, record_every: int = 1, comm: Any = None, root: int = 0,
+          density: Any = None, order: int = 8, record_every: int = 1, comm: Any = None, root: int = 0,
           threads: int = 0) -> Optional[Dict[str, Any]]:
     """Lloyd's algorithm on limited cells across the ranks of `comm` (collective).
 

@@ -9,9 +9,9 @@
 //
 // Quadrature accuracy with n nodes per direction (n^2 per triangle, per sector of at most pi/4;
 // arcs are split into such sectors): exact for polynomial densities of total degree <= 2n - 2 on
-// triangles; on sectors exact in the radius for degree <= 2n - 2 and spectrally accurate in the angle
-// (tests/python/test_coverage.py checks relative errors below 1e-10 at n = 6 for polynomials and
-// Gaussians of width >= R/2 against adaptive integration).
+// triangles; on sectors exact in the radius for degree <= 2n - 2 and spectrally accurate in the angle.
+// Measured (tests/python/test_coverage.py, against an independent integration): a Gaussian of width
+// R/2 to 4e-8 at n = 6, 1e-9 at n = 8 (the default), 1e-12 at n = 10.
 #pragma once
 
 #include "dvoronoi/core/cell.hpp"
@@ -67,7 +67,7 @@ inline Moments uniform_moments(const std::vector<Piece>& local, double R) {
 struct GaussRule {
     std::vector<double> x, w;
 
-    explicit GaussRule(int n = 6) {
+    explicit GaussRule(int n = 8) {
         if (n < 1 || n > 64)
             throw InputError("quadrature order must be in [1, 64], got " + std::to_string(n));
         x.resize(static_cast<std::size_t>(n));
