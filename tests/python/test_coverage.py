@@ -378,4 +378,4 @@ def test_empty_and_single_agent():
     xs = one.trajectory[:, 0, 0]
     assert np.all(np.diff(xs) > 0) and 0.099 < xs[-1] <= 0.1
     assert np.all(one.trajectory[:, 0, 1] == 0.5)
-    assert one.areas[0] == pytest.approx(math.pi * 0.01, rel=1e-4)
+    assert math.pi * 0.01 * (1 - 1e-3) < one.areas[0] < math.pi * 0.01
