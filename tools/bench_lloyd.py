@@ -93,7 +93,8 @@ def mpi_run(ranks: int, per_rank: int, R: float, steps: int):
         cmd.append("--allow-run-as-root")
     cmd += [sys.executable, "-m", "dvoronoi.mpi", "--random", str(per_rank), "--per-rank", "-r", repr(R),
             "--steps", str(steps), "--threads", "1", "--seed", "1"]
-    env = dict(os.environ, OMP_NUM_THREADS="1")
+    # Ranks yield the core while they wait in a collective (the machine may be shared).
+    env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_mpi_yield_when_idle="1")
     proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed: {proc.stderr[-2000:]}")

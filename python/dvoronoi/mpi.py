@@ -159,13 +159,32 @@ class DistributedLloyd:
         hid, hpts = self.halo()
         return np.concatenate([self.ids, hid]), np.vstack([self.points, hpts])
 
+    def _collective(self, fn):
+        """fn() on every rank; if it fails on any rank, every rank raises (no rank is left waiting in
+        the next collective): the failing rank its own error, the others a ValueError naming it."""
+        try:
+            result, error = fn(), None
+        except (ValueError, TypeError) as e:
+            result, error = None, e
+        errors = self.comm.allgather(None if error is None else f"{type(error).__name__}: {error}")
+        if error is not None:
+            raise error
+        for r, e in enumerate(errors):
+            if e is not None:
+                raise ValueError(f"rank {r} failed: {e}")
+        return result
+
     def _moments(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         ids, pts = self._local()
         owned = len(self.ids)
-        if self.density is None:
-            return _core.coverage_moments(pts, self.radius, self.bounds, ids, owned, self.threads)
-        q = _core.coverage_quadrature(pts, self.radius, self.order, self.bounds, ids, owned, self.threads)
-        return density_moments(self.points, q, self.density)
+
+        def compute():
+            if self.density is None:
+                return _core.coverage_moments(pts, self.radius, self.bounds, ids, owned, self.threads)
+            q = _core.coverage_quadrature(pts, self.radius, self.order, self.bounds, ids, owned, self.threads)
+            return density_moments(self.points, q, self.density)
+
+        return self._collective(compute)
 
     def _total(self) -> float:
         """Φ(Q): the environment's mass under the density (0 without bounds)."""
@@ -203,7 +222,8 @@ class DistributedLloyd:
     def cells(self) -> Dict[str, np.ndarray]:
         """The owned agents' clipped cells (flat arrays, neighbours as global ids)."""
         ids, pts = self._local()
-        return _core.coverage_cells(pts, self.radius, self.bounds, ids, len(self.ids), self.threads)
+        return self._collective(lambda: _core.coverage_cells(pts, self.radius, self.bounds, ids,
+                                                             len(self.ids), self.threads))
 
     def gather(self, root: int = 0) -> Optional[np.ndarray]:
         """All positions in global-id order on `root` (None elsewhere); ids must be 0..n-1."""

@@ -53,7 +53,16 @@ def main(out):
     except ValueError as e:
         if comm.rank == 0:
             saved["error"] = np.array(str(e))
+    # Coinciding agents (found by whichever rank owns them) stop every rank with an error.
+    dup = np.random.default_rng(9).uniform(0, 1, (300, 2))
+    dup[250] = dup[17]
+    try:
+        dm.lloyd(dup if comm.rank == 0 else None, 0.05, steps=2, bounds=(0, 0, 1, 1))
+    except ValueError as e:
+        saved[f"dup_error_{comm.rank}"] = np.array(str(e))
+    counts = comm.gather(sum(k.startswith("dup_error") for k in saved), root=0)
     if comm.rank == 0:
+        saved["dup_error_ranks"] = np.array(sum(counts))
         np.savez(out, **saved)
 
 

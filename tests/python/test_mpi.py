@@ -66,6 +66,8 @@ def test_mpi_equals_single_process(ranks, reference, tmp_path):
         if ranks > 1:
             assert float(got[name + "/halo_bytes"]) > 0  # ranks really exchanged halos
     assert "points[1] lies outside bounds" in str(got["error"])
+    assert int(got["dup_error_ranks"]) == ranks  # every rank raised, none hung
+    assert "points[17] and points[250] coincide" in str(got["dup_error_0"])
 
 
 def test_mpi_entry_point(tmp_path):
