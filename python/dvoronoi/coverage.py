@@ -39,7 +39,7 @@ from typing import Any, Callable, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _core
-from ._io import PathLike, atomic_write, atomic_write_text
+from ._io import PathLike
 from ._result import CellResult
 
 __all__ = ["lloyd", "step", "LloydStepper", "LloydResult", "CoverageCells", "GridDensity",
@@ -513,8 +513,6 @@ def animate(result: LloydResult, path: Optional[PathLike] = None, fps: int = 10,
     `path` ending in ``.gif`` is written with Pillow, ``.mp4`` with ffmpeg (must be installed);
     the file appears only when complete. Returns the ``matplotlib.animation.FuncAnimation``.
     """
-    import matplotlib
-
     import matplotlib.pyplot as plt
     from matplotlib import animation
 
