@@ -82,6 +82,17 @@ py::dict cells_dict(const LimitedPartition& p) {
     return d;
 }
 
+/// f(swarm, environment) on a Swarm of `points` with `ids`, the GIL released while it runs.
+template <class F>
+auto on_swarm(py::handle points, double radius, const py::object& bounds, const py::object& ids, F&& f) {
+    const PointsArg p = points_arg(points, "points");
+    const auto env = bounds_arg(bounds);
+    std::vector<Index> id = ids_arg(ids, p.rows);
+    py::gil_scoped_release release;
+    const Swarm swarm(p.ref(), radius, std::move(id));
+    return f(swarm, env ? &*env : nullptr);
+}
+
 int threads_arg(int threads) {
     if (threads < 0) throw py::value_error("threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
     return threads;
@@ -200,16 +211,10 @@ void bind_coverage(py::module_& m) {
     // Building blocks of one step on an arbitrary set of agents (an MPI rank's owned + halo agents).
     m.def("coverage_moments",
           [](py::handle points, double radius, const py::object& bounds, const py::object& ids, Index owned, int threads) {
-              const PointsArg p = points_arg(points, "points");
-              const auto env = bounds_arg(bounds);
-              std::vector<Index> id = ids_arg(ids, p.rows);
-              CoverageMoments mo;
-              {
-                  py::gil_scoped_release release;
-                  const Swarm swarm(p.ref(), radius, std::move(id));
-                  mo = dvoronoi::coverage_moments(swarm, env ? &*env : nullptr, owned, threads_arg(threads));
-              }
-              return moments_tuple(mo);
+              const int t = threads_arg(threads);
+              return moments_tuple(on_swarm(points, radius, bounds, ids, [&](const Swarm& s, const ConvexPolygon* env) {
+                  return dvoronoi::coverage_moments(s, env, owned, t);
+              }));
           },
           py::arg("points"), py::arg("radius"), py::arg("bounds") = py::none(), py::arg("ids") = py::none(),
           py::arg("owned") = -1, py::arg("threads") = 0,
@@ -219,31 +224,19 @@ void bind_coverage(py::module_& m) {
     m.def("coverage_quadrature",
           [](py::handle points, double radius, int order, const py::object& bounds, const py::object& ids, Index owned,
              int threads) {
-              const PointsArg p = points_arg(points, "points");
-              const auto env = bounds_arg(bounds);
-              std::vector<Index> id = ids_arg(ids, p.rows);
-              CoverageQuadrature q;
-              {
-                  py::gil_scoped_release release;
-                  const Swarm swarm(p.ref(), radius, std::move(id));
-                  q = dvoronoi::coverage_quadrature(swarm, env ? &*env : nullptr, order, owned, threads_arg(threads));
-              }
-              return quadrature_tuple(q);
+              const int t = threads_arg(threads);
+              return quadrature_tuple(on_swarm(points, radius, bounds, ids, [&](const Swarm& s, const ConvexPolygon* env) {
+                  return dvoronoi::coverage_quadrature(s, env, order, owned, t);
+              }));
           },
           py::arg("points"), py::arg("radius"), py::arg("order") = 8, py::arg("bounds") = py::none(),
           py::arg("ids") = py::none(), py::arg("owned") = -1, py::arg("threads") = 0);
     m.def("coverage_cells",
           [](py::handle points, double radius, const py::object& bounds, const py::object& ids, Index owned, int threads) {
-              const PointsArg p = points_arg(points, "points");
-              const auto env = bounds_arg(bounds);
-              std::vector<Index> id = ids_arg(ids, p.rows);
-              LimitedPartition part;
-              {
-                  py::gil_scoped_release release;
-                  const Swarm swarm(p.ref(), radius, std::move(id));
-                  part = dvoronoi::coverage_cells(swarm, env ? &*env : nullptr, owned, threads_arg(threads));
-              }
-              return cells_dict(part);
+              const int t = threads_arg(threads);
+              return cells_dict(on_swarm(points, radius, bounds, ids, [&](const Swarm& s, const ConvexPolygon* env) {
+                  return dvoronoi::coverage_cells(s, env, owned, t);
+              }));
           },
           py::arg("points"), py::arg("radius"), py::arg("bounds") = py::none(), py::arg("ids") = py::none(),
           py::arg("owned") = -1, py::arg("threads") = 0);
