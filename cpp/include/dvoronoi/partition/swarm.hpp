@@ -73,7 +73,12 @@ public:
         for (Index i = 0; i < n; ++i) {
             const auto ii = static_cast<std::size_t>(i);
             const Key k = key_at(pts_(i, 0), pts_(i, 1));
-            if (k.cx == key_[ii].cx && k.cy == key_[ii].cy) continue;
+            if (k.cx == key_[ii].cx && k.cy == key_[ii].cy) {
+                Entry& e = bucket_for_insert(k)[static_cast<std::size_t>(slot_[ii])];
+                e.x = pts_(i, 0);
+                e.y = pts_(i, 1);
+                continue;
+            }
             remove(i);
             key_[ii] = k;
             insert(i);
@@ -91,14 +96,15 @@ public:
         const double r2 = 4.0 * radius_ * radius_, r2hi = r2 * (1.0 + 1e-9), r2lo = r2 * (1.0 - 1e-9);
         for (std::int64_t cx = k.cx - 1; cx <= k.cx + 1; ++cx)
             for (std::int64_t cy = k.cy - 1; cy <= k.cy + 1; ++cy) {
-                const std::vector<Index>* b = bucket(cx, cy);
+                const std::vector<Entry>* b = bucket(cx, cy);
                 if (!b) continue;
-                for (const Index j : *b) {
-                    if (j == i) continue;
-                    const double dx = pts_(j, 0) - c.x(), dy = pts_(j, 1) - c.y();
+                for (const Entry& e : *b) {
+                    const double dx = e.x - c.x(), dy = e.y - c.y();
                     const double d2 = dx * dx + dy * dy;
                     if (d2 > r2hi) continue;
-                    const Vec2 p = point(j);
+                    const Index j = e.i;
+                    if (j == i) continue;
+                    const Vec2 p(e.x, e.y);
                     if (p == c) {
                         if (same) same->push_back(ids_[static_cast<std::size_t>(j)]);
                         continue;
@@ -115,6 +121,11 @@ private:
     struct Key {
         std::int64_t cx = 0, cy = 0;
     };
+    /// A bucket entry keeps the agent's position, so a query scans contiguous memory.
+    struct Entry {
+        double x, y;
+        Index i;
+    };
 
     Key key_at(double x, double y) const {
         return {static_cast<std::int64_t>(std::floor((x - x0_) / cell_)),
@@ -122,7 +133,7 @@ private:
     }
     bool inside(const Key& k) const { return k.cx >= 0 && k.cy >= 0 && k.cx < nx_ && k.cy < ny_; }
 
-    const std::vector<Index>* bucket(std::int64_t cx, std::int64_t cy) const {
+    const std::vector<Entry>* bucket(std::int64_t cx, std::int64_t cy) const {
         if (cx < 0 || cy < 0 || cx >= nx_ || cy >= ny_) return nullptr;
         if (dense_) return &buckets_[static_cast<std::size_t>(cx * ny_ + cy)];
         const auto it = sparse_.find(pack(cx, cy));
@@ -131,7 +142,7 @@ private:
     static std::uint64_t pack(std::int64_t cx, std::int64_t cy) {
         return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy);
     }
-    std::vector<Index>& bucket_for_insert(const Key& k) {
+    std::vector<Entry>& bucket_for_insert(const Key& k) {
         if (dense_) return buckets_[static_cast<std::size_t>(k.cx * ny_ + k.cy)];
         const auto [it, fresh] = sparse_.try_emplace(pack(k.cx, k.cy), buckets_.size());
         if (fresh) buckets_.emplace_back();
@@ -139,16 +150,16 @@ private:
     }
     void insert(Index i) {
         const auto ii = static_cast<std::size_t>(i);
-        std::vector<Index>& b = bucket_for_insert(key_[ii]);
+        std::vector<Entry>& b = bucket_for_insert(key_[ii]);
         slot_[ii] = static_cast<Index>(b.size());
-        b.push_back(i);
+        b.push_back({pts_(i, 0), pts_(i, 1), i});
     }
     void remove(Index i) {
         const auto ii = static_cast<std::size_t>(i);
-        std::vector<Index>& b = bucket_for_insert(key_[ii]);
+        std::vector<Entry>& b = bucket_for_insert(key_[ii]);
         const auto s = static_cast<std::size_t>(slot_[ii]);
         b[s] = b.back();
-        slot_[static_cast<std::size_t>(b[s])] = static_cast<Index>(s);
+        slot_[static_cast<std::size_t>(b[s].i)] = static_cast<Index>(s);
         b.pop_back();
     }
 
@@ -194,7 +205,7 @@ private:
     bool dense_ = true;
     std::vector<Key> key_;
     std::vector<Index> slot_;
-    std::vector<std::vector<Index>> buckets_;
+    std::vector<std::vector<Entry>> buckets_;
     std::unordered_map<std::uint64_t, std::size_t> sparse_;
     Index rebucketed_ = 0, rebuilds_ = 0;
 };
