@@ -46,6 +46,13 @@ def main(out):
                       "indices", "areas", "centroids"):
                 saved[name + "/" + k] = getattr(res["cells"], k)
             saved[name + "/halo_bytes"] = np.array(res["stats"]["halo_bytes_per_step"])
+    # One partition (no steps) across ranks: dv.mpi.cells.
+    pts = np.random.default_rng(5).uniform(0, 3, (1500, 2))
+    cells = dm.cells(pts if comm.rank == 0 else None, 0.08, threads=1)
+    if comm.rank == 0:
+        for k in ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "indptr",
+                  "indices", "areas", "centroids"):
+            saved["cells/" + k] = getattr(cells, k)
     # Bad input on root is raised on every rank (no rank hangs).
     try:
         dm.lloyd(np.array([[0.5, 0.5], [2.0, 0.5]]) if comm.rank == 0 else None, 0.1, steps=1,

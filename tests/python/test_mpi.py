@@ -65,6 +65,14 @@ def test_mpi_equals_single_process(ranks, reference, tmp_path):
         np.testing.assert_allclose(got[name + "/cost"], run.cost, rtol=1e-12)
         if ranks > 1:
             assert float(got[name + "/halo_bytes"]) > 0  # ranks really exchanged halos
+    pts = np.random.default_rng(5).uniform(0, 3, (1500, 2))
+    single = dv.coverage.LloydStepper(pts, 0.08).cells()
+    for k in FIELDS:
+        assert np.array_equal(got["cells/" + k], getattr(single, k)), k
+    part = dv.limited_cells(pts, 0.08)  # unclipped: the limited partition itself
+    assert np.array_equal(got["cells/indptr"], part.indptr)
+    assert np.array_equal(got["cells/indices"], part.indices)
+    np.testing.assert_allclose(got["cells/areas"], part.areas, rtol=1e-12)
     assert "points[1] lies outside bounds" in str(got["error"])
     assert int(got["dup_error_ranks"]) == ranks  # every rank raised, none hung
     assert "points[17] and points[250] coincide" in str(got["dup_error_0"])
