@@ -95,6 +95,8 @@ def mpi_run(ranks: int, per_rank: int, R: float, steps: int):
             "--steps", str(steps), "--threads", "1", "--seed", "1"]
     # Ranks yield the core while they wait in a collective (the machine may be shared).
     env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_mpi_yield_when_idle="1")
+    if not (shutil.which("ssh") or shutil.which("rsh")):
+        env.setdefault("OMPI_MCA_plm_rsh_agent", "sh")  # Open MPI 4 wants one even for local ranks
     proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed: {proc.stderr[-2000:]}")

@@ -27,6 +27,10 @@ FIELDS = ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "in
 
 def mpirun(k: int, *args: str, timeout: float = 240) -> subprocess.CompletedProcess:
     env = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
+    if not (shutil.which("ssh") or shutil.which("rsh")):
+        # Open MPI 4 refuses to start without an rsh agent even for local ranks (a container with
+        # no ssh client): any existing program will do, it is never called for a local launch.
+        env.setdefault("OMPI_MCA_plm_rsh_agent", "sh")
     cmd = [MPIRUN, "-n", str(k), "--oversubscribe"]
     if hasattr(os, "geteuid") and os.geteuid() == 0:
         cmd.append("--allow-run-as-root")
