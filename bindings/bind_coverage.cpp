@@ -2,7 +2,6 @@
 // and the per-step building blocks the MPI driver calls on each rank's owned + halo agents.
 // `dvoronoi.coverage` and `dvoronoi.mpi` wrap these; heavy calls release the GIL.
 #include "arrays.hpp"
-#include "progress.hpp"
 
 #include "dvoronoi/coverage/lloyd.hpp"
 
@@ -150,8 +149,6 @@ void bind_coverage(py::module_& m) {
                  py::array_t<double> cost(static_cast<py::ssize_t>(steps) + 1);
                  double* tp = traj.mutable_data();
                  double* cp = cost.mutable_data();
-                 PyProgress report(std::move(progress));
-                 const dvoronoi::ProgressFn fn = report.fn();
                  {
                      py::gil_scoped_release release;
                      Index frame = 0;
@@ -162,11 +159,14 @@ void bind_coverage(py::module_& m) {
                      for (int t = 0; t < steps; ++t) {
                          cp[t] = s.step();
                          if ((t + 1) % record_every == 0 || t + 1 == steps) record();
-                         if (fn) fn(t + 1, steps);
+                         // Between steps (the GIL is taken for a moment): Ctrl-C and the progress
+                         // callback; an exception from either stops the run here.
+                         py::gil_scoped_acquire gil;
+                         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+                         if (!progress.is_none()) progress(t + 1, steps);
                      }
                      cp[steps] = s.cost();
                  }
-                 report.rethrow();
                  return py::make_tuple(traj, cost);
              },
              py::arg("steps"), py::arg("record_every") = 1, py::arg("progress") = py::none(),

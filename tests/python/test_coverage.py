@@ -282,10 +282,20 @@ def test_user_loop_equals_lloyd_and_step():
     assert np.array_equal(s.moments()[0], dv.coverage.LloydStepper(pts, 0.08, bounds=(0, 0, 1, 1)).moments()[0])
 
 
-def test_progress_callback_sees_every_step():
+def test_progress_callback_sees_every_step_and_can_stop_the_run():
     seen = []
     dv.coverage.lloyd(swarm(13, 30), 0.1, steps=7, progress=lambda d, t: seen.append((d, t)))
     assert seen == [(k, 7) for k in range(1, 8)]
+
+    def stop(done, total):
+        seen.append(done)
+        if done == 3:
+            raise KeyboardInterrupt
+
+    seen.clear()
+    with pytest.raises(KeyboardInterrupt):
+        dv.coverage.lloyd(swarm(13, 30), 0.1, steps=1000, progress=stop)
+    assert seen == [1, 2, 3]
 
 
 def test_result_surface_json_geojson_and_plot(tmp_path):
