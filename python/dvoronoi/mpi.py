@@ -112,6 +112,17 @@ class DistributedLloyd:
         self.bytes_halo = 0        # sent by this rank in the last step
         self.bytes_migration = 0
         self._phi_total: Optional[float] = None
+
+        def check():
+            bad = np.flatnonzero(~np.isfinite(points).all(axis=1))
+            if len(bad):
+                raise ValueError(f"points[{ids[bad[0]]}] is not finite (NaN or inf)")
+            if self.bounds is not None and len(points):
+                out = np.flatnonzero(~_core.bounds_contains(self.bounds, points))
+                if len(out):
+                    raise ValueError(f"points[{ids[out[0]]}] lies outside bounds")
+
+        self._collective(check)
         self._migrate(ids, points)
 
     # -- communication
