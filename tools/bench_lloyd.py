@@ -160,6 +160,13 @@ def main(argv=None) -> int:
     per_step = total / max(args.steps, 1)
     assert np.all(np.diff(run.cost) <= 1e-12 * abs(run.cost[0])), "cost increased"
 
+    # the same on one thread (the baselines are single-threaded)
+    one_steps = max(1, args.steps // 10)
+    t0 = time.perf_counter()
+    dv.coverage.lloyd(pts, R, steps=one_steps, bounds=(0, 0, 1, 1), record_every=one_steps, threads=1,
+                      progress=False)
+    per_step_1 = (time.perf_counter() - t0) / one_steps
+
     # ---- 2. the baselines, fewer steps from the same start; first step checked against dvoronoi
     first = dv.coverage.LloydStepper(pts, R, bounds=(0, 0, 1, 1)).moments()[1]
     vec_t, _ = baseline_run(shapely_step_vectorized, pts, R, args.vec_steps, box, args.quad_segs)
@@ -171,14 +178,17 @@ def main(argv=None) -> int:
 
     out(f"### Lloyd steps, n = {n:,}")
     out()
-    out("| method | steps timed | s / step | total for 1e3 steps (s) | dvoronoi faster |")
+    threads = args.threads or os.cpu_count()
+    out(f"| method | steps timed | s / step | total for 1e3 steps (s) | dvoronoi ({threads} threads / 1 thread) faster |")
     out("|---|---:|---:|---:|---:|")
-    out(f"| dvoronoi `coverage.lloyd` (exact arcs, grid kept) | {args.steps} | {per_step:.4f} | "
-        f"{per_step * 1000:.1f} | 1 |")
-    out(f"| scipy Voronoi + shapely 2 vectorised (64-gon disks) | {args.vec_steps} | {vec_t:.4f} | "
-        f"{vec_t * 1000:.0f} | {vec_t / per_step:.1f}x |")
-    out(f"| scipy Voronoi + shapely per-agent loop (64-gon disks) | {args.loop_steps} | {loop_t:.4f} | "
-        f"{loop_t * 1000:.0f} | {loop_t / per_step:.1f}x |")
+    out(f"| dvoronoi `coverage.lloyd`, {threads} threads (exact arcs, grid kept) | {args.steps} | "
+        f"{per_step:.4f} | {per_step * 1000:.1f} | 1 |")
+    out(f"| dvoronoi `coverage.lloyd`, 1 thread | {one_steps} | {per_step_1:.4f} | "
+        f"{per_step_1 * 1000:.1f} | — |")
+    out(f"| scipy Voronoi + shapely 2 vectorised (64-gon disks), 1 thread | {args.vec_steps} | {vec_t:.4f} | "
+        f"{vec_t * 1000:.0f} | {vec_t / per_step:.0f}x / {vec_t / per_step_1:.0f}x |")
+    out(f"| scipy Voronoi + shapely per-agent loop (64-gon disks), 1 thread | {args.loop_steps} | "
+        f"{loop_t:.4f} | {loop_t * 1000:.0f} | {loop_t / per_step:.0f}x / {loop_t / per_step_1:.0f}x |")
     out()
     out(f"- the full dvoronoi run: {total:.1f} s for {args.steps} steps (cost {run.cost[0]:.6g} -> "
         f"{run.cost[-1]:.6g}, never increasing)")
