@@ -145,7 +145,9 @@ inline CoverageMoments coverage_moments(const Swarm& swarm, const ConvexPolygon*
 
 /// The clipped cells W_i of agents 0..owned-1 as a LimitedPartition (pieces in the caller's frame;
 /// walls have neighbor kWall and span 0; edge neighbours and the CSR relation use the swarm's ids;
-/// areas, centroids and perimeters are those of W_i).
+/// areas, centroids and perimeters are those of W_i). Its flat arrays and io::write_svg handle walls;
+/// LimitedPartition::cell(i) and the JSON/GeoJSON writers know only edges and arcs (they would read a
+/// wall as an arc), so clipped cells are exported by dvoronoi.coverage.CoverageCells instead.
 inline LimitedPartition coverage_cells(const Swarm& swarm, const ConvexPolygon* env, Index owned = -1,
                                        int threads = 0) {
     const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
