@@ -389,3 +389,15 @@ def test_empty_and_single_agent():
     assert np.all(np.diff(xs) > 0) and 0.099 < xs[-1] <= 0.1
     assert np.all(one.trajectory[:, 0, 1] == 0.5)
     assert math.pi * 0.01 * (1 - 1e-3) < one.areas[0] < math.pi * 0.01
+
+
+def test_bounds_forms_agree():
+    shapely = pytest.importorskip("shapely.geometry")
+    pts = swarm(17, 40)
+    ref = dv.coverage.LloydStepper(pts, 0.1, bounds=(0, 0, 1, 1)).moments()
+    for b in ([(0, 0), (0, 1), (1, 1), (1, 0)],            # clockwise
+              [(0, 0), (1, 0), (1, 1), (0, 1), (0, 0)],    # closed ring
+              shapely.box(0, 0, 1, 1)):
+        got = dv.coverage.LloydStepper(pts, 0.1, bounds=b).moments()
+        for x, y in zip(got, ref):
+            np.testing.assert_allclose(x, y, rtol=1e-14, atol=1e-17)
