@@ -401,3 +401,27 @@ def test_bounds_forms_agree():
         got = dv.coverage.LloydStepper(pts, 0.1, bounds=b).moments()
         for x, y in zip(got, ref):
             np.testing.assert_allclose(x, y, rtol=1e-14, atol=1e-17)
+
+
+def test_degenerate_clips_lattice_corner_edge():
+    # Walls along the bisectors' lines: every cell of a unit lattice is its unit square.
+    g = np.array([(i + 0.5, j + 0.5) for i in range(4) for j in range(3)], dtype=float)
+    s = dv.coverage.LloydStepper(g, 0.75, bounds=(0, 0, 4, 3))
+    mass, cen, polar = s.moments()
+    np.testing.assert_allclose(mass, 1.0, rtol=1e-14)
+    np.testing.assert_allclose(cen, g, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(polar, 1 / 6, rtol=1e-13)
+    assert s.cost() == pytest.approx(2.0, rel=1e-13)  # everything covered: H = Σ polar
+    s.step()
+    assert np.max(np.abs(s.points - g)) < 1e-14  # a centroidal configuration stays put
+    # R = 1/2: the walls and the bisectors are tangent to the disks: full disks, no walls.
+    c = dv.coverage.LloydStepper(g, 0.5, bounds=(0, 0, 4, 3)).cells()
+    np.testing.assert_allclose(c.areas, math.pi / 4, rtol=1e-14)
+    assert set(c.piece_neighbor.tolist()) == {-1} and len(c.indices) == 0
+    # An agent in a corner has a quarter disk, one on an edge a half disk.
+    R = 0.3
+    q = dv.coverage.LloydStepper([[0.0, 0.0], [0.5, 1.0]], R, bounds=(0, 0, 1, 1)).cells()
+    assert q.areas[0] == pytest.approx(math.pi * R * R / 4, rel=1e-14)
+    np.testing.assert_allclose(q.centroids[0], [4 * R / (3 * math.pi)] * 2, rtol=1e-13)
+    assert q.areas[1] == pytest.approx(math.pi * R * R / 2, rel=1e-14)
+    np.testing.assert_allclose(q.centroids[1], [0.5, 1 - 4 * R / (3 * math.pi)], rtol=1e-13)

@@ -197,3 +197,26 @@ TEST_CASE("bad environments are named errors") {
     CHECK(cw.contains(Vec2(1.0, 0.5)));
     CHECK_FALSE(cw.contains(Vec2(1.0 + 1e-16 * 4, 0.5)));
 }
+
+TEST_CASE("an agent on a wall keeps a half disk, in a corner a quarter disk (cuts through the arc's start)") {
+    const double R = 0.3;
+    const std::vector<Piece> disk{Piece{kArc, Vec2(R, 0), 2 * kPi}};
+    std::vector<Piece> out, scratch;
+    // Walls through the agent in every direction, including through the arc's start point (R, 0).
+    for (double theta : {-kPi / 2, 0.0, kPi / 2, kPi, 0.3, -2.0}) {
+        const Vec2 n(std::cos(theta), std::sin(theta));
+        detail::clip_to_halfplane(disk, R, n, 0.0, out);
+        const Moments m = uniform_moments(out, R);
+        CHECK(m.mass == doctest::Approx(kPi * R * R / 2).epsilon(1e-14));
+        CHECK((m.first + 2.0 / 3.0 * R * R * R * n).norm() < 1e-15);
+    }
+    const ConvexPolygon box = ConvexPolygon::box(0, 0, 1, 1);
+    for (const Vec2& corner : {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}) {
+        clip_cell(disk, corner, R, box, out, scratch);
+        const Moments m = uniform_moments(out, R);
+        CHECK(m.mass == doctest::Approx(kPi * R * R / 4).epsilon(1e-14));
+        const Vec2 inward = (Vec2(0.5, 0.5) - corner) * 2.0;  // (+-1, +-1)
+        CHECK((m.centroid(corner) - corner - 4 * R / (3 * kPi) * inward).norm() < 1e-15);
+        CHECK(out.size() == 3);
+    }
+}

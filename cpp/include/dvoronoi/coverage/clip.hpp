@@ -80,21 +80,28 @@ inline void clip_to_halfplane(const std::vector<Piece>& in, double R, const Vec2
         // An arc from angle a0 sweeping phi; the circle is outside on (theta_n - alpha, theta_n + alpha).
         const double phi = p.arc_span;
         const double a0 = std::atan2(u.y(), u.x());
-        double d_exit = wrap_angle(theta_n - alpha - a0);
-        double d_entry = wrap_angle(theta_n + alpha - a0);
-        // The vertex decisions above are authoritative; crossing angles that rounding puts on the
-        // wrong side of the start are snapped to it (a crossing at u is at offset 0 when u is
-        // inside, and an exit at u closes a full turn when u is outside).
+        // Offsets from u, counter-clockwise. The vertex decisions above are authoritative: from an
+        // inside u the next crossing is an exit, from an outside u an entry; the other crossing
+        // follows it after the outside (2 alpha) or inside (2 pi - 2 alpha) run, unwrapped, so a
+        // crossing exactly at u lands at the end of a full turn, not at its start.
         const double eps = 1e-12;
-        if (in_u && d_exit > kTwoPiC - eps) d_exit = 0.0;
-        if (in_u && d_entry > kTwoPiC - eps) d_entry = 0.0;
-        if (!in_u && d_exit < eps) d_exit = kTwoPiC;
-        // A single crossing must lie on the arc; rounding may put it a hair beyond either end.
-        const auto on_arc = [&](double d) { return d <= phi ? d : (d - phi < kTwoPiC - d ? phi : 0.0); };
+        double d_exit, d_entry;
+        if (in_u) {
+            d_exit = wrap_angle(theta_n - alpha - a0);
+            if (d_exit > kTwoPiC - eps) d_exit = 0.0;
+            d_entry = d_exit + 2.0 * alpha;
+        } else {
+            d_entry = wrap_angle(theta_n + alpha - a0);
+            if (d_entry > kTwoPiC - eps) d_entry = 0.0;
+            d_exit = d_entry + (kTwoPiC - 2.0 * alpha);
+        }
+        // A single crossing must lie on the arc; rounding may put it a hair beyond its end.
+        const auto on_arc = [&](double d) { return std::min(d, phi); };
         const auto at = [&](double d) { return d <= 0.0 ? u : (d >= phi ? v : circle(a0 + d)); };
         if (in_u && in_v) {
-            if (alpha > 0.0 && d_exit < d_entry && d_entry <= phi + eps) {  // dips out and back in
+            if (alpha > 0.0 && d_entry <= phi + eps) {  // dips out and back in
                 d_entry = std::min(d_entry, phi);
+                d_exit = std::min(d_exit, d_entry);
                 emit(kArc, u, d_exit);
                 exit_at(at(d_exit));
                 const Vec2 y = at(d_entry);
@@ -112,7 +119,7 @@ inline void clip_to_halfplane(const std::vector<Piece>& in, double R, const Vec2
             const Vec2 y = at(t);
             enter_at();
             emit(kArc, y, phi - t);
-        } else if (alpha > 0.0 && d_entry < d_exit && d_exit <= phi + eps) {  // comes in and goes out again
+        } else if (alpha > 0.0 && d_exit <= phi + eps) {  // comes in and goes out again
             d_exit = std::min(d_exit, phi);
             const Vec2 y = at(d_entry);
             enter_at();
