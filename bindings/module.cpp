@@ -9,6 +9,7 @@ void bind_cells(py::module_& m);
 void bind_voronoi(py::module_& m);
 void bind_gvd(py::module_& m);
 void bind_distances(py::module_& m);
+void bind_coverage(py::module_& m);
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "dvoronoi compiled core (use the `dvoronoi` package, which re-exports it).";
@@ -17,4 +18,5 @@ PYBIND11_MODULE(_core, m) {
     bind_voronoi(m);
     bind_gvd(m);
     bind_distances(m);
+    bind_coverage(m);
 }

@@ -5,6 +5,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install_system_deps.sh
 python3 -m pip install --quiet ".[test]"
+# mpi4py for the MPI tests: the PyPI wheel loads the system OpenMPI; if it cannot, build it against it.
+python3 -m pip install --quiet "mpi4py>=3.1"
+if ! python3 -c "from mpi4py import MPI" 2>/dev/null; then
+  python3 -m pip install --quiet --force-reinstall --no-binary mpi4py "mpi4py>=3.1"
+fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDVORONOI_BUILD_TESTS=ON -DDVORONOI_BUILD_CLI=ON
 cmake --build build -j "$(nproc)"
 ctest --test-dir build --output-on-failure

@@ -20,6 +20,7 @@ from . import datasets
 from .gvd import GridVoronoi, grid_voronoi, obstacles_from_occupancy_grid
 from . import distances
 from .distances import DistanceNeighbors, neighbors_from_distances
+from . import coverage
 
 __all__ = [
     "limited_cell",
@@ -41,5 +42,6 @@ __all__ = [
     "distances",
     "neighbors_from_distances",
     "DistanceNeighbors",
+    "coverage",
     "__version__",
 ]

@@ -129,7 +129,7 @@ inline void write_svg(std::ostream& os, const LimitedPartition& p, const SvgOpti
             const auto kk = static_cast<std::size_t>(k);
             const auto next = static_cast<std::size_t>(k + 1 < hi ? k + 1 : lo);
             const double ex = p.piece_x[next], ey = p.piece_y[next];
-            if (p.piece_neighbor[kk] >= 0) {
+            if (p.piece_neighbor[kk] >= 0 || p.piece_span[kk] <= 0.0) {  // edges; walls of clipped cells
                 s += " L ";
                 pt(ex, ey);
                 continue;

@@ -1,0 +1,202 @@
+// `dvoronoi lloyd POINTS -r R --steps K`: Lloyd coverage control on limited cells (uniform density),
+// optionally in a convex environment, with the run as JSON and the cells of each step as SVG files.
+#include "common.hpp"
+
+#include "dvoronoi/coverage/lloyd.hpp"
+#include "dvoronoi/io/svg.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dvoronoi::cli {
+namespace {
+
+struct LloydOptions {
+    std::string points;
+    double radius = 0.0;
+    int steps = 100;
+    double gain = 1.0;
+    std::vector<double> bounds;
+    std::string polygon;
+    std::string columns;
+    int threads = 0;
+    std::string output;
+    std::string svg_dir;
+    int svg_every = 1;
+    bool trajectory = false;
+    bool quiet = false;
+};
+
+std::optional<ConvexPolygon> environment(const LloydOptions& o) {
+    if (!o.bounds.empty() && !o.polygon.empty())
+        throw UsageError("--bounds and --polygon: give one environment, not both");
+    if (!o.bounds.empty()) {
+        if (o.bounds.size() != 4)
+            throw UsageError("--bounds: expected 4 numbers XMIN YMIN XMAX YMAX, got " +
+                             std::to_string(o.bounds.size()));
+        try {
+            return ConvexPolygon::box(o.bounds[0], o.bounds[1], o.bounds[2], o.bounds[3], "--bounds");
+        } catch (const InputError& e) {
+            throw UsageError(e.what());
+        }
+    }
+    if (!o.polygon.empty()) {
+        const io::PointFile f = io::read_point_file(o.polygon, io::Columns{});
+        std::vector<Vec2> v;
+        for (Index i = 0; i < f.points.rows(); ++i) v.push_back(f.points.row(i).transpose());
+        return ConvexPolygon(std::move(v), o.polygon);
+    }
+    return std::nullopt;
+}
+
+nlohmann::json points_json(const Points& p) {
+    nlohmann::json a = nlohmann::json::array();
+    for (Index i = 0; i < p.rows(); ++i) a.push_back({p(i, 0), p(i, 1)});
+    return a;
+}
+
+int run_lloyd(const LloydOptions& o) {
+    if (!std::isfinite(o.radius) || !(o.radius > 0.0))
+        throw UsageError("--radius: must be a positive finite number, got " + show(o.radius));
+    if (!(o.gain > 0.0 && o.gain <= 1.0))
+        throw UsageError("--gain: must be in (0, 1], got " + show(o.gain));
+    if (o.steps < 0) throw UsageError("--steps: must be >= 0, got " + std::to_string(o.steps));
+    if (o.svg_every < 1) throw UsageError("--svg-every: must be >= 1, got " + std::to_string(o.svg_every));
+    const bool to_stdout = o.output.empty() || o.output == "-";
+    if (!to_stdout && lower_extension(o.output) != ".json")
+        throw UsageError("-o/--output: the run is written as JSON; use a .json file name or '-', got '" +
+                         o.output + "'");
+    std::optional<ConvexPolygon> env = environment(o);
+
+    const io::PointFile file = read_points_argument(o.points, o.columns);
+    if (env)
+        for (Index i = 0; i < file.points.rows(); ++i)
+            if (!env->contains(file.points.row(i).transpose()))
+                throw InputError(file.where(i) + ": point " + std::to_string(i) +
+                                 " lies outside the environment");
+    if (!o.svg_dir.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(o.svg_dir, ec);
+        if (ec || !std::filesystem::is_directory(o.svg_dir))
+            throw UsageError("--svg-dir: cannot create directory '" + o.svg_dir + "'");
+    }
+    std::unique_ptr<io::AtomicFile> out;
+    if (!to_stdout) out = open_output(o.output, "-o/--output");
+
+    // The whole run first (positions kept for the pictures), outputs only once it succeeded.
+    LloydStepper stepper(file.points, o.radius, env, o.gain, o.threads);
+    std::vector<Points> frames{stepper.points()};
+    std::vector<int> frame_steps{0};
+    std::vector<double> cost;
+    Progress progress("lloyd steps", o.steps, o.quiet, 1);
+    try {
+        for (int t = 0; t < o.steps; ++t) {
+            cost.push_back(stepper.step());
+            if ((t + 1) % o.svg_every == 0 || t + 1 == o.steps) {
+                if (!o.svg_dir.empty() || o.trajectory) frames.push_back(stepper.points());
+                frame_steps.push_back(t + 1);
+            }
+            progress(t + 1, o.steps);
+        }
+        cost.push_back(stepper.cost());
+    } catch (const CoincidentError& e) {
+        progress.abort();
+        throw InputError(file.name + ": " + e.what() + " during the run (step " +
+                         std::to_string(cost.size()) + ")");
+    } catch (...) {
+        progress.abort();
+        throw;
+    }
+    progress.finish();
+
+    if (!o.svg_dir.empty()) {
+        Progress pictures("svg frames", static_cast<Index>(frames.size()), o.quiet, 1);
+        for (std::size_t k = 0; k < frames.size(); ++k) {
+            const Swarm swarm(frames[k], o.radius);
+            const LimitedPartition cells = coverage_cells(swarm, stepper.environment(), -1, o.threads);
+            char name[32];
+            std::snprintf(name, sizeof name, "step_%06d.svg", frame_steps[k]);
+            io::AtomicFile f((std::filesystem::path(o.svg_dir) / name).string());
+            io::write_svg(f.stream(), cells);
+            f.commit();
+            pictures(static_cast<Index>(k + 1), static_cast<Index>(frames.size()));
+        }
+        pictures.finish();
+    }
+
+    nlohmann::json doc;
+    doc["radius"] = o.radius;
+    doc["gain"] = o.gain;
+    doc["steps"] = o.steps;
+    doc["bounds"] = nullptr;
+    if (env) {
+        nlohmann::json b = nlohmann::json::array();
+        for (const Vec2& v : env->vertices()) b.push_back({v.x(), v.y()});
+        doc["bounds"] = b;
+    }
+    doc["cost"] = cost;
+    doc["points"] = points_json(stepper.points());
+    if (o.trajectory) {
+        doc["frame_steps"] = frame_steps;
+        nlohmann::json t = nlohmann::json::array();
+        for (const Points& p : frames) t.push_back(points_json(p));
+        doc["trajectory"] = t;
+    }
+    const std::string text = doc.dump() + "\n";
+    if (out) {
+        out->stream() << text;
+        out->commit();
+    } else {
+        std::cout << text;
+        std::cout.flush();
+        if (!std::cout) {
+            std::cerr << "dvoronoi: error: writing to stdout failed\n";
+            return 1;
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+Command add_lloyd(CLI::App& parent) {
+    auto o = std::make_shared<LloydOptions>();
+    CLI::App* sub = parent.add_subcommand(
+        "lloyd",
+        "Lloyd coverage control on limited cells (Cortes, Martinez & Bullo 2005): each agent moves "
+        "--gain of the way to the centroid of its cell (uniform density), optionally clipped to a "
+        "convex environment; writes the cost per step and the final positions as JSON");
+    sub->add_option("POINTS", o->points,
+                    "point file: 'x y' per line, whitespace- or comma-separated, '#' comments, "
+                    "optional header line; or a numpy .npy array of shape (n, 2); '-' reads stdin")
+        ->required();
+    sub->add_option("-r,--radius", o->radius, "cell radius R > 0")->required();
+    sub->add_option("--steps", o->steps, "number of Lloyd steps")->capture_default_str();
+    sub->add_option("--gain", o->gain, "fraction of the way to the centroid per step, in (0, 1]")
+        ->capture_default_str();
+    sub->add_option("--bounds", o->bounds, "box environment XMIN YMIN XMAX YMAX (agents must start in it)")
+        ->expected(4);
+    sub->add_option("--polygon", o->polygon, "convex polygon environment: a point file of its vertices in order");
+    sub->add_option("--columns", o->columns, "X,Y: the fields of POINTS holding x and y");
+    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    sub->add_option("-o,--output", o->output, "JSON file for the run (default or '-': stdout)");
+    sub->add_option("--svg-dir", o->svg_dir,
+                    "draw the cells into DIR/step_NNNNNN.svg (every --svg-every steps and the last)");
+    sub->add_option("--svg-every", o->svg_every, "steps between pictures and trajectory frames")
+        ->capture_default_str();
+    sub->add_flag("--trajectory", o->trajectory, "include the recorded positions in the JSON");
+    sub->add_flag("-q,--quiet", o->quiet, "no progress counter on stderr");
+    return {sub, [o] { return run_lloyd(*o); }};
+}
+
+}  // namespace dvoronoi::cli

@@ -1,0 +1,337 @@
+// Coverage control on limited cells (Cortés, Martínez & Bullo, "Spatially-distributed coverage
+// optimization and control with limited-range interactions", ESAIM COCV 11, 2005).
+//
+// Cost (minimised; the negative of the paper's H_{R} with performance f(x) = -min(x, R)^2):
+//     H(P) = ∫_Q min(min_i |q - p_i|^2, R^2) φ(q) dq
+//          = Σ_i ∫_{W_i} |q - p_i|^2 φ  +  R^2 Φ(Q \ ∪_i B(p_i, R)),     W_i = V_i ∩ B(p_i, R) ∩ Q,
+// and since the W_i tile Q ∩ ∪ B(p_i, R):  H(P) = R^2 Φ(Q) + Σ_i (J_i - R^2 M_i), with M_i = ∫_{W_i} φ
+// and J_i = ∫_{W_i} |q - p_i|^2 φ. Its gradient is ∂H/∂p_i = 2 M_i (p_i - C_i), C_i the centroid of
+// W_i. The discrete law p_i <- p_i + g (C_i - p_i), 0 < g <= 1, never increases H: with the cells W
+// fixed, Σ ∫_{W_i} |q - p_i|^2 φ = Σ (∫_{W_i} |q - C_i|^2 φ + M_i |p_i - C_i|^2) drops (|p_i' - C_i|
+// = (1 - g)|p_i - C_i|), and re-assigning each q to its nearest agent (capped at R^2) can only lower it
+// further. Without an environment (Q = the plane) the constant R^2 Φ(Q) is left out: the reported
+// cost is Σ_i (J_i - R^2 M_i) <= 0.
+//
+// Agents stay in Q: W_i ⊂ Q is convex and so contains C_i, and Q contains the segment from p_i to
+// C_i. A move that rounding puts a hair outside Q is shortened (halved until inside, exactly tested).
+#pragma once
+
+#include "dvoronoi/cells/boundary_scan.hpp"
+#include "dvoronoi/coverage/cell_moments.hpp"
+#include "dvoronoi/coverage/clip.hpp"
+#include "dvoronoi/coverage/environment.hpp"
+#include "dvoronoi/partition/limited_partition.hpp"
+#include "dvoronoi/partition/swarm.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <functional>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dvoronoi {
+
+namespace detail {
+
+/// Per-thread scratch of the coverage computations.
+struct CoverageWorkspace {
+    std::vector<Candidate> cand;
+    std::vector<Index> same;
+    LimitedCell cell;
+    CellWorkspace ws;
+    std::vector<Piece> local, clipped, scratch;
+};
+
+/// Agent i's cell W_i relative to its position, into ws.clipped. Throws CoincidentError (global ids)
+/// when another agent sits at the same position.
+inline void clipped_local_cell(const Swarm& swarm, Index i, const ConvexPolygon* env, CoverageWorkspace& w) {
+    w.same.clear();
+    swarm.within(i, w.cand, &w.same);
+    const Index id = swarm.ids()[static_cast<std::size_t>(i)];
+    if (!w.same.empty()) {
+        const Index j = *std::min_element(w.same.begin(), w.same.end());
+        const Index a = std::min(id, j), b = std::max(id, j);
+        throw CoincidentError("points[" + std::to_string(a) + "] and points[" + std::to_string(b) +
+                                  "] coincide; their Voronoi cells are undefined",
+                              a, b);
+    }
+    const Vec2 c = swarm.point(i);
+    boundary_scan(c, w.cand, swarm.radius(), w.cell, w.ws);
+    w.local = w.cell.pieces;
+    for (Piece& p : w.local) p.start -= c;
+    if (env)
+        clip_cell(w.local, c, swarm.radius(), *env, w.clipped, w.scratch);
+    else
+        w.clipped.swap(w.local);
+}
+
+/// Runs f(i, workspace) for agents 0..count-1 on an OpenMP team; results must be written per agent
+/// (so they do not depend on the team). The first failure in agent order is rethrown after the loop.
+template <class F>
+void for_each_agent(Index count, int threads, const ProgressFn& progress, F&& f) {
+    const Index block = kBlock;
+    const Index nblocks = (count + block - 1) / block;
+    const int team = thread_team(threads, nblocks);
+    ProgressTracker tracker(progress, count);
+    std::mutex mu;
+    Index failed_at = std::numeric_limits<Index>::max();
+    std::exception_ptr failure;
+#pragma omp parallel num_threads(team)
+    {
+        CoverageWorkspace w;
+#pragma omp for schedule(dynamic, 1)
+        for (Index b = 0; b < nblocks; ++b) {
+            if (tracker.cancelled()) continue;
+            const Index lo = b * block, hi = std::min(count, lo + block);
+            for (Index i = lo; i < hi; ++i) {
+                try {
+                    f(i, w);
+                } catch (...) {
+                    std::lock_guard<std::mutex> lock(mu);
+                    if (i < failed_at) {
+                        failed_at = i;
+                        failure = std::current_exception();
+                    }
+                    break;
+                }
+            }
+            tracker.block_done(hi - lo);
+        }
+    }
+    tracker.rethrow_if_failed();
+    if (failure) std::rethrow_exception(failure);
+    tracker.report_all();
+}
+
+}  // namespace detail
+
+/// Uniform-density moments of the clipped cells of agents 0..owned-1 of `swarm`.
+struct CoverageMoments {
+    std::vector<double> mass;   ///< M_i (area of W_i)
+    Points centroid;            ///< C_i (the agent itself when W_i is empty)
+    std::vector<double> polar;  ///< J_i = ∫_{W_i} |q - p_i|^2
+
+    /// Σ_i (J_i - R^2 M_i), summed in agent order.
+    double cost_terms(double radius) const {
+        double s = 0.0;
+        for (std::size_t i = 0; i < mass.size(); ++i) s += polar[i] - radius * radius * mass[i];
+        return s;
+    }
+};
+
+/// \param owned the first `owned` agents get cells (the rest only shape them: an MPI halo); -1 = all.
+/// \param env the environment Q, or nullptr for the plane.
+/// \throws CoincidentError naming global ids. \note Thread-safe; O(owned m log m).
+inline CoverageMoments coverage_moments(const Swarm& swarm, const ConvexPolygon* env, Index owned = -1,
+                                        int threads = 0, const ProgressFn& progress = nullptr) {
+    const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
+    CoverageMoments out;
+    out.mass.assign(static_cast<std::size_t>(n), 0.0);
+    out.polar.assign(static_cast<std::size_t>(n), 0.0);
+    out.centroid.resize(n, 2);
+    detail::for_each_agent(n, threads, progress, [&](Index i, detail::CoverageWorkspace& w) {
+        detail::clipped_local_cell(swarm, i, env, w);
+        const Moments m = uniform_moments(w.clipped, swarm.radius());
+        const auto ii = static_cast<std::size_t>(i);
+        out.mass[ii] = m.mass;
+        out.polar[ii] = m.polar;
+        out.centroid.row(i) = m.centroid(swarm.point(i)).transpose();
+    });
+    return out;
+}
+
+/// The clipped cells W_i of agents 0..owned-1 as a LimitedPartition (pieces in the caller's frame;
+/// walls have neighbor kWall and span 0; edge neighbours and the CSR relation use the swarm's ids;
+/// areas, centroids and perimeters are those of W_i). Its flat arrays and io::write_svg handle walls;
+/// LimitedPartition::cell(i) and the JSON/GeoJSON writers know only edges and arcs (they would read a
+/// wall as an arc), so clipped cells are exported by dvoronoi.coverage.CoverageCells instead.
+inline LimitedPartition coverage_cells(const Swarm& swarm, const ConvexPolygon* env, Index owned = -1,
+                                       int threads = 0) {
+    const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
+    std::vector<std::vector<Piece>> cells(static_cast<std::size_t>(n));
+    std::vector<Moments> mom(static_cast<std::size_t>(n));
+    detail::for_each_agent(n, threads, nullptr, [&](Index i, detail::CoverageWorkspace& w) {
+        detail::clipped_local_cell(swarm, i, env, w);
+        mom[static_cast<std::size_t>(i)] = uniform_moments(w.clipped, swarm.radius());
+        cells[static_cast<std::size_t>(i)] = w.clipped;
+    });
+    LimitedPartition out;
+    out.radius = swarm.radius();
+    out.points = swarm.points().topRows(n);
+    out.areas.resize(static_cast<std::size_t>(n));
+    out.perimeters.resize(static_cast<std::size_t>(n));
+    out.centroids.resize(n, 2);
+    out.candidates.assign(static_cast<std::size_t>(n), 0);
+    for (Index i = 0; i < n; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        const Vec2 c = swarm.point(i);
+        std::vector<Index> nb;
+        for (const Piece& p : cells[ii]) {
+            out.piece_neighbor.push_back(p.neighbor);
+            out.piece_x.push_back(p.start.x() + c.x());
+            out.piece_y.push_back(p.start.y() + c.y());
+            out.piece_span.push_back(p.arc_span);
+            if (p.neighbor >= 0) nb.push_back(p.neighbor);
+        }
+        std::sort(nb.begin(), nb.end());
+        nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+        out.indices.insert(out.indices.end(), nb.begin(), nb.end());
+        out.indptr.push_back(static_cast<Index>(out.indices.size()));
+        out.piece_ptr.push_back(static_cast<Index>(out.piece_x.size()));
+        out.areas[ii] = mom[ii].mass;
+        out.perimeters[ii] = mom[ii].perimeter;
+        out.centroids.row(i) = mom[ii].centroid(c).transpose();
+    }
+    return out;
+}
+
+/// Quadrature nodes of the clipped cells of agents 0..owned-1 (see quadrature_nodes): flat arrays,
+/// node k at (x[k], y[k]) (caller's frame) with weight w[k] in the cell of agent owner[k]; agent i's
+/// nodes are [ptr[i], ptr[i+1]).
+struct CoverageQuadrature {
+    std::vector<double> x, y, w;
+    std::vector<Index> ptr{0};
+};
+
+inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPolygon* env, int order,
+                                              Index owned = -1, int threads = 0) {
+    const GaussRule g(order);
+    const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
+    std::vector<std::vector<double>> xs(static_cast<std::size_t>(n)), ys(xs), ws(xs);
+    detail::for_each_agent(n, threads, nullptr, [&](Index i, detail::CoverageWorkspace& w) {
+        detail::clipped_local_cell(swarm, i, env, w);
+        const auto ii = static_cast<std::size_t>(i);
+        const Vec2 c = swarm.point(i);
+        const std::size_t k = quadrature_size(w.clipped, g);
+        xs[ii].clear();
+        ys[ii].clear();
+        ws[ii].clear();
+        xs[ii].reserve(k);
+        ys[ii].reserve(k);
+        ws[ii].reserve(k);
+        quadrature_nodes(w.clipped, swarm.radius(), g, [&](const Vec2& q, double wt) {
+            xs[ii].push_back(c.x() + q.x());
+            ys[ii].push_back(c.y() + q.y());
+            ws[ii].push_back(wt);
+        });
+    });
+    CoverageQuadrature out;
+    for (Index i = 0; i < n; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        out.x.insert(out.x.end(), xs[ii].begin(), xs[ii].end());
+        out.y.insert(out.y.end(), ys[ii].begin(), ys[ii].end());
+        out.w.insert(out.w.end(), ws[ii].begin(), ws[ii].end());
+        out.ptr.push_back(static_cast<Index>(out.x.size()));
+    }
+    return out;
+}
+
+/// Quadrature nodes of the environment itself (a fan of triangles from vertex 0, the same rule), for
+/// Φ(Q) under a density.
+inline CoverageQuadrature environment_quadrature(const ConvexPolygon& env, int order) {
+    const GaussRule g(order);
+    CoverageQuadrature out;
+    const auto& v = env.vertices();
+    std::vector<Piece> fan;
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+        fan = {Piece{0, v[k] - v[0], 0.0}, Piece{0, v[k + 1] - v[0], 0.0}, Piece{0, Vec2::Zero(), 0.0}};
+        // Only the piece (v[k], v[k+1]) spans a triangle with the apex v[0]; the two through v[0] have
+        // zero area and emit nothing.
+        quadrature_nodes(fan, 0.0, g, [&](const Vec2& q, double wt) {
+            out.x.push_back(v[0].x() + q.x());
+            out.y.push_back(v[0].y() + q.y());
+            out.w.push_back(wt);
+        });
+    }
+    out.ptr.push_back(static_cast<Index>(out.x.size()));
+    return out;
+}
+
+/// The Lloyd move p + gain (C - p), kept in `env`: shortened (halved) while rounding leaves it outside.
+inline Vec2 lloyd_move(const Vec2& p, const Vec2& centroid, double gain, const ConvexPolygon* env) {
+    Vec2 q = p + gain * (centroid - p);
+    if (!env) return q;
+    double t = gain;
+    while (!env->contains(q)) {
+        t *= 0.5;
+        if (t < 1e-30) return p;
+        q = p + t * (centroid - p);
+    }
+    return q;
+}
+
+/// Lloyd's algorithm on limited cells, stepped in place: holds the swarm (its grid survives the
+/// steps), the environment and the gain.
+///
+/// \note Not thread-safe (one stepper per thread); each step uses an OpenMP team internally.
+class LloydStepper {
+public:
+    /// \throws InputError for a gain outside (0, 1], a bad radius, non-finite points, or an agent
+    ///         outside `env` (named by index).
+    LloydStepper(PointsRef points, double radius, std::optional<ConvexPolygon> env = std::nullopt,
+                 double gain = 1.0, int threads = 0)
+        : env_(std::move(env)), gain_(gain), threads_(threads) {
+        if (!(gain > 0.0 && gain <= 1.0))
+            throw InputError("gain must be in (0, 1], got " + std::to_string(gain));
+        detail::require_finite_radius(radius);
+        detail::require_finite_points(points, "points");
+        if (env_)
+            for (Eigen::Index i = 0; i < points.rows(); ++i)
+                if (!env_->contains(points.row(i).transpose()))
+                    throw InputError("points[" + std::to_string(i) + "] lies outside bounds");
+        swarm_ = Swarm(points, radius);
+    }
+
+    const Swarm& swarm() const noexcept { return swarm_; }
+    const Points& points() const noexcept { return swarm_.points(); }
+    double radius() const noexcept { return swarm_.radius(); }
+    double gain() const noexcept { return gain_; }
+    const ConvexPolygon* environment() const noexcept { return env_ ? &*env_ : nullptr; }
+
+    /// The uniform-density cost H at the current positions (see the top of this file).
+    double cost() const { return cost_of(coverage_moments(swarm_, environment(), -1, threads_)); }
+
+    /// One Lloyd step with uniform density: cells at the current positions, then every agent moves.
+    /// Returns H at the positions before the move.
+    double step(const ProgressFn& progress = nullptr) {
+        const CoverageMoments m = coverage_moments(swarm_, environment(), -1, threads_, progress);
+        move_to_targets(m.centroid);
+        return cost_of(m);
+    }
+
+    /// Moves every agent towards `centroids` (any density) with the stepper's gain.
+    void move_to_targets(const Points& centroids) {
+        if (centroids.rows() != swarm_.size())
+            throw InputError("centroids must have one row per agent");
+        Points next(swarm_.size(), 2);
+        for (Index i = 0; i < swarm_.size(); ++i)
+            next.row(i) = lloyd_move(swarm_.point(i), centroids.row(i).transpose(), gain_, environment()).transpose();
+        swarm_.move_to(next);
+    }
+
+    /// Puts the agents at `points` (a user-driven loop); the grid is updated, not rebuilt.
+    void set_points(PointsRef points) {
+        if (env_)
+            for (Eigen::Index i = 0; i < points.rows(); ++i)
+                if (std::isfinite(points(i, 0)) && std::isfinite(points(i, 1)) &&
+                    !env_->contains(points.row(i).transpose()))
+                    throw InputError("points[" + std::to_string(i) + "] lies outside bounds");
+        swarm_.move_to(points);
+    }
+
+    double cost_of(const CoverageMoments& m) const {
+        const double r2 = radius() * radius();
+        return m.cost_terms(radius()) + (env_ ? r2 * env_->area() : 0.0);
+    }
+
+private:
+    std::optional<ConvexPolygon> env_;
+    double gain_;
+    int threads_;
+    Swarm swarm_;
+};
+
+}  // namespace dvoronoi

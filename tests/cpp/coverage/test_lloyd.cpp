@@ -1,0 +1,121 @@
+// coverage/lloyd.hpp and partition/swarm.hpp: the moving swarm's cells equal limited_cells, the grid
+// survives small moves, Lloyd's cost never increases, agents stay in the environment, results do not
+// depend on the thread count or on the order agents are stored in.
+#include "dvoronoi/coverage/lloyd.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+using namespace dvoronoi;
+
+namespace {
+Points random_points(int n, unsigned seed, double side) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, side);
+    Points P(n, 2);
+    for (int i = 0; i < n; ++i) P.row(i) << u(rng), u(rng);
+    return P;
+}
+}  // namespace
+
+TEST_CASE("unclipped swarm cells equal limited_cells") {
+    for (unsigned seed : {1u, 2u, 3u}) {
+        const Points P = random_points(3000, seed, 30.0);
+        const double R = 0.4 + 0.3 * seed;
+        const Swarm swarm(P, R);
+        const LimitedPartition a = limited_cells(P, R);
+        const LimitedPartition b = coverage_cells(swarm, nullptr);
+        CHECK(a.indptr == b.indptr);
+        CHECK(a.indices == b.indices);
+        for (Index i = 0; i < a.size(); ++i) {
+            CHECK(b.areas[static_cast<std::size_t>(i)] ==
+                  doctest::Approx(a.areas[static_cast<std::size_t>(i)]).epsilon(1e-12));
+            CHECK((b.centroids.row(i) - a.centroids.row(i)).norm() < 1e-12 * R);
+        }
+        const CoverageMoments m = coverage_moments(swarm, nullptr);
+        for (Index i = 0; i < a.size(); ++i)
+            CHECK(m.mass[static_cast<std::size_t>(i)] == b.areas[static_cast<std::size_t>(i)]);
+    }
+}
+
+TEST_CASE("the swarm's grid follows small moves and equals a fresh index") {
+    Points P = random_points(5000, 9, 40.0);
+    const double R = 0.7;
+    Swarm swarm(P, R);
+    std::mt19937 rng(4);
+    std::normal_distribution<double> step(0.0, 0.05);
+    std::vector<detail::Candidate> a, b;
+    for (int t = 0; t < 5; ++t) {
+        for (Index i = 0; i < P.rows(); ++i) P.row(i) += Eigen::RowVector2d(step(rng), step(rng));
+        swarm.move_to(P);
+        CHECK(swarm.rebucketed() > 0);
+        CHECK(swarm.rebucketed() < P.rows() / 5);  // only the movers
+        const Swarm fresh(P, R);
+        for (Index i = 0; i < P.rows(); i += 7) {
+            swarm.within(i, a);
+            fresh.within(i, b);
+            REQUIRE(a.size() == b.size());
+            for (std::size_t k = 0; k < a.size(); ++k) CHECK(a[k].id == b[k].id);
+        }
+    }
+    CHECK(swarm.rebuilds() == 1);
+    // A far move widens the grid (one rebuild) and the queries stay right.
+    P(0, 0) += 1e4;
+    swarm.move_to(P);
+    CHECK(swarm.rebuilds() == 2);
+    swarm.within(0, a);
+    CHECK(a.empty());
+}
+
+TEST_CASE("Lloyd in a box: cost never increases, agents stay inside, threads do not matter") {
+    const ConvexPolygon box = ConvexPolygon::box(0, 0, 10, 10);
+    for (double gain : {1.0, 0.5}) {
+        const Points P = random_points(300, 21, 10.0);
+        LloydStepper one(P, 0.8, box, gain, 1), two(P, 0.8, box, gain, 2);
+        double prev = one.cost();
+        CHECK(prev <= 0.64 * 100.0);
+        for (int t = 0; t < 40; ++t) {
+            const double c1 = one.step(), c2 = two.step();
+            CHECK(c1 == c2);
+            CHECK(c1 <= prev * (1 + 1e-13));
+            prev = c1;
+            for (Index i = 0; i < P.rows(); ++i) CHECK(box.contains(one.points().row(i).transpose()));
+        }
+        CHECK(one.points() == two.points());
+        CHECK(one.cost() <= prev * (1 + 1e-13));
+    }
+}
+
+TEST_CASE("cells depend on positions only: ids fix the order, a permuted swarm gives the same cells") {
+    const Points P = random_points(800, 5, 12.0);
+    const ConvexPolygon tri({Vec2(-1, -1), Vec2(14, 0), Vec2(5, 14)});
+    std::vector<Index> perm(800);
+    std::iota(perm.begin(), perm.end(), Index{0});
+    std::shuffle(perm.begin(), perm.end(), std::mt19937(3));
+    Points Q(800, 2);
+    for (Index k = 0; k < 800; ++k) Q.row(k) = P.row(perm[static_cast<std::size_t>(k)]);
+    const CoverageMoments a = coverage_moments(Swarm(P, 0.6), &tri);
+    const CoverageMoments b = coverage_moments(Swarm(Q, 0.6, perm), &tri);
+    for (Index k = 0; k < 800; ++k) {
+        const auto i = static_cast<std::size_t>(perm[static_cast<std::size_t>(k)]);
+        CHECK(a.mass[i] == b.mass[static_cast<std::size_t>(k)]);
+        CHECK(a.polar[i] == b.polar[static_cast<std::size_t>(k)]);
+        CHECK(a.centroid.row(static_cast<Index>(i)) == b.centroid.row(k));
+    }
+}
+
+TEST_CASE("bad input") {
+    const ConvexPolygon box = ConvexPolygon::box(0, 0, 1, 1);
+    Points P(2, 2);
+    P << 0.5, 0.5, 2.0, 0.5;
+    CHECK_THROWS_WITH_AS(LloydStepper(P, 0.1, box), "points[1] lies outside bounds", InputError);
+    P << 0.5, 0.5, 0.5, 0.5;
+    LloydStepper s(P, 0.1, box);
+    CHECK_THROWS_AS(s.step(), CoincidentError);
+    CHECK_THROWS_AS(LloydStepper(P, 0.1, box, 0.0), InputError);
+    CHECK_THROWS_AS(LloydStepper(P, 0.1, box, 1.5), InputError);
+    CHECK_THROWS_AS(LloydStepper(P, -1.0, box), InputError);
+}
