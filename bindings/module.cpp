@@ -7,10 +7,12 @@ namespace py = pybind11;
 void bind_core(py::module_& m);
 void bind_cells(py::module_& m);
 void bind_voronoi(py::module_& m);
+void bind_network(py::module_& m);
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "dvoronoi compiled core (use the `dvoronoi` package, which re-exports it).";
     bind_core(m);
     bind_cells(m);
     bind_voronoi(m);
+    bind_network(m);
 }
