@@ -16,6 +16,7 @@ from ._core import CoincidentError, LimitedCell, Piece, __version__, limited_cel
 from ._partition import LimitedPartition, limited_cells
 from ._voronoi import VoronoiPartition, voronoi_cell, voronoi_cells
 from . import datasets
+from . import network
 
 __all__ = [
     "limited_cell",
@@ -28,5 +29,6 @@ __all__ = [
     "Piece",
     "CoincidentError",
     "datasets",
+    "network",
     "__version__",
 ]
