@@ -41,6 +41,7 @@ struct Command {
 };
 
 Command add_cells(CLI::App& parent);
+Command add_network(CLI::App& parent);
 
 /// A double as the user would write it ("-1", "0.5", "nan").
 inline std::string show(double v) {

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
     });
     std::vector<cli::Command> commands;
     commands.push_back(cli::add_cells(app));
+    commands.push_back(cli::add_network(app));
     app.footer("Run 'dvoronoi SUBCOMMAND --help' for a subcommand's options.");
 
     try {

@@ -61,49 +61,104 @@ namespace detail {
 
 /// A node's cell as CC keeps it.
 struct CcCell {
-    std::vector<Index> nbrs;  // counter-clockwise Voronoi neighbours among the known locations
+    std::vector<Index> nbrs;   // counter-clockwise Voronoi neighbours among the known locations
     bool unbounded = true;
+    std::vector<Index> touch;  // known nodes whose cells meet this one in a single point (a vertex)
+    std::vector<Index> ring;   // nbrs with each touching node inserted at its vertex, counter-clockwise
 };
 
-/// Consecutive neighbour pairs (a, b) of the cell that meet at a Voronoi vertex (orient(c, a, b) > 0).
+/// Consecutive pairs (a, b) of `list` (cyclic unless the cell is unbounded) that meet at a Voronoi
+/// vertex of the cell (orient(c, a, b) > 0).
 template <class F>
-void for_each_vertex(const Vec2& c, const CcCell& cell, const Network& net, F&& f) {
-    const std::size_t k = cell.nbrs.size();
+void for_each_vertex(const Vec2& c, const std::vector<Index>& list, bool unbounded, const Network& net, F&& f) {
+    const std::size_t k = list.size();
     if (k < 2) return;
-    const std::size_t pairs = cell.unbounded ? k - 1 : k;
+    const std::size_t pairs = unbounded ? k - 1 : k;
     for (std::size_t i = 0; i < pairs; ++i) {
-        const Index a = cell.nbrs[i], b = cell.nbrs[(i + 1) % k];
+        const Index a = list[i], b = list[(i + 1) % k];
         if (pred::orient(c, net.pos(a), net.pos(b)) > 0) f(a, b);
     }
 }
 
-/// Does the location q cut the cell (some point of it strictly closer to q)? Exact. For a bounded
-/// cell: some vertex strictly inside the circle through c and its two neighbours. Unbounded cells
-/// are always re-triangulated.
-inline bool may_cut(const Vec2& c, const CcCell& cell, const Vec2& q, const Network& net) {
-    if (cell.unbounded) return true;
-    bool cut = false;
-    for_each_vertex(c, cell, net, [&](Index a, Index b) {
-        if (!cut && pred::incircle(c, net.pos(a), net.pos(b), q) > 0) cut = true;
+/// Does q lie on the circle through c and the two neighbours of some vertex (it touches the cell
+/// there)? Exact.
+inline bool touches(const Vec2& c, const CcCell& cell, const Vec2& q, const Network& net) {
+    bool on = false;
+    for_each_vertex(c, cell.nbrs, cell.unbounded, net, [&](Index a, Index b) {
+        if (!on && pred::incircle(c, net.pos(a), net.pos(b), q) == 0) on = true;
     });
-    return cut;
+    return on;
 }
 
-/// Refines the cell of node s with node t. Returns true when t became a neighbour (the cell shrank).
+/// The ring: between consecutive neighbours a, b the touching nodes on their circle, in
+/// counter-clockwise order around c (the order along the arc from a to b).
+inline void build_ring(const Vec2& c, CcCell& cell, const Network& net) {
+    cell.ring.clear();
+    const std::size_t k = cell.nbrs.size();
+    if (cell.touch.empty()) {
+        cell.ring = cell.nbrs;
+        return;
+    }
+    std::vector<Index> here;
+    for (std::size_t i = 0; i < k; ++i) {
+        cell.ring.push_back(cell.nbrs[i]);
+        if (k < 2 || (cell.unbounded && i + 1 == k)) continue;
+        const Index a = cell.nbrs[i], b = cell.nbrs[(i + 1) % k];
+        if (pred::orient(c, net.pos(a), net.pos(b)) <= 0) continue;
+        here.clear();
+        for (Index x : cell.touch)
+            if (pred::incircle(c, net.pos(a), net.pos(b), net.pos(x)) == 0) here.push_back(x);
+        std::sort(here.begin(), here.end(), [&](Index x, Index y) { return pred::orient(c, net.pos(x), net.pos(y)) > 0; });
+        cell.ring.insert(cell.ring.end(), here.begin(), here.end());
+    }
+}
+
+/// Refines the cell of node s with node t. Returns true when t became a neighbour (the cell shrank)
+/// or a touching node (its cell meets this one at a vertex only).
+///
+/// Why touching nodes: the paper assumes no four cocircular nodes. Where four or more cells meet at a
+/// vertex (lattices), two of them may share an edge whose both ends are such vertices; no third node
+/// then has both as consecutive neighbours, and nobody would introduce them. Keeping the nodes that
+/// touch a vertex in the counter-clockwise ring and notifying consecutive ring entries sends what any
+/// perturbation into general position would send, so Theorem 2 holds on degenerate inputs too (the
+/// lattice tests check it against CGAL).
 inline bool refine(Index s, Index t, CcCell& cell, const Network& net, std::vector<dvoronoi::detail::Candidate>& cand,
                    DelaunayCell& star, dvoronoi::detail::DelaunayWorkspace& ws) {
     const Vec2 c = net.pos(s);
     if (s == t) return false;
     if (std::find(cell.nbrs.begin(), cell.nbrs.end(), t) != cell.nbrs.end()) return false;
-    if (!may_cut(c, cell, net.pos(t), net)) return false;
+    if (std::find(cell.touch.begin(), cell.touch.end(), t) != cell.touch.end()) return false;
+    const Vec2 q = net.pos(t);
+    if (!cell.unbounded) {
+        // Bounded cell: t cuts it iff some vertex lies strictly inside the circle through c and the
+        // vertex's two neighbours and t; it touches it iff none does and one lies on it.
+        int most = -1;
+        for_each_vertex(c, cell.nbrs, false, net, [&](Index a, Index b) {
+            if (most < 1) most = std::max(most, pred::incircle(c, net.pos(a), net.pos(b), q));
+        });
+        if (most < 0) return false;
+        if (most == 0) {
+            cell.touch.push_back(t);
+            build_ring(c, cell, net);
+            return true;
+        }
+    }
     cand.clear();
     for (Index j : cell.nbrs) cand.push_back({net.pos(j), j});
-    cand.push_back({net.pos(t), t});
+    for (Index j : cell.touch) cand.push_back({net.pos(j), j});
+    cand.push_back({q, t});
     dvoronoi::detail::delaunay_star(c, cand, star, ws);
-    if (std::find(star.neighbors.begin(), star.neighbors.end(), t) == star.neighbors.end()) return false;
+    const bool is_nbr = std::find(star.neighbors.begin(), star.neighbors.end(), t) != star.neighbors.end();
+    std::vector<Index> pool;
+    for (const auto& x : cand)
+        if (std::find(star.neighbors.begin(), star.neighbors.end(), x.id) == star.neighbors.end()) pool.push_back(x.id);
     cell.nbrs = star.neighbors;
     cell.unbounded = star.on_hull;
-    return true;
+    cell.touch.clear();
+    for (Index x : pool)
+        if (touches(c, cell, net.pos(x), net)) cell.touch.push_back(x);
+    build_ring(c, cell, net);
+    return is_nbr || std::find(cell.touch.begin(), cell.touch.end(), t) != cell.touch.end();
 }
 
 /// Each node's `cap` nearest adjacent nodes, ascending by index (what its messages carry).
@@ -221,7 +276,7 @@ inline CcResult run_cc(const Network& net, const RunOptions& run, const CcOption
         if (m.forward && !lists(s, t)) send(s, t, s, false);
         // New vertices: the pairs of consecutive neighbours that include t.
         fresh.clear();
-        detail::for_each_vertex(net.pos(s), cell, net, [&](Index a, Index b) {
+        detail::for_each_vertex(net.pos(s), cell.ring, cell.unbounded, net, [&](Index a, Index b) {
             if (a == t) fresh.push_back({b, t});
             else if (b == t) fresh.push_back({a, t});
         });
