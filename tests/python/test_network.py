@@ -357,7 +357,7 @@ def test_links_exact_range_and_obstacles():
     assert link_set(net.links(pts, np.nextafter(5.0, 0))) == {(2, 3)}
     touching = np.array([[11.5, 0.0, 11.5, 3.0]])  # ends on the segment 2-3
     assert link_set(net.links(pts, 5.0, touching)) == {(0, 1)}
-    parallel = np.array([[0.0, 1e-300, 20.0, 1e-300]])  # just above the 2-3 segment, not touching
+    parallel = np.array([[5.0, 1e-300, 20.0, 1e-300]])  # just above the 2-3 segment, not touching
     assert link_set(net.links(pts, 5.0, parallel)) == {(0, 1), (2, 3)}
 
 
