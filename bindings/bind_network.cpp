@@ -188,8 +188,13 @@ BatchRow run_one(const nw::Network& net, const SimArgs& a, bool verify) {
         totals(r.counts);
         row.lost = r.lost;
         if (verify) row.condition = nw::delaunay_check(net).condition;
+    } else if (a.algorithm == "check") {
+        // Theorem 2's condition only; a disconnected network fails it without the exact diagram.
+        const auto comp = nw::components(net.adj);
+        const bool connected = comp.empty() || *std::max_element(comp.begin(), comp.end()) == 0;
+        row.condition = connected && nw::delaunay_check(net).condition;
     } else {
-        throw dvoronoi::InputError("batch algorithm must be \"cc\" or \"bd07\", got \"" + a.algorithm + "\"");
+        throw dvoronoi::InputError("batch algorithm must be \"cc\", \"bd07\" or \"check\", got \"" + a.algorithm + "\"");
     }
     return row;
 }
@@ -360,7 +365,7 @@ void bind_network(py::module_& m) {
         }
         prog.rethrow();
         if (failure) std::rethrow_exception(failure);
-        const std::size_t T = N ? rows[0].by_type.size() : 0;
+        const std::size_t T = N ? rows[0].by_type.size() : (algorithm == "bd07" ? 3 : algorithm == "cc" ? 2 : 0);
         py::array_t<std::int64_t> by_type({static_cast<py::ssize_t>(N), static_cast<py::ssize_t>(T)});
         py::array_t<std::int64_t> lost(static_cast<py::ssize_t>(N));
         py::array_t<bool> cond(static_cast<py::ssize_t>(N)), exact(static_cast<py::ssize_t>(N));

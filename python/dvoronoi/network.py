@@ -699,10 +699,12 @@ def random_bars(rng: np.random.Generator, count: int, length: float, bounds: Seq
 def batch(algorithm: str, networks: Sequence[Any], comm_range: float, loss: float, obstacles: Sequence[Any],
           bounds: Sequence[float], seeds: Sequence[int], verify: bool = True, threads: int = 0,
           progress: Any = None) -> Dict[str, np.ndarray]:
-    """Run ``cc`` or ``bd07`` on many independent networks in parallel (C++ threads over networks).
+    """Run ``cc`` or ``bd07`` on many independent networks in parallel (C++ threads over networks), or
+    ``check`` Theorem 2's condition only.
 
     Returns per network: ``by_type`` (transmissions per message type), ``lost``, ``condition``
-    (Theorem 2's, when verified) and ``exact`` (CC only: every node's neighbours and hull flag exact).
+    (Theorem 2's, when verified or checked) and ``exact`` (CC only: every node's neighbours and hull
+    flag exact).
     ``progress`` is a callable (done, total) called from the calling thread.
     """
     obs = [o if o is not None and len(o) else None for o in (_obstacles(o) for o in obstacles)]

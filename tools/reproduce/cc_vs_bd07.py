@@ -75,10 +75,14 @@ def main(argv=None) -> int:
         kept_pts, kept_bars, rejected = [], [], 0
         while len(kept_pts) < n_net:
             need = n_net - len(kept_pts)
-            cand = [rng.uniform(0, 100, (args.nodes, 2)) for _ in range(need)]
-            bars = [net.random_bars(rng, args.bars, args.bar_length, BOX) for _ in range(need)]
-            chk = net.batch("cc", cand, r, 0.0, bars, BOX, list(range(need)), verify=True, threads=args.threads)
-            for k in range(need):
+            draw = max(need, 64)
+            cand = [rng.uniform(0, 100, (args.nodes, 2)) for _ in range(draw)]
+            bars = [net.random_bars(rng, args.bars, args.bar_length, BOX) for _ in range(draw)]
+            chk = net.batch("check", cand, r, 0.0, bars, BOX, list(range(draw)), threads=args.threads)
+            bar.set_postfix_str(f"range {r}: {len(kept_pts)}/{n_net} networks drawn, {rejected} rejected")
+            for k in range(draw):
+                if len(kept_pts) == n_net:
+                    break
                 if chk["condition"][k]:
                     kept_pts.append(cand[k])
                     kept_bars.append(bars[k])

@@ -13,6 +13,7 @@
 
 #include "dvoronoi/network/network.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace dvoronoi::network {
@@ -23,6 +24,21 @@ public:
         Index directed = 0;
         for (const auto& a : planar_) directed += static_cast<Index>(a.size());
         hop_limit_ = 4 * directed + 4 * net.size() + 16;
+        // Each node's planar neighbours in counter-clockwise order (exact angular comparison), so
+        // the right-hand rule's next edge is a lookup.
+        ring_.resize(planar_.size());
+        for (std::size_t c = 0; c < planar_.size(); ++c) {
+            auto& r = ring_[c];
+            r = planar_[c];
+            if (r.size() < 2) continue;
+            const Vec2 pc = pos(static_cast<Index>(c));
+            const Vec2 ref = pos(r[0]);
+            std::sort(r.begin(), r.end(), [&](Index a, Index b) {
+                const int sa = sector(pc, ref, pos(a), true), sb = sector(pc, ref, pos(b), true);
+                if (sa != sb) return sa < sb;
+                return (sa == 1 || sa == 3) && pred::orient(pc, pos(a), pos(b)) > 0;
+            });
+        }
     }
 
     const std::vector<std::vector<Index>>& planar() const { return planar_; }
@@ -59,7 +75,7 @@ public:
                 }
             } else {
                 // The next edge counter-clockwise from the one the packet came in on.
-                nxt = next_ccw(cur, pos(prev), false);
+                nxt = next_after(cur, prev);
                 bool changed = false;
                 nxt = face_change(cur, nxt, lp, target, lf, changed);
                 if (changed) {
@@ -72,7 +88,7 @@ public:
                         path.push_back(nxt);
                         prev = cur;
                         cur = nxt;
-                        nxt = next_ccw(cur, pos(prev), false);
+                        nxt = next_after(cur, prev);
                     }
                     return cur == best;
                 }
@@ -108,6 +124,14 @@ private:
         return pred::dot_sign(c, r, a) > 0 ? (zero_first ? 0 : 4) : 2;
     }
 
+    /// The planar neighbour of c next counter-clockwise after its neighbour `from` (from itself when
+    /// it is the only one).
+    Index next_after(Index c, Index from) const {
+        const auto& r = ring_[static_cast<std::size_t>(c)];
+        const std::size_t k = static_cast<std::size_t>(std::find(r.begin(), r.end(), from) - r.begin());
+        return r[(k + 1) % r.size()];
+    }
+
     /// The planar neighbour of c first counter-clockwise from the direction c -> r.
     Index next_ccw(Index c, const Vec2& r, bool zero_first) const {
         const Vec2 pc = pos(c);
@@ -129,6 +153,10 @@ private:
         const std::size_t deg = planar_[static_cast<std::size_t>(c)].size();
         for (std::size_t guard = 0; guard < deg; ++guard) {
             const Vec2 a = pos(c), b = pos(nxt);
+            // Disjoint bounding boxes: no crossing (spares the orientation tests on most hops).
+            if (std::max(a.x(), b.x()) < std::min(lp.x(), target.x()) || std::min(a.x(), b.x()) > std::max(lp.x(), target.x()) ||
+                std::max(a.y(), b.y()) < std::min(lp.y(), target.y()) || std::min(a.y(), b.y()) > std::max(lp.y(), target.y()))
+                break;
             const int o1 = pred::orient(lp, target, a), o2 = pred::orient(lp, target, b);
             const int o3 = pred::orient(a, b, lp), o4 = pred::orient(a, b, target);
             if (!(o1 * o2 < 0 && o3 * o4 < 0)) break;
@@ -140,13 +168,14 @@ private:
             if (!((x - target).squaredNorm() < (lf - target).squaredNorm())) break;
             lf = x;
             changed = true;
-            nxt = next_ccw(c, b, false);
+            nxt = next_after(c, nxt);
         }
         return nxt;
     }
 
     const Network& net_;
     std::vector<std::vector<Index>> planar_;
+    std::vector<std::vector<Index>> ring_;
     Index hop_limit_ = 0;
 };
 
