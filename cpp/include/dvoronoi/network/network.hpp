@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
 #include <string>
 #include <unordered_map>
@@ -60,29 +61,50 @@ struct Network {
 
 namespace detail {
 
-/// Obstacles bucketed on a uniform grid (cell = range), so a link tests only the obstacles near it.
+/// Obstacles bucketed on a dense uniform grid over the nodes' bounding box (links lie inside it, so
+/// only the obstacles' parts inside matter): a link tests the obstacles of the cells its bounding box
+/// covers, after a bounding-box pre-test; the exact test decides.
 class ObstacleGrid {
 public:
-    ObstacleGrid(const std::vector<Segment>& obs, double x0, double y0, double cell)
+    ObstacleGrid(const std::vector<Segment>& obs, double x0, double y0, double x1, double y1, double cell)
         : obs_(obs), x0_(x0), y0_(y0), cell_(cell) {
+        nx_ = std::max<long long>(1, static_cast<long long>(std::floor((x1 - x0) / cell)) + 1);
+        ny_ = std::max<long long>(1, static_cast<long long>(std::floor((y1 - y0) / cell)) + 1);
+        if (static_cast<double>(nx_) * static_cast<double>(ny_) > 4e6) {  // absurd extents: one cell
+            nx_ = ny_ = 1;
+            cell_ = std::numeric_limits<double>::infinity();
+        }
+        std::vector<std::vector<std::size_t>> cells(static_cast<std::size_t>(nx_ * ny_));
         for (std::size_t k = 0; k < obs.size(); ++k) {
             const auto [ax, ay] = key(obs[k].a);
             const auto [bx, by] = key(obs[k].b);
-            for (long long x = std::min(ax, bx); x <= std::max(ax, bx); ++x)
-                for (long long y = std::min(ay, by); y <= std::max(ay, by); ++y) cells_[pack(x, y)].push_back(k);
+            for (long long x = std::max(0LL, std::min(ax, bx)); x <= std::min(nx_ - 1, std::max(ax, bx)); ++x)
+                for (long long y = std::max(0LL, std::min(ay, by)); y <= std::min(ny_ - 1, std::max(ay, by)); ++y)
+                    cells[static_cast<std::size_t>(x * ny_ + y)].push_back(k);
+        }
+        start_.push_back(0);
+        for (const auto& c : cells) {
+            ids_.insert(ids_.end(), c.begin(), c.end());
+            start_.push_back(ids_.size());
         }
     }
     bool blocks(const Vec2& p, const Vec2& q, std::size_t stamp, std::vector<std::size_t>& mark) const {
         const auto [px, py] = key(p);
         const auto [qx, qy] = key(q);
-        for (long long x = std::min(px, qx) - 1; x <= std::max(px, qx) + 1; ++x)
-            for (long long y = std::min(py, qy) - 1; y <= std::max(py, qy) + 1; ++y) {
-                const auto it = cells_.find(pack(x, y));
-                if (it == cells_.end()) continue;
-                for (std::size_t k : it->second) {
+        const double lx = std::min(p.x(), q.x()), hx = std::max(p.x(), q.x());
+        const double ly = std::min(p.y(), q.y()), hy = std::max(p.y(), q.y());
+        for (long long x = std::max(0LL, std::min(px, qx)); x <= std::min(nx_ - 1, std::max(px, qx)); ++x)
+            for (long long y = std::max(0LL, std::min(py, qy)); y <= std::min(ny_ - 1, std::max(py, qy)); ++y) {
+                const auto c = static_cast<std::size_t>(x * ny_ + y);
+                for (std::size_t t = start_[c]; t < start_[c + 1]; ++t) {
+                    const std::size_t k = ids_[t];
                     if (mark[k] == stamp) continue;
                     mark[k] = stamp;
-                    if (segments_intersect(p, q, obs_[k].a, obs_[k].b)) return true;
+                    const Segment& o = obs_[k];
+                    if (std::max(o.a.x(), o.b.x()) < lx || std::min(o.a.x(), o.b.x()) > hx ||
+                        std::max(o.a.y(), o.b.y()) < ly || std::min(o.a.y(), o.b.y()) > hy)
+                        continue;
+                    if (segments_intersect(p, q, o.a, o.b)) return true;
                 }
             }
         return false;
@@ -90,13 +112,15 @@ public:
 
 private:
     std::pair<long long, long long> key(const Vec2& p) const {
-        return {static_cast<long long>(std::floor((p.x() - x0_) / cell_)),
-                static_cast<long long>(std::floor((p.y() - y0_) / cell_))};
+        if (!std::isfinite(cell_)) return {0, 0};
+        const double fx = std::floor((p.x() - x0_) / cell_), fy = std::floor((p.y() - y0_) / cell_);
+        return {static_cast<long long>(std::clamp(fx, -1.0, static_cast<double>(nx_))),
+                static_cast<long long>(std::clamp(fy, -1.0, static_cast<double>(ny_)))};
     }
-    static long long pack(long long x, long long y) { return x * 2654435761LL ^ (y + (1LL << 31)); }
     const std::vector<Segment>& obs_;
     double x0_, y0_, cell_;
-    std::unordered_map<long long, std::vector<std::size_t>> cells_;
+    long long nx_ = 1, ny_ = 1;
+    std::vector<std::size_t> start_, ids_;
 };
 
 }  // namespace detail
@@ -121,38 +145,53 @@ inline Network make_network(PointsRef points, double range, const std::vector<Se
     net.adj.assign(static_cast<std::size_t>(n), {});
     if (n == 0) return net;
     const double x0 = net.points.col(0).minCoeff(), y0 = net.points.col(1).minCoeff();
-    // Node grid with cells of side `range` (slightly enlarged against rounding): links only within
-    // the 3x3 block; the exact test decides.
-    const double cell = range * (1.0 + 1e-9);
-    std::unordered_map<long long, std::vector<Index>> grid;
+    // Node grid (dense, counting sort) with cells of side `range` (slightly enlarged against
+    // rounding): links only within the 3x3 block; the exact test decides.
+    const double x1 = net.points.col(0).maxCoeff(), y1 = net.points.col(1).maxCoeff();
+    double cell = range * (1.0 + 1e-9);
+    cell = std::max({cell, (x1 - x0) / 2048.0, (y1 - y0) / 2048.0});  // at most 2048^2 cells
+    const auto nx = static_cast<long long>(std::floor((x1 - x0) / cell)) + 1;
+    const auto ny = static_cast<long long>(std::floor((y1 - y0) / cell)) + 1;
     const auto key = [&](const Vec2& p) {
-        return std::pair<long long, long long>{static_cast<long long>(std::floor((p.x() - x0) / cell)),
-                                               static_cast<long long>(std::floor((p.y() - y0) / cell))};
+        return std::pair<long long, long long>{std::min(nx - 1, static_cast<long long>(std::floor((p.x() - x0) / cell))),
+                                               std::min(ny - 1, static_cast<long long>(std::floor((p.y() - y0) / cell)))};
     };
-    const auto pack = [](long long x, long long y) { return x * 2654435761LL ^ (y + (1LL << 31)); };
+    std::vector<Index> start(static_cast<std::size_t>(nx * ny + 1), 0), order(static_cast<std::size_t>(n));
+    std::vector<long long> cell_of(static_cast<std::size_t>(n));
     for (Index i = 0; i < n; ++i) {
         const auto [x, y] = key(net.pos(i));
-        grid[pack(x, y)].push_back(i);
+        cell_of[static_cast<std::size_t>(i)] = x * ny + y;
+        ++start[static_cast<std::size_t>(x * ny + y + 1)];
     }
-    const detail::ObstacleGrid og(net.obstacles, x0, y0, cell);
+    for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    {
+        std::vector<Index> fill(start.begin(), start.end() - 1);
+        for (Index i = 0; i < n; ++i) order[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of[static_cast<std::size_t>(i)])]++)] = i;
+    }
+    const detail::ObstacleGrid og(net.obstacles, x0, y0, x1, y1, 0.5 * cell);
     std::vector<std::size_t> mark(obstacles.size(), 0);
     std::size_t stamp = 0;
     const double half = 0.5 * range;  // |p - q| <= range  <=>  within_2r(p, q, range / 2) >= 0 (halving is exact)
+    const double r2 = range * range;
     for (Index i = 0; i < n; ++i) {
         const Vec2 p = net.pos(i);
         const auto [x, y] = key(p);
-        for (long long dx = -1; dx <= 1; ++dx)
-            for (long long dy = -1; dy <= 1; ++dy) {
-                const auto it = grid.find(pack(x + dx, y + dy));
-                if (it == grid.end()) continue;
-                for (Index j : it->second) {
+        for (long long cx = std::max(0LL, x - 1); cx <= std::min(nx - 1, x + 1); ++cx)
+            for (long long cy = std::max(0LL, y - 1); cy <= std::min(ny - 1, y + 1); ++cy) {
+                const auto c = static_cast<std::size_t>(cx * ny + cy);
+                for (Index t = start[c]; t < start[c + 1]; ++t) {
+                    const Index j = order[static_cast<std::size_t>(t)];
                     if (j <= i) continue;
                     const Vec2 q = net.pos(j);
                     if (p == q)
                         throw CoincidentError("points[" + std::to_string(i) + "] and points[" + std::to_string(j) +
                                                   "] coincide; their Voronoi cells are undefined",
                                               i, j);
-                    if (pred::within_2r(p, q, half) < 0) continue;
+                    // Clear cases in floating point (relative error of d2 far below 1e-12), the
+                    // rest exactly.
+                    const double d2 = (p - q).squaredNorm();
+                    if (d2 > r2 * (1.0 + 1e-12)) continue;
+                    if (!(d2 < r2 * (1.0 - 1e-12)) && pred::within_2r(p, q, half) < 0) continue;
                     if (!obstacles.empty() && og.blocks(p, q, ++stamp, mark)) {
                         ++net.blocked_links;
                         continue;
