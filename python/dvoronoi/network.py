@@ -138,19 +138,24 @@ class _NetworkMixin:
         ax.autoscale_view()
         return ax
 
+    def _sent_columns(self):
+        """(message type, transmissions sent per node) for the bar chart, in protocol order."""
+        return [(t, self.sent[:, k]) for k, t in enumerate(self.message_types)]
+
     def plot_messages(self, ax: Any = None, received: bool = True) -> Any:
-        """Bar chart of transmissions sent (and received) per node, stacked by message type."""
+        """Bar chart of transmissions sent per node, stacked by message type (DV-Hop first for
+        Boundary Scan with localisation, as the paper's Figure 12), received ones as dots."""
         import matplotlib.pyplot as plt
 
         if ax is None:
             _, ax = plt.subplots(figsize=(10, 3.5))
         x = np.arange(len(self.points))
         bottom = np.zeros(len(x))
-        for k, t in enumerate(self.message_types):
-            ax.bar(x, self.sent[:, k], bottom=bottom, width=0.8, label=f"sent: {t}")
-            bottom += self.sent[:, k]
+        for t, v in self._sent_columns():
+            ax.bar(x, v, bottom=bottom, width=0.8, label=f"sent: {t}")
+            bottom += v
         if received:
-            ax.plot(x, self.received.sum(axis=1), "k.", markersize=4, label="received (all types)")
+            ax.plot(x, self.received_per_node, "k.", markersize=4, label="received (all types)")
         ax.set_xlabel("node")
         ax.set_ylabel("transmissions")
         ax.legend(fontsize="small")
@@ -524,25 +529,9 @@ class BoundaryScanResult(_CellsMixin, _NetworkMixin, CellResult):
                 ax.scatter(a[:, 0], a[:, 1], marker="^", c="tab:red", s=30, zorder=5, label="anchors")
         return ax
 
-    def plot_messages(self, ax: Any = None, received: bool = True) -> Any:
-        """Per node: DV-Hop and Boundary Scan transmissions sent (stacked), received as dots (Figure 12)."""
-        import matplotlib.pyplot as plt
-
-        if ax is None:
-            _, ax = plt.subplots(figsize=(10, 3.5))
-        x = np.arange(len(self.points))
-        bottom = np.zeros(len(x))
+    def _sent_columns(self):
         cols = [(t, self.dv_hop_sent[:, k]) for k, t in enumerate(self.dv_hop_types)]
-        cols += [(t, self.sent[:, k]) for k, t in enumerate(self.message_types)]
-        for t, v in cols:
-            ax.bar(x, v, bottom=bottom, width=0.8, label=f"sent: {t}")
-            bottom += v
-        if received:
-            ax.plot(x, self.received_per_node, "k.", markersize=4, label="received (all types)")
-        ax.set_xlabel("node")
-        ax.set_ylabel("transmissions")
-        ax.legend(fontsize="small")
-        return ax
+        return cols + super()._sent_columns()
 
     def __repr__(self) -> str:
         return (f"BoundaryScanResult(n={len(self)}, radius={self.radius:g}, "
