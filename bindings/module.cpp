@@ -10,6 +10,7 @@ void bind_voronoi(py::module_& m);
 void bind_gvd(py::module_& m);
 void bind_distances(py::module_& m);
 void bind_coverage(py::module_& m);
+void bind_network(py::module_& m);
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "dvoronoi compiled core (use the `dvoronoi` package, which re-exports it).";
@@ -19,4 +20,5 @@ PYBIND11_MODULE(_core, m) {
     bind_gvd(m);
     bind_distances(m);
     bind_coverage(m);
+    bind_network(m);
 }

@@ -45,6 +45,7 @@ Command add_voronoi(CLI::App& parent);
 Command add_gvd(CLI::App& parent);
 Command add_neighbors_from_distances(CLI::App& parent);
 Command add_lloyd(CLI::App& parent);
+Command add_network(CLI::App& parent);
 
 /// A double as the user would write it ("-1", "0.5", "nan").
 inline std::string show(double v) {

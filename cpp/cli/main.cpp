@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     commands.push_back(cli::add_gvd(app));
     commands.push_back(cli::add_neighbors_from_distances(app));
     commands.push_back(cli::add_lloyd(app));
+    commands.push_back(cli::add_network(app));
     app.footer("Run 'dvoronoi SUBCOMMAND --help' for a subcommand's options.");
 
     try {

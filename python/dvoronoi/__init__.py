@@ -21,6 +21,7 @@ from .gvd import GridVoronoi, grid_voronoi, obstacles_from_occupancy_grid
 from . import distances
 from .distances import DistanceNeighbors, neighbors_from_distances
 from . import coverage
+from . import network
 
 __all__ = [
     "limited_cell",
@@ -43,5 +44,6 @@ __all__ = [
     "neighbors_from_distances",
     "DistanceNeighbors",
     "coverage",
+    "network",
     "__version__",
 ]

@@ -310,3 +310,39 @@ def environment_quadrature(bounds: npt.ArrayLike, order: int = 8) -> _Quadrature
 def lloyd_move(points: npt.ArrayLike, targets: npt.ArrayLike, gain: float,
                bounds: Optional[npt.ArrayLike] = None) -> npt.NDArray[np.float64]: ...
 def bounds_contains(bounds: Optional[npt.ArrayLike], points: npt.ArrayLike) -> npt.NDArray[np.bool_]: ...
+# Message-passing networks (bindings/bind_network.cpp; use dvoronoi.network).
+class BudgetExceeded(RuntimeError): ...
+
+def _network_links(points: npt.ArrayLike, comm_range: float, obstacles: Optional[npt.ArrayLike] = None) -> dict: ...
+def _network_gpsr(
+    points: npt.ArrayLike, comm_range: float, obstacles: Optional[npt.ArrayLike], source: int, target: object
+) -> tuple: ...
+def _network_simulate(
+    algorithm: str,
+    points: npt.ArrayLike,
+    comm_range: float,
+    loss: float,
+    obstacles: Optional[npt.ArrayLike],
+    bounds: Optional[object],
+    seed: int,
+    budget: int,
+    cap_adjacency: bool,
+    adjacency_cap: int,
+    forward: bool,
+    routing: str,
+    anchors: Optional[list],
+    radius: float,
+    verify: bool,
+) -> dict: ...
+def _network_batch(
+    algorithm: str,
+    points_list: list,
+    comm_range: float,
+    loss: float,
+    obstacles_list: list,
+    bounds: list,
+    seeds: list,
+    verify: bool,
+    threads: int,
+    progress: Optional[Callable[[int, int], object]],
+) -> dict: ...

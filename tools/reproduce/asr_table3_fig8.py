@@ -19,9 +19,9 @@ from __future__ import annotations
 
 import argparse
 import csv
-import io
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -39,19 +39,21 @@ COLUMNS = {"EVT": "evt_s", "BS": "bs_s", "ASR+EVT": "asr_evt_s", "ASR+BS": "asr_
 def run(exe: Path, experiment: str, configs: int, total: int, extra=()) -> list:
     from tqdm import tqdm
 
-    proc = subprocess.Popen([str(exe), experiment, "--configs", str(configs), *extra],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    bar = tqdm(total=total, unit="config", desc=experiment)
-    for line in proc.stderr:
-        if line.startswith("progress"):
-            bar.update(1)
-        else:
-            sys.stderr.write(line)
-    out = proc.stdout.read()
-    bar.close()
-    if proc.wait() != 0:
-        raise SystemExit(f"{exe} {experiment} failed (exit {proc.returncode})")
-    return list(csv.DictReader(io.StringIO(out)))
+    # The CSV goes to a temporary file, so the progress lines on stderr can be read as they come.
+    with tempfile.TemporaryFile("w+") as out:
+        proc = subprocess.Popen([str(exe), experiment, "--configs", str(configs), *extra],
+                                stdout=out, stderr=subprocess.PIPE, text=True)
+        bar = tqdm(total=total, unit="config", desc=experiment)
+        for line in proc.stderr:
+            if line.startswith("progress"):
+                bar.update(1)
+            else:
+                sys.stderr.write(line)
+        bar.close()
+        if proc.wait() != 0:
+            raise SystemExit(f"{exe} {experiment} failed (exit {proc.returncode})")
+        out.seek(0)
+        return list(csv.DictReader(out))
 
 
 def write_csv(rows: list, path: Path) -> None:
@@ -64,7 +66,8 @@ def write_csv(rows: list, path: Path) -> None:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--exe", type=Path, default=ROOT / "build" / "tools" / "reproduce" / "asr_timing")
-    ap.add_argument("--configs", type=int, default=100, help="configurations per point (paper: 100)")
+    ap.add_argument("--configs", type=int, default=100, help="Table 3 configurations (paper: 100)")
+    ap.add_argument("--fig8-configs", type=int, default=100, help="Figure 8 networks per side (paper: 100)")
     ap.add_argument("--out", type=Path, default=OUT)
     ap.add_argument("--quick", action="store_true", help="10 configurations, sides 1,4,8,15")
     args = ap.parse_args(argv)
@@ -90,7 +93,8 @@ def main(argv=None) -> int:
               f"{t.mean() / bs:.2f} | {pm / PAPER_TABLE3['BS'][0]:.2f} |")
 
     n_sides = len(sides.split(","))
-    f8 = run(args.exe, "figure8", configs, configs * n_sides, ("--sides", sides))
+    f8_configs = 10 if args.quick else args.fig8_configs
+    f8 = run(args.exe, "figure8", f8_configs, f8_configs * n_sides, ("--sides", sides))
     write_csv(f8, args.out / f"asr_figure8{stem}.csv")
     Ls = sorted({float(r["side"]) for r in f8})
     stats = {}
@@ -104,7 +108,7 @@ def main(argv=None) -> int:
             L0, L1 = Ls[k - 1], Ls[k]
             cross = L0 + (1.0 - ratio[k - 1]) * (L1 - L0) / (ratio[k] - ratio[k - 1])
             break
-    print("\nFigure 8: 500 sensors, r = 1; ASR+BS / BS time by side L")
+    print(f"\nFigure 8: 500 sensors, r = 1, {f8_configs} networks per side; ASR+BS / BS time by side L")
     print("| L | neighbours in r | ASR+BS / BS | ASR steps |")
     print("|---|---|---|---|")
     for L, q in zip(Ls, ratio):

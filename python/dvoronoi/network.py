@@ -1,0 +1,702 @@
+"""Message-passing sensor networks: each node computes its Voronoi cell by exchanging messages, and we
+count what that costs (SPEC "Networks of agents").
+
+>>> import dvoronoi as dv
+>>> res = dv.network.simulate("cc", points, comm_range=20.0, loss=0.2, seed=1)
+>>> res.neighbors(0), res.on_hull, res.total_transmissions, res.transmissions_by_type
+>>> res.plot_messages()
+
+Algorithms (the simulator is C++: ``cpp/include/dvoronoi/network/``):
+
+``"cc"``
+    The completely cooperative algorithm (Núñez-Rodríguez et al.): the complete Voronoi diagram,
+    Delaunay triangulation and convex hull. Exact whenever the Delaunay edges that are links form a
+    connected graph (Theorem 2); ``condition`` and ``wrong_nodes`` report it (``verify=True``).
+    Options: ``cap_adjacency`` / ``adjacency_cap`` and ``forward`` (Section 2.3's optimisations),
+    ``routing`` ("gpsr" as in the paper, or "shortest": hop-shortest paths).
+``"bd07"``
+    Bash & Desnoyers: cells of the bounded region ``bounds`` (default: the points' bounding box),
+    refined by probing cell vertices through GPSR.
+``"bs"``
+    Distributed Boundary Scan: every node sends its position once and computes its limited cell of
+    radius ``radius`` (default ``comm_range / 2``). With ``anchors`` (node indices) or
+    ``anchor_fraction`` the other nodes first localise themselves by DV-Hop and the cells are built
+    from the estimated positions.
+
+Links are the unit-disk graph (``|p - q| <= comm_range``) minus the links whose segment meets an
+obstacle segment (``obstacles``: an ``(m, 4)`` array ``x0, y0, x1, y1``). Each try over a link fails
+with probability ``loss`` and is repeated; every try is counted. Messages are delivered in a random
+order drawn from ``seed`` (one seed, one reproducible interleaving). A run that would send more than
+``budget`` transmissions raises :class:`BudgetExceeded`.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any, Dict, Optional, Sequence
+
+import numpy as np
+
+from . import _core
+from ._result import CellResult, Result
+
+__all__ = ["simulate", "BudgetExceeded", "CcResult", "Bd07Result", "BoundaryScanResult", "NetworkCell",
+           "links", "gpsr_route", "random_bars"]
+
+BudgetExceeded = _core.BudgetExceeded
+
+ALGORITHMS = ("cc", "bd07", "bs")
+
+
+@dataclass(frozen=True)
+class NetworkCell:
+    """One node's cell: a closed counter-clockwise cycle of pieces starting at ``vertices[k]``.
+
+    ``piece_neighbor[k]`` is the node across an edge, ``-1`` for an arc of the limiting circle
+    (Boundary Scan) and ``-2 .. -5`` for the bottom, right, top and left side of the bounded region.
+    """
+
+    center: np.ndarray
+    vertices: np.ndarray
+    piece_neighbor: np.ndarray
+    piece_span: np.ndarray
+    area: float
+    centroid: np.ndarray
+
+    @property
+    def neighbors(self) -> np.ndarray:
+        nb = self.piece_neighbor[self.piece_neighbor >= 0]
+        return np.unique(nb).astype(np.int64)
+
+
+class _NetworkMixin:
+    """Transmission counts and network pictures shared by every network result."""
+
+    _d: Dict[str, Any]
+    points: np.ndarray
+
+    def _init_network(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float,
+                      seed: int, obstacles: np.ndarray, algorithm: str) -> None:
+        self._d = d
+        self.points = points
+        self.comm_range = float(comm_range)
+        self.loss = float(loss)
+        self.seed = int(seed)
+        self.obstacles = obstacles
+        self.algorithm = algorithm
+        self.links = np.asarray(d["links"], dtype=np.int64).reshape(-1, 2)
+        self.blocked_links = int(d["blocked_links"])
+        counts = d["counts"]
+        self.message_types = tuple(counts["types"])
+        self.sent = np.asarray(counts["sent"], dtype=np.int64)
+        self.received = np.asarray(counts["received"], dtype=np.int64)
+        self.lost_messages = int(d.get("lost", 0))
+
+    @property
+    def total_transmissions(self) -> int:
+        """Every try of every message over every link."""
+        return int(self.sent.sum())
+
+    @property
+    def transmissions_by_type(self) -> Dict[str, int]:
+        return {t: int(self.sent[:, k].sum()) for k, t in enumerate(self.message_types)}
+
+    @property
+    def sent_per_node(self) -> np.ndarray:
+        return self.sent.sum(axis=1)
+
+    @property
+    def received_per_node(self) -> np.ndarray:
+        return self.received.sum(axis=1)
+
+    def _counts_json(self) -> Dict[str, Any]:
+        return {
+            "algorithm": self.algorithm, "comm_range": self.comm_range, "loss": self.loss, "seed": self.seed,
+            "links": self.links.tolist(), "blocked_links": self.blocked_links,
+            "obstacles": self.obstacles.tolist(), "message_types": list(self.message_types),
+            "sent": self.sent.tolist(), "received": self.received.tolist(),
+            "total_transmissions": self.total_transmissions, "lost_messages": self.lost_messages,
+        }
+
+    def plot_network(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Draw the nodes, their links and the obstacles; returns the Axes."""
+        import matplotlib.pyplot as plt
+        from matplotlib.collections import LineCollection
+
+        if ax is None:
+            _, ax = plt.subplots()
+        pts = self.points
+        ax.add_collection(LineCollection(pts[self.links], colors=kwargs.get("link_color", "0.7"),
+                                         linewidths=kwargs.get("linewidth", 0.6), zorder=1))
+        if len(self.obstacles):
+            ax.add_collection(LineCollection(self.obstacles.reshape(-1, 2, 2), colors="tab:red",
+                                             linewidths=2.0, zorder=2, label="obstacles"))
+        ax.scatter(pts[:, 0], pts[:, 1], s=kwargs.get("point_size", 10), c="k", zorder=3)
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        return ax
+
+    def _sent_columns(self):
+        """(message type, transmissions sent per node) for the bar chart, in protocol order."""
+        return [(t, self.sent[:, k]) for k, t in enumerate(self.message_types)]
+
+    def plot_messages(self, ax: Any = None, received: bool = True) -> Any:
+        """Bar chart of transmissions sent per node, stacked by message type (DV-Hop first for
+        Boundary Scan with localisation, as the paper's Figure 12), received ones as dots."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(10, 3.5))
+        x = np.arange(len(self.points))
+        bottom = np.zeros(len(x))
+        for t, v in self._sent_columns():
+            ax.bar(x, v, bottom=bottom, width=0.8, label=f"sent: {t}")
+            bottom += v
+        if received:
+            ax.plot(x, self.received_per_node, "k.", markersize=4, label="received (all types)")
+        ax.set_xlabel("node")
+        ax.set_ylabel("transmissions")
+        ax.legend(fontsize="small")
+        return ax
+
+
+def _polygon_cells(d: Dict[str, Any], n: int):
+    ptr = np.asarray(d["piece_ptr"], dtype=np.int64)
+    nb = np.asarray(d["piece_neighbor"], dtype=np.int64)
+    return dict(piece_ptr=ptr, piece_neighbor=nb, piece_x=np.asarray(d["piece_x"], dtype=float),
+                piece_y=np.asarray(d["piece_y"], dtype=float), piece_span=np.zeros(len(nb)),
+                areas=np.asarray(d["areas"], dtype=float),
+                centroids=np.asarray(d["centroids"], dtype=float).reshape(n, 2))
+
+
+class _CellsMixin:
+    """cell(i), GeoJSON and plots from flat piece arrays (polygons, or limited cells with arcs)."""
+
+    piece_ptr: np.ndarray
+    piece_neighbor: np.ndarray
+    piece_x: np.ndarray
+    piece_y: np.ndarray
+    piece_span: np.ndarray
+    areas: np.ndarray
+    centroids: np.ndarray
+    points: np.ndarray
+    radius: float
+
+    def cell(self, i: int) -> NetworkCell:
+        i = self._index(i)  # type: ignore[attr-defined]
+        a, b = self.piece_ptr[i], self.piece_ptr[i + 1]
+        return NetworkCell(center=self.points[i].copy(),
+                           vertices=np.column_stack([self.piece_x[a:b], self.piece_y[a:b]]),
+                           piece_neighbor=self.piece_neighbor[a:b].copy(), piece_span=self.piece_span[a:b].copy(),
+                           area=float(self.areas[i]), centroid=self.centroids[i].copy())
+
+    def _ring(self, i: int, tolerance: float) -> list:
+        c = self.cell(i)
+        ring = []
+        k = len(c.vertices)
+        for j in range(k):
+            ring.append(c.vertices[j].tolist())
+            if c.piece_span[j] > 0.0:  # an arc: inscribed chords within `tolerance`
+                r = self.radius
+                step = 2.0 * math.acos(max(-1.0, 1.0 - tolerance / r)) if tolerance < r else math.pi / 2
+                m = max(1, int(math.ceil(c.piece_span[j] / step)))
+                a0 = math.atan2(c.vertices[j][1] - c.center[1], c.vertices[j][0] - c.center[0])
+                for s in range(1, m):
+                    t = a0 + c.piece_span[j] * s / m
+                    ring.append([c.center[0] + r * math.cos(t), c.center[1] + r * math.sin(t)])
+        if ring:
+            ring.append(ring[0])
+        return ring
+
+    def _geojson_text(self, tolerance: Optional[float]) -> str:
+        r = getattr(self, "radius", float("nan"))
+        tol = tolerance if tolerance is not None else (r / 1000.0 if np.isfinite(r) else 1.0)
+        feats = []
+        for i in range(len(self)):  # type: ignore[arg-type]
+            ring = self._ring(i, tol)
+            feats.append({"type": "Feature",
+                          "geometry": {"type": "Polygon", "coordinates": [ring] if ring else []},
+                          "properties": {"agent": i, "area": float(self.areas[i]),
+                                         "neighbors": self.cell(i).neighbors.tolist()}})
+        return json.dumps({"type": "FeatureCollection", "features": feats})
+
+    def plot_cells(self, ax: Any = None, network: bool = True, **kwargs: Any) -> Any:
+        """The cells over the network (links and obstacles); returns the Axes."""
+        from . import plotting
+
+        ax = plotting.plot(self, ax=ax, **kwargs)
+        if network:
+            self.plot_network(ax=ax)  # type: ignore[attr-defined]
+        return ax
+
+
+def _csr_sorted(indptr: np.ndarray, indices: np.ndarray):
+    out = indices.copy()
+    for i in range(len(indptr) - 1):
+        out[indptr[i]:indptr[i + 1]] = np.sort(out[indptr[i]:indptr[i + 1]])
+    return out
+
+
+class CcResult(_CellsMixin, _NetworkMixin, CellResult):
+    """The CC algorithm's answer: every node's Voronoi neighbours, the Delaunay graph, the hull.
+
+    Attributes
+    ----------
+    indptr, indices : int64
+        Voronoi neighbours, CSR, ascending per node (``neighbors_ccw(i)`` keeps CC's own order).
+    on_hull : (n,) bool
+        The node's cell is unbounded (it is on the convex hull).
+    condition : bool or None
+        Theorem 2's condition: the Delaunay edges that are links form a connected graph (None when
+        ``verify=False``).
+    wrong_nodes : (k,) int64 or None
+        Nodes whose neighbours or hull flag differ from the exact (centralised) answer.
+    areas, centroids, cell(i)
+        Only with ``bounds``: cells clipped to the box (hull cells are unbounded otherwise: their area
+        is ``inf`` and ``cell(i)`` raises).
+    sent, received : (n, T) int64
+        Transmissions per node and message type (``message_types``: location, notify).
+    """
+
+    def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
+                 obstacles: np.ndarray, bounds: Optional[Sequence[float]]) -> None:
+        self._init_network(d, points, comm_range, loss, seed, obstacles, "cc")
+        ip, ix = d["neighbors_ccw"]
+        self.indptr = np.asarray(ip, dtype=np.int64)
+        self._ccw = np.asarray(ix, dtype=np.int64)
+        self.indices = _csr_sorted(self.indptr, self._ccw)
+        self.on_hull = np.asarray(d["on_hull"], dtype=bool)
+        self.condition = bool(d["condition"]) if "condition" in d else None
+        self.dt_components = int(d["dt_components"]) if "dt_components" in d else None
+        self.wrong_nodes = np.asarray(d["wrong_nodes"], dtype=np.int64) if "wrong_nodes" in d else None
+        self.refinements = int(d["refinements"])
+        self.bounds = None if bounds is None else tuple(float(b) for b in bounds)
+        self.radius = float("nan")
+        if "cells" in d:
+            for k, v in _polygon_cells(d["cells"], len(points)).items():
+                setattr(self, k, v)
+        else:
+            self._unbounded_cells()
+
+    def _unbounded_cells(self) -> None:
+        """Interior cells as polygons of circumcentres; hull cells have no finite polygon."""
+        n = len(self.points)
+        ptr, nbs, xs, ys = [0], [], [], []
+        areas = np.full(n, np.inf)
+        cents = np.full((n, 2), np.nan)
+        for i in range(n):
+            if not self.on_hull[i]:
+                ccw = self.neighbors_ccw(i)
+                c = self.points[i]
+                verts = []
+                for k in range(len(ccw)):
+                    a, b = self.points[ccw[k]], self.points[ccw[(k + 1) % len(ccw)]]
+                    verts.append(_circumcenter(c, a, b))
+                verts_a = np.array(verts)
+                # Vertex k joins edges with ccw[k-1] and ccw[k]: the edge from vertex k lies on ccw[k+1]'s
+                # bisector... keep CC's pairing: vertex k = (ccw[k], ccw[k+1]), the edge after it is ccw[k+1].
+                labels = np.roll(ccw, -1)
+                xs.extend(verts_a[:, 0])
+                ys.extend(verts_a[:, 1])
+                nbs.extend(labels.tolist())
+                x, y = verts_a[:, 0], verts_a[:, 1]
+                area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+                areas[i] = area
+                cents[i] = _polygon_centroid(verts_a)
+            ptr.append(len(xs))
+        self.piece_ptr = np.asarray(ptr, dtype=np.int64)
+        self.piece_neighbor = np.asarray(nbs, dtype=np.int64)
+        self.piece_x = np.asarray(xs, dtype=float)
+        self.piece_y = np.asarray(ys, dtype=float)
+        self.piece_span = np.zeros(len(nbs))
+        self.areas = areas
+        self.centroids = cents
+
+    def cell(self, i: int) -> NetworkCell:
+        i = self._index(i)
+        if self.bounds is None and self.on_hull[i]:
+            raise ValueError(f"node {i} is on the convex hull: its Voronoi cell is unbounded; pass "
+                             "bounds=(xmin, ymin, xmax, ymax) to clip the cells")
+        return super().cell(i)
+
+    @property
+    def exact(self) -> Optional[bool]:
+        """Every node has its exact Voronoi neighbours and hull flag (None when not verified)."""
+        return None if self.wrong_nodes is None else len(self.wrong_nodes) == 0
+
+    def neighbors_ccw(self, i: int) -> np.ndarray:
+        """Node `i`'s Voronoi neighbours counter-clockwise (a hull node's list runs from the neighbour
+        across its incoming ray to the one across its outgoing ray)."""
+        i = self._index(i)
+        return self._ccw[self.indptr[i]:self.indptr[i + 1]]
+
+    def delaunay_edges(self) -> np.ndarray:
+        """The Delaunay graph as an ``(E, 2)`` int64 array of pairs ``i < j``."""
+        n = len(self)
+        rows = np.repeat(np.arange(n, dtype=np.int64), np.diff(self.indptr))
+        keep = self.indices > rows
+        return np.stack([rows[keep], self.indices[keep]], axis=1)
+
+    def convex_hull(self) -> np.ndarray:
+        """Hull nodes in counter-clockwise order, starting at the lowest index (a hull node's
+        counter-clockwise neighbour list starts with the next hull node), nodes inside hull edges
+        included. Needs no message: CC's cells already say it (Section 3)."""
+        hull = np.flatnonzero(self.on_hull)
+        if len(hull) <= 2:
+            return hull
+        nxt = {int(i): int(self.neighbors_ccw(i)[0]) for i in hull if len(self.neighbors_ccw(i))}
+        start = int(hull[0])
+        order, cur = [start], nxt.get(start)
+        while cur is not None and cur != start and len(order) <= len(hull):
+            order.append(cur)
+            cur = nxt.get(cur)
+        return np.asarray(order, dtype=np.int64)
+
+    def _json_text(self, indent: Optional[int]) -> str:
+        d = {"kind": "network_cc", **self._counts_json(), "points": self.points.tolist(),
+             "indptr": self.indptr.tolist(), "indices": self.indices.tolist(),
+             "neighbors_ccw": self._ccw.tolist(), "on_hull": self.on_hull.tolist(),
+             "condition": self.condition,
+             "wrong_nodes": None if self.wrong_nodes is None else self.wrong_nodes.tolist(),
+             "bounds": self.bounds, "areas": [a if np.isfinite(a) else None for a in self.areas.tolist()]}
+        return json.dumps(d, indent=indent)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Cells (clipped if bounds were given; interior cells otherwise), the Delaunay graph and the
+        network; returns the Axes."""
+        import matplotlib.pyplot as plt
+        from matplotlib.collections import LineCollection
+
+        if ax is None:
+            _, ax = plt.subplots()
+        self.plot_network(ax=ax)
+        if len(self.piece_x):
+            from . import plotting
+
+            plotting.plot(self, ax=ax, show_points=False, **kwargs)
+        e = self.delaunay_edges()
+        ax.add_collection(LineCollection(self.points[e], colors="tab:blue", linewidths=0.5, linestyles="--"))
+        hull = self.points[self.on_hull]
+        ax.scatter(hull[:, 0], hull[:, 1], s=30, facecolors="none", edgecolors="tab:red", zorder=4)
+        ax.autoscale_view()
+        return ax
+
+    def __repr__(self) -> str:
+        return (f"CcResult(n={len(self)}, transmissions={self.total_transmissions}, "
+                f"hull_nodes={int(self.on_hull.sum())}, condition={self.condition}, exact={self.exact})")
+
+
+def _circumcenter(c: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    ax_, ay = a - c
+    bx, by = b - c
+    d = 2.0 * (ax_ * by - ay * bx)
+    ux = (by * (ax_ * ax_ + ay * ay) - ay * (bx * bx + by * by)) / d
+    uy = (ax_ * (bx * bx + by * by) - bx * (ax_ * ax_ + ay * ay)) / d
+    return c + np.array([ux, uy])
+
+
+def _polygon_centroid(v: np.ndarray) -> np.ndarray:
+    x, y = v[:, 0] - v[0, 0], v[:, 1] - v[0, 1]
+    cr = x * np.roll(y, -1) - np.roll(x, -1) * y
+    a = cr.sum() / 2.0
+    if a == 0:
+        return v[0].copy()
+    return v[0] + np.array([((x + np.roll(x, -1)) * cr).sum(), ((y + np.roll(y, -1)) * cr).sum()]) / (6.0 * a)
+
+
+class Bd07Result(_CellsMixin, _NetworkMixin, CellResult):
+    """BD07's answer: the Voronoi cells clipped to the bounded region, found by GPSR probes.
+
+    ``indptr``/``indices``: nodes across an edge of the clipped cell (ascending); ``cell(i)``,
+    ``areas``, ``centroids``; ``probes`` vertices probed; message types location, probe, reply.
+    """
+
+    def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
+                 obstacles: np.ndarray, bounds: Sequence[float]) -> None:
+        self._init_network(d, points, comm_range, loss, seed, obstacles, "bd07")
+        ip, ix = d["neighbors"]
+        self.indptr = np.asarray(ip, dtype=np.int64)
+        self.indices = np.asarray(ix, dtype=np.int64)
+        self.bounds = tuple(float(b) for b in bounds)
+        self.radius = float("nan")
+        self.probes = int(d["probes"])
+        self.condition = bool(d["condition"]) if "condition" in d else None
+        for k, v in _polygon_cells(d["cells"], len(points)).items():
+            setattr(self, k, v)
+
+    def _json_text(self, indent: Optional[int]) -> str:
+        d = {"kind": "network_bd07", **self._counts_json(), "points": self.points.tolist(),
+             "bounds": self.bounds, "indptr": self.indptr.tolist(), "indices": self.indices.tolist(),
+             "areas": self.areas.tolist(), "probes": self.probes}
+        return json.dumps(d, indent=indent)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        return self.plot_cells(ax=ax, **kwargs)
+
+    def __repr__(self) -> str:
+        return f"Bd07Result(n={len(self)}, transmissions={self.total_transmissions}, probes={self.probes})"
+
+
+class BoundaryScanResult(_CellsMixin, _NetworkMixin, CellResult):
+    """Distributed Boundary Scan (optionally after DV-Hop localisation): limited cells of radius
+    ``radius`` around the positions the nodes used (``positions``: true, or DV-Hop estimates).
+
+    ``sent``/``received`` count the Boundary Scan phase (message type position); with DV-Hop,
+    ``dv_hop_sent``/``dv_hop_received`` count the localisation (anchor_flood, hop_size), and
+    ``estimates``, ``localized``, ``position_error``, ``anchors`` describe it.
+    """
+
+    def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
+                 obstacles: np.ndarray, anchors: Optional[np.ndarray]) -> None:
+        self._init_network(d, points, comm_range, loss, seed, obstacles, "bs")
+        p = d["partition"]
+        self.radius = float(p["radius"])
+        self.positions = np.asarray(p["points"], dtype=float).reshape(-1, 2)
+        self.indptr = np.asarray(p["indptr"], dtype=np.int64)
+        self.indices = np.asarray(p["indices"], dtype=np.int64)
+        for k in ("piece_ptr", "piece_neighbor"):
+            setattr(self, k, np.asarray(p[k], dtype=np.int64))
+        for k in ("piece_x", "piece_y", "piece_span", "areas", "perimeters"):
+            setattr(self, k, np.asarray(p[k], dtype=float))
+        self.centroids = np.asarray(p["centroids"], dtype=float).reshape(-1, 2)
+        self.dropped_coincident = int(d["dropped_coincident"])
+        self.anchors = anchors
+        if "estimates" in d:
+            self.estimates = np.asarray(d["estimates"], dtype=float).reshape(-1, 2)
+            self.localized = np.asarray(d["localized"], dtype=bool)
+            self.hop_size = np.asarray(d["hop_size"], dtype=float)
+            c = d["dv_hop_counts"]
+            self.dv_hop_types = tuple(c["types"])
+            self.dv_hop_sent = np.asarray(c["sent"], dtype=np.int64)
+            self.dv_hop_received = np.asarray(c["received"], dtype=np.int64)
+        else:
+            self.estimates = None
+            self.localized = np.ones(len(points), dtype=bool)
+            self.hop_size = None
+            self.dv_hop_types = ()
+            self.dv_hop_sent = np.zeros((len(points), 0), dtype=np.int64)
+            self.dv_hop_received = np.zeros((len(points), 0), dtype=np.int64)
+
+    @property
+    def position_error(self) -> np.ndarray:
+        """Distance between the position used and the true one (0 for anchors, NaN if not localised)."""
+        return np.linalg.norm(self.positions - self.points, axis=1)
+
+    @property
+    def total_transmissions(self) -> int:
+        return int(self.sent.sum() + self.dv_hop_sent.sum())
+
+    @property
+    def transmissions_by_type(self) -> Dict[str, int]:
+        out = {t: int(self.dv_hop_sent[:, k].sum()) for k, t in enumerate(self.dv_hop_types)}
+        out.update({t: int(self.sent[:, k].sum()) for k, t in enumerate(self.message_types)})
+        return out
+
+    @property
+    def sent_per_node(self) -> np.ndarray:
+        return self.sent.sum(axis=1) + self.dv_hop_sent.sum(axis=1)
+
+    @property
+    def received_per_node(self) -> np.ndarray:
+        return self.received.sum(axis=1) + self.dv_hop_received.sum(axis=1)
+
+    def _json_text(self, indent: Optional[int]) -> str:
+        d = {"kind": "network_bs", **self._counts_json(), "points": self.points.tolist(),
+             "positions": [[x if np.isfinite(x) else None for x in r] for r in self.positions.tolist()],
+             "radius": self.radius, "indptr": self.indptr.tolist(), "indices": self.indices.tolist(),
+             "areas": self.areas.tolist(), "anchors": None if self.anchors is None else self.anchors.tolist(),
+             "dv_hop_types": list(self.dv_hop_types), "dv_hop_sent": self.dv_hop_sent.tolist(),
+             "dv_hop_received": self.dv_hop_received.tolist(), "dropped_coincident": self.dropped_coincident}
+        return json.dumps(d, indent=indent)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The limited cells around the positions used, with the network drawn at the true positions."""
+        from . import plotting
+
+        view = _PositionsView(self)
+        ax = plotting.plot(view, ax=ax, **kwargs)
+        self.plot_network(ax=ax)
+        if self.estimates is not None:
+            from matplotlib.collections import LineCollection
+
+            ok = self.localized
+            ax.add_collection(LineCollection(np.stack([self.points[ok], self.positions[ok]], axis=1),
+                                             colors="tab:orange", linewidths=0.8))
+            if self.anchors is not None:
+                a = self.points[self.anchors]
+                ax.scatter(a[:, 0], a[:, 1], marker="^", c="tab:red", s=30, zorder=5, label="anchors")
+        return ax
+
+    def _sent_columns(self):
+        cols = [(t, self.dv_hop_sent[:, k]) for k, t in enumerate(self.dv_hop_types)]
+        return cols + super()._sent_columns()
+
+    def __repr__(self) -> str:
+        return (f"BoundaryScanResult(n={len(self)}, radius={self.radius:g}, "
+                f"transmissions={self.total_transmissions}, localized={int(self.localized.sum())})")
+
+
+class _PositionsView:
+    """The piece arrays of a BoundaryScanResult with the positions used as cell centres (for plots)."""
+
+    def __init__(self, r: BoundaryScanResult) -> None:
+        self.piece_ptr, self.piece_x, self.piece_y = r.piece_ptr, r.piece_x, r.piece_y
+        self.piece_span, self.piece_neighbor, self.radius = r.piece_span, r.piece_neighbor, r.radius
+        self.points = np.where(np.isfinite(r.positions), r.positions, 0.0)
+
+
+def _points(points: Any) -> np.ndarray:
+    arr = np.asarray(points, dtype=np.float64)
+    if arr.ndim == 1 and arr.size == 0:
+        arr = arr.reshape(0, 2)
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"points must be an (n, 2) array, got shape {arr.shape}")
+    return arr
+
+
+def _obstacles(obstacles: Any) -> np.ndarray:
+    if obstacles is None:
+        return np.zeros((0, 4))
+    arr = np.asarray(obstacles, dtype=np.float64)
+    if arr.size == 0:
+        return np.zeros((0, 4))
+    if arr.ndim == 3 and arr.shape[1:] == (2, 2):
+        arr = arr.reshape(-1, 4)
+    if arr.ndim != 2 or arr.shape[1] != 4:
+        raise ValueError("obstacles must be an (m, 4) array of segments (x0, y0, x1, y1) or (m, 2, 2), "
+                         f"got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("obstacles has a non-finite coordinate (NaN or inf)")
+    return arr
+
+
+def _bounds(bounds: Any) -> Optional[tuple]:
+    if bounds is None:
+        return None
+    b = tuple(float(v) for v in np.asarray(bounds, dtype=float).ravel())
+    if len(b) != 4:
+        raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax), got {len(b)} numbers")
+    if not all(map(math.isfinite, b)) or not (b[0] < b[2] and b[1] < b[3]):
+        raise ValueError(f"bounds must be finite with xmin < xmax and ymin < ymax, got {b}")
+    return b
+
+
+def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, obstacles: Any = None,
+             bounds: Any = None, seed: int = 0, *, budget: Optional[int] = None, cap_adjacency: bool = True,
+             adjacency_cap: int = 6, forward: bool = True, routing: str = "gpsr", radius: Optional[float] = None,
+             anchors: Any = None, anchor_fraction: Optional[float] = None, verify: bool = True):
+    """Run one network algorithm and return its result (see the module docstring).
+
+    Parameters
+    ----------
+    algorithm : "cc", "bd07" or "bs"
+    points : (n, 2) array of node positions
+    comm_range : float
+        Communication range: nodes at distance <= comm_range are linked unless an obstacle cuts the link.
+    loss : float in [0, 1)
+        Probability that one try over a link fails (the try is repeated and counted).
+    obstacles : (m, 4) array of segments (x0, y0, x1, y1), optional
+    bounds : (xmin, ymin, xmax, ymax), optional
+        BD07's region (default: the points' bounding box); CC clips its cells to it when given.
+    seed : int
+        Delivery order and link failures.
+    budget : int, optional
+        Most transmissions allowed (default 10^9); past it :class:`BudgetExceeded` is raised.
+    cap_adjacency, adjacency_cap, forward, routing
+        CC's options (Section 2.3 optimisations; "gpsr" or "shortest" routing of notifications).
+    radius : float, optional
+        Boundary Scan cell radius (default comm_range / 2).
+    anchors : int array, optional; anchor_fraction : float, optional
+        Boundary Scan with DV-Hop: the anchor nodes (or the fraction of nodes picked as anchors with
+        ``seed``); the others localise themselves first.
+    verify : bool
+        CC and BD07: also compute the exact diagram centrally and report Theorem 2's condition
+        (``condition``) and, for CC, the nodes that got a wrong answer (``wrong_nodes``).
+    """
+    if algorithm not in ALGORITHMS:
+        raise ValueError(f"algorithm must be one of {ALGORITHMS}, got {algorithm!r}")
+    pts = _points(points)
+    comm_range = float(comm_range)
+    if not (math.isfinite(comm_range) and comm_range > 0):
+        raise ValueError(f"comm_range must be a positive finite number, got {comm_range!r}")
+    loss = float(loss)
+    if not 0.0 <= loss < 1.0:
+        raise ValueError(f"loss must be a probability in [0, 1), got {loss!r}")
+    seed = int(seed)
+    if seed < 0:
+        raise ValueError(f"seed must be >= 0, got {seed}")
+    if budget is not None and int(budget) <= 0:
+        raise ValueError(f"budget must be a positive number of transmissions, got {budget!r}")
+    obs = _obstacles(obstacles)
+    b = _bounds(bounds)
+    anchor_arr = None
+    if algorithm == "bs":
+        if anchors is not None and anchor_fraction is not None:
+            raise ValueError("give anchors or anchor_fraction, not both")
+        if anchor_fraction is not None:
+            if not 0.0 < float(anchor_fraction) <= 1.0:
+                raise ValueError(f"anchor_fraction must be in (0, 1], got {anchor_fraction!r}")
+            k = max(1, int(round(float(anchor_fraction) * len(pts))))
+            anchor_arr = np.sort(np.random.default_rng(seed).choice(len(pts), size=k, replace=False))
+        elif anchors is not None:
+            anchor_arr = np.asarray(anchors, dtype=np.int64).ravel()
+        if radius is not None and not (math.isfinite(float(radius)) and float(radius) > 0):
+            raise ValueError(f"radius must be a positive finite number, got {radius!r}")
+    elif anchors is not None or anchor_fraction is not None:
+        raise ValueError("anchors / anchor_fraction apply to algorithm='bs' only")
+    d = _core._network_simulate(algorithm, pts, comm_range, loss, obs if len(obs) else None, b, seed,
+                                int(budget or 0), bool(cap_adjacency), int(adjacency_cap), bool(forward),
+                                str(routing), None if anchor_arr is None else anchor_arr.tolist(),
+                                float(radius or 0.0), bool(verify))
+    if algorithm == "cc":
+        return CcResult(d, pts, comm_range, loss, seed, obs, b)
+    if algorithm == "bd07":
+        if b is None:
+            b = (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
+        return Bd07Result(d, pts, comm_range, loss, seed, obs, b)
+    return BoundaryScanResult(d, pts, comm_range, loss, seed, obs, anchor_arr)
+
+
+def links(points: Any, comm_range: float, obstacles: Any = None) -> np.ndarray:
+    """The network's links as an ``(E, 2)`` int64 array of pairs ``i < j``."""
+    obs = _obstacles(obstacles)
+    d = _core._network_links(_points(points), float(comm_range), obs if len(obs) else None)
+    return np.asarray(d["links"], dtype=np.int64).reshape(-1, 2)
+
+
+def gpsr_route(points: Any, comm_range: float, source: int, target: Any, obstacles: Any = None):
+    """GPSR from node `source` to the point `target`: ``(delivered, path)``; ``path[-1]`` is the node
+    that received the packet (the node nearest `target` when the planar graph is connected)."""
+    obs = _obstacles(obstacles)
+    ok, path = _core._network_gpsr(_points(points), float(comm_range), obs if len(obs) else None, int(source),
+                                   tuple(float(v) for v in target))
+    return bool(ok), np.asarray(path, dtype=np.int64)
+
+
+def random_bars(rng: np.random.Generator, count: int, length: float, bounds: Sequence[float]) -> np.ndarray:
+    """`count` bar obstacles of the given length, uniformly placed (centre) and oriented in `bounds`
+    (the CC paper's "opaque obstacles in the form of bars")."""
+    xmin, ymin, xmax, ymax = bounds
+    c = np.column_stack([rng.uniform(xmin, xmax, count), rng.uniform(ymin, ymax, count)])
+    t = rng.uniform(0.0, np.pi, count)
+    h = 0.5 * length * np.column_stack([np.cos(t), np.sin(t)])
+    return np.hstack([c - h, c + h])
+
+
+def batch(algorithm: str, networks: Sequence[Any], comm_range: float, loss: float, obstacles: Sequence[Any],
+          bounds: Sequence[float], seeds: Sequence[int], verify: bool = True, threads: int = 0,
+          progress: Any = None) -> Dict[str, np.ndarray]:
+    """Run ``cc`` or ``bd07`` on many independent networks in parallel (C++ threads over networks), or
+    ``check`` Theorem 2's condition only.
+
+    Returns per network: ``by_type`` (transmissions per message type), ``lost``, ``condition``
+    (Theorem 2's, when verified or checked) and ``exact`` (CC only: every node's neighbours and hull
+    flag exact).
+    ``progress`` is a callable (done, total) called from the calling thread.
+    """
+    obs = [o if o is not None and len(o) else None for o in (_obstacles(o) for o in obstacles)]
+    return _core._network_batch(algorithm, [_points(p) for p in networks], float(comm_range), float(loss), obs,
+                                [float(v) for v in bounds], [int(s) for s in seeds], bool(verify), int(threads),
+                                progress)

@@ -1,0 +1,98 @@
+"""`dvoronoi network cc|bd07|bs` run as a user would: the same answer and counts as the Python API,
+CSV per node, an SVG picture, errors that name the argument or file:line:column and leave no output."""
+from __future__ import annotations
+
+import csv
+import json
+import os
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+import dvoronoi as dv
+
+
+def _find_cli():
+    env = os.environ.get("DVORONOI_CLI")
+    if env:
+        return env
+    return shutil.which("dvoronoi")
+
+
+CLI = _find_cli()
+pytestmark = pytest.mark.skipif(CLI is None, reason="no dvoronoi executable (set DVORONOI_CLI or pip install .)")
+
+
+def run(*args):
+    return subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=300)
+
+
+@pytest.fixture
+def network_files(tmp_path):
+    rng = np.random.default_rng(21)
+    pts = rng.uniform(0, 100, (70, 2))
+    bars = dv.network.random_bars(rng, 15, 5.0, (0, 0, 100, 100))
+    p = tmp_path / "nodes.txt"
+    p.write_text("".join(f"{float(x)!r} {float(y)!r}\n" for x, y in pts))
+    o = tmp_path / "bars.txt"
+    o.write_text("# x0 y0 x1 y1\n" + "".join(" ".join(repr(float(v)) for v in b) + "\n" for b in bars))
+    return pts, bars, p, o
+
+
+def test_cc_matches_python_api(network_files, tmp_path):
+    pts, bars, p, o = network_files
+    out, svg = tmp_path / "cc.json", tmp_path / "cc.svg"
+    r = run("network", "cc", p, "--range", 25, "--loss", 0.2, "--seed", 4, "--obstacles", o,
+            "--bounds", "0,0,100,100", "-o", out, "--svg", svg)
+    assert r.returncode == 0, r.stderr
+    doc = json.loads(out.read_text())
+    py = dv.network.simulate("cc", pts, 25.0, loss=0.2, seed=4, obstacles=bars, bounds=(0, 0, 100, 100))
+    assert doc["kind"] == "network_cc"
+    assert doc["indices"] == py.indices.tolist() and doc["indptr"] == py.indptr.tolist()
+    assert doc["sent"] == py.sent.tolist() and doc["total_transmissions"] == py.total_transmissions
+    assert doc["condition"] == py.condition and doc["wrong_nodes"] == py.wrong_nodes.tolist()
+    assert np.allclose(doc["areas"], py.areas)
+    root = ET.parse(svg).getroot()
+    assert root.tag.endswith("svg") and len(list(root.iter("{http://www.w3.org/2000/svg}circle"))) == 70
+
+
+def test_bd07_and_bs_csv(network_files, tmp_path):
+    pts, _, p, _ = network_files
+    out = tmp_path / "bd.csv"
+    r = run("network", "bd07", p, "--range", 30, "--bounds", "0,0,100,100", "-o", out, "-q")
+    assert r.returncode == 0, r.stderr
+    rows = list(csv.DictReader(out.open()))
+    py = dv.network.simulate("bd07", pts, 30.0, bounds=(0, 0, 100, 100))
+    assert len(rows) == 70
+    assert [int(x["sent_probe"]) for x in rows] == py.sent[:, 1].tolist()
+    assert sum(float(x["area"]) for x in rows) == pytest.approx(1e4, rel=1e-9)
+    r = run("network", "bs", p, "--range", 20, "--anchor-fraction", 0.3, "-q")
+    assert r.returncode == 0, r.stderr
+    doc = json.loads(r.stdout)
+    assert doc["dv_hop_types"] == ["anchor_flood", "hop_size"] and len(doc["anchors"]) == 21
+    r = run("network", "bs", p, "--range", 20, "-q")
+    doc = json.loads(r.stdout)
+    ref = dv.limited_cells(pts, 10.0)
+    assert doc["indices"] == ref.indices.tolist()
+
+
+def test_errors_name_the_argument_and_write_nothing(network_files, tmp_path):
+    _, _, p, o = network_files
+    out = tmp_path / "never.json"
+    r = run("network", "cc", p, "--range", -3, "-o", out)
+    assert r.returncode == 2 and "--range" in r.stderr and not out.exists()
+    r = run("network", "cc", p, "--range", 20, "--loss", 1.5, "-o", out)
+    assert r.returncode == 2 and "--loss" in r.stderr and not out.exists()
+    r = run("network", "flood", p, "--range", 20)
+    assert r.returncode == 2
+    bad = tmp_path / "bad_bars.txt"
+    bad.write_text("1 2 3 4\n5 6 x 8\n")
+    r = run("network", "cc", p, "--range", 20, "--obstacles", bad, "-o", out)
+    assert r.returncode == 2 and f"{bad}:2:" in r.stderr and not out.exists()
+    r = run("network", "bd07", p, "--range", 20, "--bounds", "0,0,-1", "-o", out)
+    assert r.returncode == 2 and "--bounds" in r.stderr and not out.exists()
+    r = run("network", "bd07", p, "--range", 20, "--budget", 10, "-o", out)
+    assert r.returncode == 1 and "budget" in r.stderr and not out.exists()
