@@ -61,36 +61,13 @@ int run_cells(const CellsOptions& o) {
     if (!to_stdout) out = open_output(o.output, "-o/--output");
     if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
 
-    Progress progress("cells", file.points.rows(), o.quiet);
-    LimitedPartition result;
-    try {
-        result = limited_cells(file.points, o.radius, method, o.threads,
-                               [&progress](Index done, Index total) { progress(done, total); });
-    } catch (const CoincidentError& e) {
-        progress.abort();
-        throw InputError(coincident_message(file, e));
-    } catch (...) {
-        progress.abort();
-        throw;
-    }
-    progress.finish();
-
-    if (svg) io::write_svg(svg->stream(), result);
-    if (out) {
-        write_result(out->stream(), format, result, method, o.tolerance);
-    }
-    // Commit only when every output is complete: a failure leaves no output behind.
-    if (out) out->commit();
-    if (svg) svg->commit();
-    if (to_stdout) {
-        write_result(std::cout, Format::Json, result, method, o.tolerance);
-        std::cout.flush();
-        if (!std::cout) {
-            std::cerr << "dvoronoi: error: writing to stdout failed\n";
-            return 1;
-        }
-    }
-    return 0;
+    const LimitedPartition result =
+        with_progress("cells", file.points.rows(), o.quiet, &file, [&](const ProgressFn& fn) {
+            return limited_cells(file.points, o.radius, method, o.threads, fn);
+        });
+    return deliver(
+        out, svg, [&](std::ostream& os) { write_result(os, format, result, method, o.tolerance); },
+        [&](std::ostream& os) { io::write_svg(os, result); });
 }
 
 }  // namespace

@@ -159,4 +159,45 @@ private:
     Clock::time_point start_, last_;
 };
 
+/// Runs `work(callback)` under a progress counter `label` over `total` items: the counter line is
+/// ended before an error leaves, and a CoincidentError is rewritten in terms of `file` (its lines)
+/// when one is given.
+template <class Work>
+auto with_progress(const std::string& label, Index total, bool quiet, const io::PointFile* file, Work&& work) {
+    Progress progress(label, total, quiet);
+    try {
+        auto result = work([&progress](Index done, Index all) { progress(done, all); });
+        progress.finish();
+        return result;
+    } catch (const CoincidentError& e) {
+        progress.abort();
+        if (file) throw InputError(coincident_message(*file, e));
+        throw;
+    } catch (...) {
+        progress.abort();
+        throw;
+    }
+}
+
+/// Writes the main result to `out` (or to stdout when there is no output file) and the picture to
+/// `svg`, then commits the files only when every one is complete, so a failure leaves none behind.
+/// Returns the exit code (1 when stdout fails).
+inline int deliver(std::unique_ptr<io::AtomicFile>& out, std::unique_ptr<io::AtomicFile>& svg,
+                   const std::function<void(std::ostream&)>& write_main,
+                   const std::function<void(std::ostream&)>& write_svg = nullptr) {
+    if (svg && write_svg) write_svg(svg->stream());
+    if (out) write_main(out->stream());
+    if (out) out->commit();
+    if (svg) svg->commit();
+    if (!out) {
+        write_main(std::cout);
+        std::cout.flush();
+        if (!std::cout) {
+            std::cerr << "dvoronoi: error: writing to stdout failed\n";
+            return 1;
+        }
+    }
+    return 0;
+}
+
 }  // namespace dvoronoi::cli

@@ -75,19 +75,9 @@ int run_gvd(const GvdCliOptions& o) {
         std::fprintf(stderr, "gvd: %zu diagram cells, %zu vertices, %llu corners labelled, %d worker(s), %.3f s\n",
                      r.size(), r.vertices.size(), static_cast<unsigned long long>(r.stats.corners_labelled),
                      r.stats.workers, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    if (svg) io::write_gvd_svg(svg->stream(), file.scene, r, path_points);
-    if (out) out->stream() << doc.dump() << '\n';
-    if (out) out->commit();
-    if (svg) svg->commit();
-    if (to_stdout) {
-        std::cout << doc.dump() << '\n';
-        std::cout.flush();
-        if (!std::cout) {
-            std::cerr << "dvoronoi: error: writing to stdout failed\n";
-            return 1;
-        }
-    }
-    return 0;
+    return deliver(
+        out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
+        [&](std::ostream& os) { io::write_gvd_svg(os, file.scene, r, path_points); });
 }
 
 }  // namespace

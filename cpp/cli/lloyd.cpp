@@ -151,18 +151,8 @@ int run_lloyd(const LloydOptions& o) {
         doc["trajectory"] = t;
     }
     const std::string text = doc.dump() + "\n";
-    if (out) {
-        out->stream() << text;
-        out->commit();
-    } else {
-        std::cout << text;
-        std::cout.flush();
-        if (!std::cout) {
-            std::cerr << "dvoronoi: error: writing to stdout failed\n";
-            return 1;
-        }
-    }
-    return 0;
+    std::unique_ptr<io::AtomicFile> no_svg;
+    return deliver(out, no_svg, [&](std::ostream& os) { os << text; });
 }
 
 }  // namespace

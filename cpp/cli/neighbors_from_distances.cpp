@@ -52,28 +52,12 @@ int run_distances(const DistOptions& o) {
     std::unique_ptr<io::AtomicFile> out;
     if (!to_stdout) out = open_output(o.output, "-o/--output");
 
-    Progress progress("neighbors", g.n, o.quiet);
-    dist::DistanceNeighbors result;
-    try {
-        result = dist::neighbors_from_distances(g, !o.no_consistency, o.threads,
-                                                [&progress](Index done, Index total) { progress(done, total); });
-    } catch (...) {
-        progress.abort();
-        throw;
-    }
-    progress.finish();
-    if (out) {
-        write(out->stream(), csv, result, g.squared);
-        out->commit();
-    } else {
-        write(std::cout, false, result, g.squared);
-        std::cout.flush();
-        if (!std::cout) {
-            std::cerr << "dvoronoi: error: writing to stdout failed\n";
-            return 1;
-        }
-    }
-    return 0;
+    const dist::DistanceNeighbors result =
+        with_progress("neighbors", g.n, o.quiet, nullptr, [&](const ProgressFn& fn) {
+            return dist::neighbors_from_distances(g, !o.no_consistency, o.threads, fn);
+        });
+    std::unique_ptr<io::AtomicFile> no_svg;
+    return deliver(out, no_svg, [&](std::ostream& os) { write(os, csv, result, g.squared); });
 }
 
 }  // namespace

@@ -255,18 +255,10 @@ int run_network(const NetworkOptions& o) {
     } else {
         text = j.dump() + "\n";
     }
-    if (svg) io::write_network_svg(svg->stream(), net, cells, box, highlight);
-    if (out) out->stream() << text;
-    if (out) out->commit();
-    if (svg) svg->commit();
-    if (to_stdout) {
-        std::cout << text;
-        std::cout.flush();
-        if (!std::cout) {
-            std::cerr << "dvoronoi: error: writing to stdout failed\n";
-            return 1;
-        }
-    }
+    const int code = deliver(
+        out, svg, [&](std::ostream& os) { os << text; },
+        [&](std::ostream& os) { io::write_network_svg(os, net, cells, box, highlight); });
+    if (code != 0) return code;
     if (!o.quiet)
         std::cerr << "network " << o.algorithm << ": " << net.size() << " nodes, " << net.link_count() << " links, "
                   << (counts.total_sent() + dv_counts.total_sent()) << " transmissions\n";

@@ -62,34 +62,13 @@ int run_voronoi(const VoronoiOptions& o) {
     if (!to_stdout) out = open_output(o.output, "-o/--output");
     if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
 
-    Progress progress("voronoi", file.points.rows(), o.quiet);
-    VoronoiPartition result;
-    try {
-        result = voronoi_cells(file.points, inner, o.threads,
-                               [&progress](Index done, Index total) { progress(done, total); }, region);
-    } catch (const CoincidentError& e) {
-        progress.abort();
-        throw InputError(coincident_message(file, e));
-    } catch (...) {
-        progress.abort();
-        throw;
-    }
-    progress.finish();
-
-    if (svg) io::write_svg(svg->stream(), result);
-    if (out) write_result(out->stream(), format, result, inner);
-    // Commit only when every output is complete: a failure leaves no output behind.
-    if (out) out->commit();
-    if (svg) svg->commit();
-    if (to_stdout) {
-        write_result(std::cout, Format::Json, result, inner);
-        std::cout.flush();
-        if (!std::cout) {
-            std::cerr << "dvoronoi: error: writing to stdout failed\n";
-            return 1;
-        }
-    }
-    return 0;
+    const VoronoiPartition result =
+        with_progress("voronoi", file.points.rows(), o.quiet, &file, [&](const ProgressFn& fn) {
+            return voronoi_cells(file.points, inner, o.threads, fn, region);
+        });
+    return deliver(
+        out, svg, [&](std::ostream& os) { write_result(os, format, result, inner); },
+        [&](std::ostream& os) { io::write_svg(os, result); });
 }
 
 }  // namespace
