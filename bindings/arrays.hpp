@@ -176,4 +176,24 @@ inline py::array view(const Points& p, py::handle owner) {
                 owner);
 }
 
+/// A new numpy array of T copied (and converted) from a vector.
+template <class T, class U = T>
+py::array copy_array(const std::vector<U>& v) {
+    py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
+    T* out = a.mutable_data();
+    for (std::size_t k = 0; k < v.size(); ++k) out[k] = static_cast<T>(v[k]);
+    return a;
+}
+
+/// A new (k, 2) float64 array of points.
+inline py::array xy_array(const std::vector<Vec2>& v) {
+    py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{2}});
+    double* out = a.mutable_data();
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        out[2 * k] = v[k].x();
+        out[2 * k + 1] = v[k].y();
+    }
+    return a;
+}
+
 }  // namespace dvoronoi_bindings

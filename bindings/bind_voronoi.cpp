@@ -30,24 +30,6 @@ AsrInner parse_inner(const std::string& name) {
     throw py::value_error("inner must be \"scan\" or \"evt\", got \"" + name + "\"");
 }
 
-template <class T, class U = T>
-py::array copy_array(const std::vector<U>& v) {
-    py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
-    T* out = a.mutable_data();
-    for (std::size_t k = 0; k < v.size(); ++k) out[k] = static_cast<T>(v[k]);
-    return a;
-}
-
-py::array xy_array(const std::vector<Vec2>& v) {
-    py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{2}});
-    double* out = a.mutable_data();
-    for (std::size_t k = 0; k < v.size(); ++k) {
-        out[2 * k] = v[k].x();
-        out[2 * k + 1] = v[k].y();
-    }
-    return a;
-}
-
 /// bounds=None | (xmin, ymin, xmax, ymax) | (k, 2) convex polygon.
 ConvexRegion region_arg(py::handle obj) {
     if (obj.is_none()) return ConvexRegion();

@@ -230,8 +230,11 @@ def test_mpi_ranks_give_the_single_worker_diagram(tmp_path):
     for k in (1, 2, 3, 4):
         for mode in ("cooperative", "independent"):
             out = tmp_path / f"out{k}{mode}.json"
+            env = dict(os.environ)
+            if not (shutil.which("ssh") or shutil.which("rsh")):
+                env.setdefault("OMPI_MCA_plm_rsh_agent", "sh")  # Open MPI 4 needs an rsh agent even for local ranks
             proc = subprocess.run(["mpirun", *flags, "-n", str(k), _mpi_exe(), str(path), "--grid", "96", "--mode", mode,
-                                   "--robot-radius", "1", "-o", str(out)], capture_output=True, text=True, timeout=120)
+                                   "--robot-radius", "1", "-o", str(out)], capture_output=True, text=True, timeout=120, env=env)
             assert proc.returncode == 0, proc.stderr
             got = json.loads(out.read_text())
             assert got["cells"] == one["cells"], (k, mode)
