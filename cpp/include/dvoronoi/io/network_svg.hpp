@@ -31,15 +31,8 @@ inline void write_network_svg(std::ostream& os, const network::Network& net,
         s += ' ';
         num(ytop - p.y());
     };
-    s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-    num(W >= H ? width : width * W / H);
-    s += "\" height=\"";
-    num(W >= H ? width * H / W : width);
-    s += "\" viewBox=\"0 0 ";
-    num(W);
-    s += ' ';
-    num(H);
-    s += "\">\n<title>dvoronoi network: " + std::to_string(net.size()) + " nodes, " +
+    detail::open_svg(s, W >= H ? width : width * W / H, W >= H ? width * H / W : width, W, H);
+    s += "<title>dvoronoi network: " + std::to_string(net.size()) + " nodes, " +
          std::to_string(net.link_count()) + " links</title>\n";
     s += "<g class=\"cells\" stroke=\"#333333\" stroke-width=\"";
     num(1.5e-3 * extent);

@@ -63,6 +63,19 @@ inline void append_num(std::string& out, double v) {
     out.append(buf, static_cast<std::size_t>(len));
 }
 
+/// The XML declaration and the opening <svg> tag: size in pixels, viewBox 0 0 W H.
+inline void open_svg(std::string& s, double px_w, double px_h, double W, double H) {
+    s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
+    append_num(s, px_w);
+    s += "\" height=\"";
+    append_num(s, px_h);
+    s += "\" viewBox=\"0 0 ";
+    append_num(s, W);
+    s += ' ';
+    append_num(s, H);
+    s += "\">\n";
+}
+
 }  // namespace detail
 
 /// Writes an SVG document showing the partition.
@@ -98,16 +111,8 @@ inline void write_svg(std::ostream& os, const LimitedPartition& p, const SvgOpti
         Y(y);
     };
 
-    s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    s += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-    detail::append_num(s, px_w);
-    s += "\" height=\"";
-    detail::append_num(s, px_h);
-    s += "\" viewBox=\"0 0 ";
-    detail::append_num(s, W);
-    s += ' ';
-    detail::append_num(s, H);
-    s += "\">\n<title>dvoronoi: " + std::to_string(n) + " range-limited Voronoi cells, R = ";
+    detail::open_svg(s, px_w, px_h, W, H);
+    s += "<title>dvoronoi: " + std::to_string(n) + " range-limited Voronoi cells, R = ";
     detail::append_num(s, R);
     s += "</title>\n<g class=\"cells\" stroke=\"#333333\" stroke-width=\"";
     detail::append_num(s, stroke);

@@ -226,15 +226,8 @@ inline void write_svg(std::ostream& os, const VoronoiPartition& p, const SvgOpti
         detail::append_num(out, ytop - v.y());
     };
     const auto pt = [&](const Vec2& v) { put(s, v); };
-    s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"";
-    detail::append_num(s, px_w);
-    s += "\" height=\"";
-    detail::append_num(s, px_h);
-    s += "\" viewBox=\"0 0 ";
-    detail::append_num(s, W);
-    s += ' ';
-    detail::append_num(s, H);
-    s += "\">\n<title>dvoronoi: exact Voronoi cells of " + std::to_string(n) + " agents" +
+    detail::open_svg(s, px_w, px_h, W, H);
+    s += "<title>dvoronoi: exact Voronoi cells of " + std::to_string(n) + " agents" +
          (p.bounds.empty() ? std::string(" (hull agents' cells are unbounded: rays)") : std::string(", clipped")) +
          "</title>\n<g class=\"cells\" stroke=\"#333333\" stroke-width=\"";
     detail::append_num(s, stroke);
