@@ -116,6 +116,10 @@ public:
     /// The agents in grid order: processing agents in this order keeps queries cache-friendly.
     const std::vector<Index>& grid_order() const noexcept { return order_; }
 
+    /// The position of the agent at position `pos` of grid_order(), from the index's contiguous copy
+    /// (reading the input there instead is a cache miss per agent on large inputs).
+    Vec2 point_at(std::size_t pos) const { return Vec2(xs_[pos], ys_[pos]); }
+
     /// Agents j != i with |p_j - p_i| < 2*radius (exact), appended to `out` (cleared first) in the
     /// index's deterministic traversal order.
     void within(Index i, double radius, std::vector<detail::Candidate>& out) const {

@@ -1,0 +1,417 @@
+// A floating-point filter in front of Boundary Scan for the all-agents drivers: the limited cell by
+// incremental clipping of the disk with the bisector half-planes, nearest agents first, where every
+// decision (is a vertex strictly inside a half-plane, which arc a new chord cuts) is certified by a
+// forward error bound; when any decision is uncertain — ties, concurrent bisectors, a vertex on the
+// circle, tangent chords, over- or underflow — it gives up and Boundary Scan runs instead.
+//
+// Why: Boundary Scan sorts all m bisectors of the agents within 2R (about 30 in a uniform swarm) to
+// find the ~6 that bound the cell. Clipping the nearest few first shrinks the cell so fast that every
+// other agent is discarded by one comparison (|a_k| / 2 beyond the cell's farthest point), which
+// halves the time per cell. The result is exactly Boundary Scan's: the surviving bisectors, in
+// counter-clockwise order from the nearest neighbour's, with the same vertex/arc labels, go through
+// the same emit_cell, so pieces, coordinates and measures are bit-identical (tested).
+//
+// Contract: candidates strictly within 2R of c, pairwise distinct and distinct from c (the
+// all-agents drivers check this for all agents at once; the one-agent call keeps plain Boundary
+// Scan, whose errors name coinciding agents).
+#pragma once
+
+#include "dvoronoi/cells/boundary_scan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace dvoronoi::detail {
+
+namespace clip {
+
+inline constexpr int kArcSide = -1;
+inline constexpr double kU = 1.1102230246251565e-16;  // unit roundoff
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+/// About how many nearest candidates are clipped before the farther ones are screened by distance.
+inline constexpr std::size_t kNearFirst = 8;
+
+/// A vertex relative to c with a bound on its distance to the exact vertex (of the exact p - c).
+struct Vertex {
+    double x, y, e;
+};
+
+inline double l1(double x, double y) { return std::fabs(x) + std::fabs(y); }
+
+/// v_jk, the vertex of two bisectors (cells/bisectors.hpp: vertex), with its error bound: the
+/// rounding of a = p - c (one unit per coordinate) and of every operation, to first order, doubled.
+inline Vertex line_vertex(double ajx, double ajy, double n2j, double akx, double aky, double n2k) {
+    const double l = ajx * aky, r = ajy * akx;
+    const double d = l - r, pd = std::fabs(l) + std::fabs(r);
+    const double hj = 0.5 * n2j, hk = 0.5 * n2k;
+    const double nx = hj * aky - hk * ajy, pnx = std::fabs(hj * aky) + std::fabs(hk * ajy);
+    const double ny = ajx * hk - akx * hj, pny = std::fabs(ajx * hk) + std::fabs(akx * hj);
+    const double x = nx / d, y = ny / d;
+    if (!(std::fabs(d) > 16.0 * kU * pd)) return {x, y, kInf};
+    const double ad = std::fabs(d);
+    const double ex = (10.0 * kU * pnx + 6.0 * kU * pd * std::fabs(x)) / ad + 2.0 * kU * std::fabs(x);
+    const double ey = (10.0 * kU * pny + 6.0 * kU * pd * std::fabs(y)) / ad + 2.0 * kU * std::fabs(y);
+    return {x, y, 2.0 * (ex + ey)};
+}
+
+/// The chord end of bisector k (sigma = -1 first, +1 last; cells/bisectors.hpp: chord_end) with its
+/// error bound; infinite near tangency, where the half chord loses its digits.
+inline Vertex chord_vertex(double ax, double ay, double radius, int sigma) {
+    const Vec2 a(ax, ay);
+    const Vec2 s = chord_end(a, radius, sigma);
+    const double h = 0.5 * a.norm(), hc = half_chord(a, radius);
+    if (!(hc > 0.0) || !(radius - h > 0.0)) return {s.x(), s.y(), kInf};
+    const double e = 1.5 * kU * h * (radius + h) / hc + 10.0 * kU * hc + 4.0 * kU * 2.0 * h;
+    return {s.x(), s.y(), 2.0 * e};
+}
+
+/// A vertex of the cell being clipped: position, error bound, the side that starts there
+/// (candidate index or kArcSide), and `slack` = 2 e + 24 u |v|_1, so that the certified test
+/// against a half-plane costs six flops (see side_of).
+struct CellVertex {
+    double x, y, e, slack;
+    int side;
+};
+
+inline CellVertex cell_vertex(const Vertex& v, int side) {
+    return {v.x, v.y, v.e, 2.0 * v.e + 24.0 * kU * l1(v.x, v.y), side};
+}
+
+/// Sign of n2_k - 2 a_k . v (> 0: v strictly inside the half-plane H_k of c), or 2 when the bound
+/// cannot decide. The bound: |a_k| e for the vertex's error, 8 u (n2_k + 3 |a_k|_1 |v|_1) for
+/// the roundings of a_k, n2_k and the dot product; `na` = |a_k|_1, `nb` = 8 u n2_k.
+inline int side_of(const CellVertex& v, double akx, double aky, double n2k, double na, double nb) {
+    const double f = n2k - 2.0 * (akx * v.x + aky * v.y);
+    const double b = na * v.slack + nb;  // infinite when v.e is: then neither test passes
+    if (f > b) return 1;
+    if (f < -b) return -1;
+    return 2;
+}
+
+/// Sign of cross(u, w) = u.x w.y - u.y w.x for two bounded points, or 2.
+inline int cross_sign(const Vertex& u, const Vertex& w) {
+    if (!(u.e < kInf && w.e < kInf)) return 2;
+    const double l = u.x * w.y, r = u.y * w.x;
+    const double f = l - r;
+    const double b = l1(w.x, w.y) * u.e + l1(u.x, u.y) * w.e + u.e * w.e + 4.0 * kU * (std::fabs(l) + std::fabs(r));
+    if (f > b) return 1;
+    if (f < -b) return -1;
+    return 2;
+}
+
+}  // namespace clip
+
+/// Scratch buffers of the clipping filter (reused across agents: no allocation per cell).
+struct ClipWorkspace {
+    std::vector<double> ax, ay, n2;      // candidate k relative to c (rounded), |a_k|^2 (rounded)
+    std::vector<int> order, far;         // clipping order: the first ones and the near ones; the far ones
+    std::vector<clip::CellVertex> cur, next;  // the cell being clipped, and the next one
+    std::vector<char> flags;             // vertex strictly outside the half-plane being cut
+    std::vector<char> head;              // candidate already cut as one of the first ones
+    std::vector<Line> lines;             // the result, for emit_cell
+    std::vector<int> cycle;
+    std::vector<char> meets;
+};
+
+namespace clip {
+
+/// The cell being clipped: a counter-clockwise cycle of vertices, each starting a side.
+class Clipper {
+public:
+    /// Room for m candidates: a cell has at most m + 1 sides, and a cut adds at most two.
+    Clipper(ClipWorkspace& w, double radius, std::size_t m) : w_(w), radius_(radius) {
+        if (w_.cur.size() < m + 4) {
+            w_.cur.resize(m + 4);
+            w_.next.resize(m + 4);
+            w_.flags.resize(m + 4);
+        }
+    }
+
+    /// Farthest distance from c of the cell (the exact cell lies within it), R while an arc remains.
+    double reach() {
+        if (!dirty_) return reach_;
+        dirty_ = false;
+        double v2 = 0.0, e = 0.0;
+        for (std::size_t t = 0; t < n_; ++t) {
+            const CellVertex& v = w_.cur[t];
+            if (v.side == kArcSide) return reach_ = radius_;
+            v2 = std::max(v2, v.x * v.x + v.y * v.y);
+            e = std::max(e, v.e);
+        }
+        return reach_ = std::min(radius_, std::sqrt(v2) * (1.0 + 4.0 * kU) + e);
+    }
+
+    /// Cuts the cell with H_k; false when uncertain.
+    bool cut(int k) {
+        const auto kk = static_cast<std::size_t>(k);
+        const double akx = w_.ax[kk], aky = w_.ay[kk], n2k = w_.n2[kk];
+        const std::size_t s = n_;
+        if (s == 0) {  // the whole disk: the chord of k and the rest of the circle
+            CellVertex* out = w_.next.data();
+            out[0] = cell_vertex(chord_vertex(akx, aky, radius_, -1), k);
+            out[1] = cell_vertex(chord_vertex(akx, aky, radius_, +1), kArcSide);
+            return commit(2);
+        }
+        // Classify the vertices; the outside ones must form one cyclic run.
+        const double na = l1(akx, aky), nb = 8.0 * kU * n2k;
+        std::size_t outside = 0;
+        char* flag = w_.flags.data();
+        for (std::size_t t = 0; t < s; ++t) {
+            const int g = side_of(w_.cur[t], akx, aky, n2k, na, nb);
+            if (g == 2) return false;
+            flag[t] = g < 0;
+            outside += g < 0;
+        }
+#ifdef CLIP_STAT_CUT
+        CLIP_STAT_CUT(s, outside);
+#endif
+        return outside == 0 ? cut_arc(k) : cut_run(k, s, outside);
+    }
+
+    std::size_t size() const { return n_; }
+    const CellVertex& vertex(std::size_t t) const { return w_.cur[t]; }
+
+private:
+    bool commit(std::size_t n) {
+        w_.cur.swap(w_.next);
+        n_ = n;
+        dirty_ = true;
+        return true;
+    }
+
+    static Vertex as_vertex(const CellVertex& v) { return {v.x, v.y, v.e}; }
+
+    /// The vertex where the boundary enters (sigma = -1) or leaves (+1) H_k along side `sd`.
+    Vertex crossing(int sd, int k, int sigma) const {
+        const auto kk = static_cast<std::size_t>(k);
+        if (sd == kArcSide) return chord_vertex(w_.ax[kk], w_.ay[kk], radius_, sigma);
+        const auto j = static_cast<std::size_t>(sd);
+        return line_vertex(w_.ax[j], w_.ay[j], w_.n2[j], w_.ax[kk], w_.ay[kk], w_.n2[kk]);
+    }
+
+    bool has_arc() const {
+        for (std::size_t t = 0; t < n_; ++t)
+            if (w_.cur[t].side == kArcSide) return true;
+        return false;
+    }
+
+    /// Some vertices strictly outside H_k: they form one run t0..t1; the boundary enters H_k on the
+    /// side ending at t0 and leaves it on the side starting at t1, and k's edge joins the two.
+    bool cut_run(int k, std::size_t s, std::size_t outside) {
+        const auto kk = static_cast<std::size_t>(k);
+        CellVertex* out = w_.next.data();
+        if (outside == s) {
+            // Every vertex outside: the part of the cell in H_k (c is in it) lies along one arc and
+            // is bounded by k's chord; without an arc the decisions were inconsistent.
+            if (!has_arc()) return false;
+            out[0] = cell_vertex(chord_vertex(w_.ax[kk], w_.ay[kk], radius_, -1), k);
+            out[1] = cell_vertex(chord_vertex(w_.ax[kk], w_.ay[kk], radius_, +1), kArcSide);
+            return commit(2);
+        }
+        const char* flag = w_.flags.data();
+        std::size_t t0 = s;
+        for (std::size_t t = 0; t < s; ++t)
+            if (flag[t] && !flag[t == 0 ? s - 1 : t - 1]) {
+                if (t0 != s) return false;  // two runs: inconsistent, give up
+                t0 = t;
+            }
+        if (t0 == s) return false;
+        const std::size_t t1 = (t0 + outside - 1) % s;
+        const int enter = w_.cur[t0 == 0 ? s - 1 : t0 - 1].side;
+        const int leave = w_.cur[t1].side;
+        const Vertex vin = crossing(enter, k, -1), vout = crossing(leave, k, +1);
+        if (!(vin.e < kInf && vout.e < kInf)) return false;
+        // The inside vertices from t1 + 1 round to t0 - 1, then k's two vertices.
+        std::size_t n = 0;
+        for (std::size_t t = t1 + 1 == s ? 0 : t1 + 1; t != t0; t = t + 1 == s ? 0 : t + 1) out[n++] = w_.cur[t];
+        out[n++] = cell_vertex(vin, k);
+        out[n++] = cell_vertex(vout, leave);
+        return commit(n);
+    }
+
+    /// No vertex outside H_k: k cuts the cell only if it cuts an arc, i.e. if the circle's point q in
+    /// the direction of a_k (the middle of the cap that H_k cuts off) lies in the cell.
+    bool cut_arc(int k) {
+        const std::size_t s = n_;
+        if (!has_arc()) return true;  // nothing to do
+        const auto kk = static_cast<std::size_t>(k);
+        const double akx = w_.ax[kk], aky = w_.ay[kk];
+        const double na = std::sqrt(w_.n2[kk]);
+        const Vertex qv{radius_ * (akx / na), radius_ * (aky / na), 8.0 * kU * radius_};
+        const CellVertex q = cell_vertex(qv, kArcSide);
+        for (std::size_t t = 0; t < s; ++t) {
+            const int sd = w_.cur[t].side;
+            if (sd == kArcSide) continue;
+            const auto j = static_cast<std::size_t>(sd);
+            const int g = side_of(q, w_.ax[j], w_.ay[j], w_.n2[j], l1(w_.ax[j], w_.ay[j]), 8.0 * kU * w_.n2[j]);
+            if (g == 2) return false;
+            if (g < 0) return true;  // q is outside the cell: k cuts nothing
+        }
+        // q lies on an arc: find which (its angular sector from c contains q).
+        std::size_t hit = s;
+        for (std::size_t t = 0; t < s; ++t) {
+            if (w_.cur[t].side != kArcSide) continue;
+            const Vertex u = as_vertex(w_.cur[t]), v = as_vertex(w_.cur[t + 1 == s ? 0 : t + 1]);
+            bool in;
+            if (s == 1) {
+                in = true;
+            } else {
+                const int span = cross_sign(u, v);
+                if (span == 2) return false;
+                const int a = span > 0 ? cross_sign(u, qv) : cross_sign(v, qv);
+                const int b = span > 0 ? cross_sign(qv, v) : cross_sign(qv, u);
+                if (a == 2 || b == 2) return false;
+                in = span > 0 ? (a > 0 && b > 0) : !(a > 0 && b > 0);
+            }
+            if (in) {
+                if (hit != s) return false;
+                hit = t;
+            }
+        }
+        if (hit == s) return false;
+        // Split that arc: arc (u .. s_k), k's chord (s_k .. e_k), arc (e_k .. v).
+        const Vertex sk = chord_vertex(akx, aky, radius_, -1), ek = chord_vertex(akx, aky, radius_, +1);
+        if (!(sk.e < kInf && ek.e < kInf)) return false;
+        CellVertex* out = w_.next.data();
+        std::size_t n = 0;
+        for (std::size_t t = 0; t < s; ++t) {
+            out[n++] = w_.cur[t];
+            if (t == hit) {
+                out[n++] = cell_vertex(sk, k);
+                out[n++] = cell_vertex(ek, kArcSide);
+            }
+        }
+        return commit(n);
+    }
+
+    ClipWorkspace& w_;
+    double radius_;
+    std::size_t n_ = 0;
+    double reach_ = 0.0;
+    bool dirty_ = true;
+};
+
+}  // namespace clip
+
+/// The limited cell by certified clipping (see the file comment); false when it gave up, and then
+/// `out` is untouched. `nearest` is the exact nearest candidate (its bisector starts the cycle).
+inline bool certified_clip_cell(const Vec2& c, const std::vector<Candidate>& cand, double radius,
+                                LimitedCell& out, ClipWorkspace& w) {
+    using namespace clip;
+    const std::size_t m = cand.size();
+    if (m == 0) return false;  // Boundary Scan's full disk costs nothing
+    w.ax.resize(m);
+    w.ay.resize(m);
+    w.n2.resize(m);
+    w.order.resize(m + 9);
+    w.far.resize(m);
+    const double r2 = radius * radius;
+    // Expected to hold the kNearFirst nearest agents for the local density m / (4 R^2).
+    const double near2 = 4.0 * r2 * static_cast<double>(kNearFirst) / static_cast<double>(m);
+    // One pass, free of unpredictable branches (they cost more than the arithmetic here): the
+    // differences, the two smallest distances, the nearest agent of each octant around c, and the
+    // split into near and far agents.
+    double lo = kInf, lo2 = kInf, hi = 0.0;
+    int nn = 0;
+    int octant_best[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
+    double octant_d[8] = {kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf};
+    std::size_t near = 9, far = 0;  // order[0..9) is reserved for the nearest and the octants
+    for (std::size_t k = 0; k < m; ++k) {
+        const double x = cand[k].p.x() - c.x(), y = cand[k].p.y() - c.y();
+        const double d = x * x + y * y;
+        w.ax[k] = x;
+        w.ay[k] = y;
+        w.n2[k] = d;
+        const int ik = static_cast<int>(k);
+        lo2 = std::min(lo2, std::max(lo, d));
+        nn = d < lo ? ik : nn;
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+        const int o = (x < 0.0) | ((y < 0.0) << 1) | ((std::fabs(x) < std::fabs(y)) << 2);
+        const bool better = d < octant_d[o];
+        octant_best[o] = better ? ik : octant_best[o];
+        octant_d[o] = better ? d : octant_d[o];
+        const bool is_near = d <= near2;
+        w.order[near] = ik;
+        w.far[far] = ik;
+        near += is_near;
+        far += !is_near;
+    }
+    // Products of up to three squared lengths must neither underflow nor overflow.
+    if (!(lo > 1e-90 && hi < 1e90 && r2 > 1e-90 && r2 < 1e90)) return false;
+    // The nearest neighbour, certified unique (else Boundary Scan breaks the tie exactly).
+    if (m > 1 && !(lo2 - lo > 8.0 * kU * lo2)) return false;
+    // Clipping order: the nearest agent, the nearest of each octant (together they usually close
+    // the cell inside the disk), the near agents nearest first (they shrink it to about its final
+    // size), then the far ones, which mostly fail the screen.
+    std::size_t head = 9;
+    auto put_first = [&](int k) {
+        for (std::size_t t = head; t < 9; ++t)
+            if (w.order[t] == k) return;
+        w.order[--head] = k;
+    };
+    for (int o = 7; o >= 0; --o)
+        if (octant_best[o] >= 0 && octant_best[o] != nn) put_first(octant_best[o]);
+    w.order[--head] = nn;
+    const std::size_t first_near = 9;
+    Clipper clipper(w, radius, m);
+    // Octant heads are also in the near or far lists: cut each line once (a second cut finds
+    // its vertices on the line and would give up).
+    w.head.assign(m, 0);
+    for (std::size_t t = head; t < 9; ++t) w.head[static_cast<std::size_t>(w.order[t])] = 1;
+    auto is_head = [&](int k) { return w.head[static_cast<std::size_t>(k)] != 0; };
+    auto clip_one = [&](int k, bool screen) {
+        // Screen: H_k holds the disk of radius |a_k| / 2, which holds the cell when that is beyond
+        // the cell's reach (with room for the rounding of n2).
+        if (screen) {
+            const double reach = clipper.reach();
+            if (w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU)) return true;
+        }
+        return clipper.cut(k);
+    };
+    for (std::size_t t = head; t < 9; ++t)
+        if (!clip_one(w.order[t], false)) return false;
+    for (std::size_t t = first_near; t < near; ++t)
+        if (!is_head(w.order[t]) && !clip_one(w.order[t], true)) return false;
+    for (std::size_t t = 0; t < far; ++t) {
+        const int k = w.far[t];
+        const double reach = clipper.reach();
+        if (w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU)) continue;
+        if (!is_head(k) && !clipper.cut(k)) return false;
+    }
+    const int nn_line = nn;
+    // The cycle of boundary bisectors from the nearest neighbour's, and the vertex/arc labels.
+    const std::size_t s = clipper.size();
+    std::size_t start = s;
+    for (std::size_t t = 0; t < s; ++t)
+        if (clipper.vertex(t).side == nn_line) start = t;
+    if (start == s) return false;  // Lemma 1 says it is there; give up rather than guess
+    w.lines.clear();
+    w.meets.clear();
+    w.cycle.clear();
+    for (std::size_t r = 0; r < s; ++r) {
+        const int k = clipper.vertex((start + r) % s).side;
+        if (k == kArcSide) {
+            if (!w.meets.empty()) w.meets.back() = 0;
+            continue;
+        }
+        const auto kk = static_cast<std::size_t>(k);
+        w.cycle.push_back(static_cast<int>(w.lines.size()));
+        w.lines.push_back({cand[kk].p, Vec2(w.ax[kk], w.ay[kk]), w.n2[kk], cand[kk].id, 0.0, 0});
+        w.meets.push_back(1);
+    }
+    out.candidates = static_cast<Index>(m);
+    out.chords_after_check = -1;
+    emit_cell(c, radius, w.lines, w.cycle, w.meets, out);
+    return true;
+}
+
+/// Boundary Scan's cell, by the certified clipping filter when it decides, else by Boundary Scan.
+/// Candidates as for certified_clip_cell (distinct, strictly within 2R).
+inline void filtered_boundary_scan(const Vec2& c, const std::vector<Candidate>& cand, double radius,
+                                   LimitedCell& out, CellWorkspace& ws, ClipWorkspace& cw) {
+    if (!certified_clip_cell(c, cand, radius, out, cw)) boundary_scan(c, cand, radius, out, ws);
+}
+
+}  // namespace dvoronoi::detail
