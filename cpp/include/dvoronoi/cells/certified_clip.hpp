@@ -105,10 +105,9 @@ inline int cross_sign(const Vertex& u, const Vertex& w) {
 /// Scratch buffers of the clipping filter (reused across agents: no allocation per cell).
 struct ClipWorkspace {
     std::vector<double> ax, ay, n2;      // candidate k relative to c (rounded), |a_k|^2 (rounded)
-    std::vector<int> order, far;         // clipping order: the first ones and the near ones; the far ones
+    std::vector<int> order, far;         // the near candidates, the far ones
     std::vector<clip::CellVertex> cur, next;  // the cell being clipped, and the next one
     std::vector<char> flags;             // vertex strictly outside the half-plane being cut
-    std::vector<char> head;              // candidate already cut as one of the first ones
     std::vector<Line> lines;             // the result, for emit_cell
     std::vector<int> cycle;
     std::vector<char> meets;
@@ -304,19 +303,16 @@ inline bool certified_clip_cell(const Vec2& c, const std::vector<Candidate>& can
     w.ax.resize(m);
     w.ay.resize(m);
     w.n2.resize(m);
-    w.order.resize(m + 9);
+    w.order.resize(m);
     w.far.resize(m);
     const double r2 = radius * radius;
     // Expected to hold the kNearFirst nearest agents for the local density m / (4 R^2).
     const double near2 = 4.0 * r2 * static_cast<double>(kNearFirst) / static_cast<double>(m);
     // One pass, free of unpredictable branches (they cost more than the arithmetic here): the
-    // differences, the two smallest distances, the nearest agent of each octant around c, and the
-    // split into near and far agents.
+    // differences, the two smallest distances, and the split into near and far agents.
     double lo = kInf, lo2 = kInf, hi = 0.0;
     int nn = 0;
-    int octant_best[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
-    double octant_d[8] = {kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf};
-    std::size_t near = 9, far = 0;  // order[0..9) is reserved for the nearest and the octants
+    std::size_t near = 0, far = 0;
     for (std::size_t k = 0; k < m; ++k) {
         const double x = cand[k].p.x() - c.x(), y = cand[k].p.y() - c.y();
         const double d = x * x + y * y;
@@ -328,10 +324,6 @@ inline bool certified_clip_cell(const Vec2& c, const std::vector<Candidate>& can
         nn = d < lo ? ik : nn;
         lo = std::min(lo, d);
         hi = std::max(hi, d);
-        const int o = (x < 0.0) | ((y < 0.0) << 1) | ((std::fabs(x) < std::fabs(y)) << 2);
-        const bool better = d < octant_d[o];
-        octant_best[o] = better ? ik : octant_best[o];
-        octant_d[o] = better ? d : octant_d[o];
         const bool is_near = d <= near2;
         w.order[near] = ik;
         w.far[far] = ik;
@@ -342,50 +334,29 @@ inline bool certified_clip_cell(const Vec2& c, const std::vector<Candidate>& can
     if (!(lo > 1e-90 && hi < 1e90 && r2 > 1e-90 && r2 < 1e90)) return false;
     // The nearest neighbour, certified unique (else Boundary Scan breaks the tie exactly).
     if (m > 1 && !(lo2 - lo > 8.0 * kU * lo2)) return false;
-    // Clipping order: the nearest agent, the nearest of each octant (together they usually close
-    // the cell inside the disk), the near agents nearest first (they shrink it to about its final
-    // size), then the far ones, which mostly fail the screen.
-    std::size_t head = 9;
-    auto put_first = [&](int k) {
-        for (std::size_t t = head; t < 9; ++t)
-            if (w.order[t] == k) return;
-        w.order[--head] = k;
-    };
-    for (int o = 7; o >= 0; --o)
-        if (octant_best[o] >= 0 && octant_best[o] != nn) put_first(octant_best[o]);
-    w.order[--head] = nn;
-    const std::size_t first_near = 9;
+    // Clipping order: the nearest agent, the near ones (they shrink the cell to about its final
+    // size; sorting them by distance costs more than it saves), then the far ones, which mostly
+    // fail the screen: H_k holds the disk of radius |a_k| / 2, which holds the cell when that is
+    // beyond the cell's reach (with room for the rounding of n2).
     Clipper clipper(w, radius, m);
-    // Octant heads are also in the near or far lists: cut each line once (a second cut finds
-    // its vertices on the line and would give up).
-    w.head.assign(m, 0);
-    for (std::size_t t = head; t < 9; ++t) w.head[static_cast<std::size_t>(w.order[t])] = 1;
-    auto is_head = [&](int k) { return w.head[static_cast<std::size_t>(k)] != 0; };
-    auto clip_one = [&](int k, bool screen) {
-        // Screen: H_k holds the disk of radius |a_k| / 2, which holds the cell when that is beyond
-        // the cell's reach (with room for the rounding of n2).
-        if (screen) {
-            const double reach = clipper.reach();
-            if (w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU)) return true;
-        }
-        return clipper.cut(k);
+    if (!clipper.cut(nn)) return false;
+    const auto screened = [&](int k) {
+        const double reach = clipper.reach();
+        return w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU);
     };
-    for (std::size_t t = head; t < 9; ++t)
-        if (!clip_one(w.order[t], false)) return false;
-    for (std::size_t t = first_near; t < near; ++t)
-        if (!is_head(w.order[t]) && !clip_one(w.order[t], true)) return false;
+    for (std::size_t t = 0; t < near; ++t) {
+        const int k = w.order[t];
+        if (k != nn && !screened(k) && !clipper.cut(k)) return false;
+    }
     for (std::size_t t = 0; t < far; ++t) {
         const int k = w.far[t];
-        const double reach = clipper.reach();
-        if (w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU)) continue;
-        if (!is_head(k) && !clipper.cut(k)) return false;
+        if (!screened(k) && !clipper.cut(k)) return false;
     }
-    const int nn_line = nn;
     // The cycle of boundary bisectors from the nearest neighbour's, and the vertex/arc labels.
     const std::size_t s = clipper.size();
     std::size_t start = s;
     for (std::size_t t = 0; t < s; ++t)
-        if (clipper.vertex(t).side == nn_line) start = t;
+        if (clipper.vertex(t).side == nn) start = t;
     if (start == s) return false;  // Lemma 1 says it is there; give up rather than guess
     w.lines.clear();
     w.meets.clear();

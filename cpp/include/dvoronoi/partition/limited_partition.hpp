@@ -192,7 +192,6 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     // reads): scattered writes from the hot loop cost a cache miss each at 1e6 agents.
     struct Block {
         std::vector<Piece> pieces;
-        std::vector<Index> first;  // per agent of the block: offset of its first piece
     };
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
@@ -200,7 +199,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     std::vector<Block> blocks(static_cast<std::size_t>(nblocks));
     struct Result {  // one agent's scalars, by grid position
         double area, perimeter, cx, cy;
-        Index candidates, pieces, edges;
+        Index candidates, pieces, edges, first;  // first: offset of its pieces in its block's buffer
     };
     std::vector<Result> by_pos(static_cast<std::size_t>(n));
     detail::ProgressTracker tracker(progress, n);
@@ -216,7 +215,6 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
             if (tracker.cancelled()) continue;
             Block& blk = blocks[static_cast<std::size_t>(b)];
             const Index lo = b * block, hi = std::min(n, lo + block);
-            blk.first.reserve(static_cast<std::size_t>(hi - lo));
             // About six pieces per cell in a swarm: room for seven, so the buffer rarely regrows
             // (each regrowth copies it and faults in fresh pages).
             blk.pieces.reserve(static_cast<std::size_t>(hi - lo) * 7);
@@ -232,8 +230,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
                 Index edges = 0;
                 for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
                 by_pos[pp] = {m.area, m.perimeter, m.centroid.x(), m.centroid.y(), cell.candidates,
-                              static_cast<Index>(cell.pieces.size()), edges};
-                blk.first.push_back(static_cast<Index>(blk.pieces.size()));
+                              static_cast<Index>(cell.pieces.size()), edges, static_cast<Index>(blk.pieces.size())};
                 blk.pieces.insert(blk.pieces.end(), cell.pieces.begin(), cell.pieces.end());
             }
             tracker.block_done(hi - lo);
@@ -269,18 +266,17 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
 #pragma omp parallel for num_threads(team) schedule(static)
     for (Index i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
-        const auto piece_src = [&](std::size_t pos) {
-            const Block& blk = blocks[pos / static_cast<std::size_t>(block)];
-            return blk.pieces.data() + blk.first[pos % static_cast<std::size_t>(block)];
+        // Two stages of prefetch: the agent's record 2 * kAhead ahead, its pieces kAhead ahead.
+        const auto piece_src = [&](Index i_) {
+            const auto pos = static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i_)]);
+            return blocks[pos / static_cast<std::size_t>(block)].pieces.data() + by_pos[pos].first;
         };
+        if (i + 2 * kAhead < n) detail::prefetch(&by_pos[static_cast<std::size_t>(pos_of[ii + 2 * kAhead])]);
         if (i + kAhead < n) {
-            const Piece* ahead = piece_src(static_cast<std::size_t>(pos_of[ii + kAhead]));
-            detail::prefetch(ahead);
-            detail::prefetch(ahead + 2);
-            detail::prefetch(ahead + 4);
-            detail::prefetch(ahead + 6);
+            const Piece* ahead = piece_src(i + kAhead);
+            for (int line = 0; line < 4; ++line) detail::prefetch(ahead + 2 * line);
         }
-        const Piece* src = piece_src(static_cast<std::size_t>(pos_of[ii]));
+        const Piece* src = piece_src(i);
         auto dst = static_cast<std::size_t>(out.piece_ptr[ii]);
         auto nb = static_cast<std::size_t>(out.indptr[ii]);
         const Index cnt = out.piece_ptr[ii + 1] - out.piece_ptr[ii];
