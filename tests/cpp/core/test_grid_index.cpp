@@ -1,6 +1,7 @@
 // GridIndex::for_each_in_disk visits every agent inside any disk (a superset is allowed), for small,
 // huge and far-away disks, on dense and sparse grids, and stops when asked.
 #include "dvoronoi/core/grid_index.hpp"
+#include "dvoronoi/core/predicates.hpp"
 
 #include <doctest/doctest.h>
 
@@ -41,4 +42,46 @@ TEST_CASE("for_each_in_disk stops when the visitor returns false") {
     const bool complete = index.for_each_in_disk(Vec2(3, 3), 100.0, [&](const Vec2&, Index) { return ++visits < 5; });
     CHECK_FALSE(complete);
     CHECK(visits == 5);
+}
+
+namespace {
+
+/// Agents j != i strictly within 2R of agent i, by the exact predicate over all agents.
+std::set<Index> brute_within(const Points& p, Index i, double radius) {
+    std::set<Index> out;
+    for (Index j = 0; j < p.rows(); ++j)
+        if (j != i && pred::within_2r(p.row(i).transpose(), p.row(j).transpose(), radius) > 0) out.insert(j);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("within / within_at equal the exact brute force for radii below, at and above the index range") {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (const auto& [offset, scale] : {std::pair{0.0, 1.0}, std::pair{1e7, 1e-3}, std::pair{-3e5, 40.0}}) {
+        // Random agents plus an integer lattice (many agents at exactly 2R: the exact test decides).
+        Points p(500, 2);
+        for (Index i = 0; i < 300; ++i) p.row(i) << offset + scale * u(rng), offset + scale * u(rng);
+        for (Index i = 300; i < 500; ++i) p.row(i) << offset + scale * ((i - 300) % 20) / 20.0, offset + scale * ((i - 300) / 20) / 20.0;
+        const double range = 0.04 * scale;
+        const GridIndex index(p, range);
+        std::vector<detail::Candidate> got;
+        for (double radius : {0.01 * scale, 0.02 * scale, 0.025 * scale, 0.05 * scale, 0.11 * scale, 0.4 * scale}) {
+            for (std::size_t pos = 0; pos < 500; pos += 3) {
+                const Index i = index.grid_order()[pos];
+                index.within_at(pos, radius, got);
+                std::set<Index> ids;
+                for (const auto& q : got) {
+                    CHECK(q.p == Vec2(p.row(q.id).transpose()));
+                    ids.insert(q.id);
+                }
+                INFO("offset ", offset, " radius ", radius, " agent ", i);
+                CHECK(ids.size() == got.size());
+                CHECK(ids == brute_within(p, i, radius));
+                index.within(i, radius, got);
+                CHECK(got.size() == ids.size());
+            }
+        }
+    }
 }

@@ -102,15 +102,76 @@ inline int cross_sign(const Vertex& u, const Vertex& w) {
 
 }  // namespace clip
 
-/// Scratch buffers of the clipping filter (reused across agents: no allocation per cell).
+/// The clipping filter's input, loaded agent by agent straight from a spatial query (no candidate
+/// list is built unless the filter gives up), and its scratch buffers (reused across agents: no
+/// allocation per cell).
 struct ClipWorkspace {
-    std::vector<double> ax, ay, n2;      // candidate k relative to c (rounded), |a_k|^2 (rounded)
-    std::vector<int> order, far;         // the near candidates, the far ones
+    // Loaded: candidate k at (px, py) with id; a = p - c (rounded) and |a|^2 (rounded).
+    std::vector<double> px, py, ax, ay, n2;
+    std::vector<Index> id;
+    std::vector<int> order, far;  // the near candidates, the far ones
+    Vec2 c = Vec2::Zero();
+    double near2 = 0.0, lo = 0.0, lo2 = 0.0, hi = 0.0;
+    int nn = 0;
+    std::size_t m = 0, near = 0, nfar = 0;
+
     std::vector<clip::CellVertex> cur, next;  // the cell being clipped, and the next one
-    std::vector<char> flags;             // vertex strictly outside the half-plane being cut
-    std::vector<Line> lines;             // the result, for emit_cell
+    std::vector<char> flags;                  // vertex strictly outside the half-plane being cut
+    std::vector<Line> lines;                  // the result, for emit_cell
     std::vector<int> cycle;
     std::vector<char> meets;
+
+    /// Starts loading the candidates of the agent at c. `near2`: squared distance below which a
+    /// candidate is clipped early (about the kNearFirst nearest; only the speed depends on it).
+    void start(const Vec2& center, double near_sq) {
+        c = center;
+        near2 = near_sq;
+        lo = lo2 = clip::kInf;
+        hi = 0.0;
+        nn = 0;
+        m = near = nfar = 0;
+    }
+    /// Adds a candidate (strictly within 2R of c, distinct from c and the others). Free of
+    /// unpredictable branches: they cost more than the arithmetic here.
+#if defined(__GNUC__) || defined(__clang__)
+    __attribute__((always_inline))  // called per agent in the query's inner loop
+#endif
+    void add(const Vec2& p, Index j) {
+        if (m == px.size()) grow();
+        const double x = p.x() - c.x(), y = p.y() - c.y();
+        const double d = x * x + y * y;
+        px[m] = p.x();
+        py[m] = p.y();
+        id[m] = j;
+        ax[m] = x;
+        ay[m] = y;
+        n2[m] = d;
+        const int k = static_cast<int>(m);
+        lo2 = std::min(lo2, std::max(lo, d));
+        nn = d < lo ? k : nn;
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+        const bool is_near = d <= near2;
+        order[near] = k;
+        far[nfar] = k;
+        near += is_near;
+        nfar += !is_near;
+        ++m;
+    }
+    /// The loaded candidates as a list (for Boundary Scan when the filter gives up).
+    void candidates(std::vector<Candidate>& out) const {
+        out.resize(m);
+        for (std::size_t k = 0; k < m; ++k) out[k] = {Vec2(px[k], py[k]), id[k]};
+    }
+
+private:
+    void grow() {
+        const std::size_t cap = std::max<std::size_t>(64, 2 * px.size());
+        for (auto* v : {&px, &py, &ax, &ay, &n2}) v->resize(cap);
+        id.resize(cap);
+        order.resize(cap);
+        far.resize(cap);
+    }
 };
 
 namespace clip {
@@ -293,47 +354,18 @@ private:
 
 }  // namespace clip
 
-/// The limited cell by certified clipping (see the file comment); false when it gave up, and then
-/// `out` is untouched. `nearest` is the exact nearest candidate (its bisector starts the cycle).
-inline bool certified_clip_cell(const Vec2& c, const std::vector<Candidate>& cand, double radius,
-                                LimitedCell& out, ClipWorkspace& w) {
+/// The limited cell of w.c among the loaded candidates by certified clipping (see the file
+/// comment); false when it gave up (then `out` is unspecified and Boundary Scan must run).
+inline bool certified_clip_loaded(double radius, LimitedCell& out, ClipWorkspace& w) {
     using namespace clip;
-    const std::size_t m = cand.size();
+    const std::size_t m = w.m;
     if (m == 0) return false;  // Boundary Scan's full disk costs nothing
-    w.ax.resize(m);
-    w.ay.resize(m);
-    w.n2.resize(m);
-    w.order.resize(m);
-    w.far.resize(m);
+    const int nn = w.nn;
     const double r2 = radius * radius;
-    // Expected to hold the kNearFirst nearest agents for the local density m / (4 R^2).
-    const double near2 = 4.0 * r2 * static_cast<double>(kNearFirst) / static_cast<double>(m);
-    // One pass, free of unpredictable branches (they cost more than the arithmetic here): the
-    // differences, the two smallest distances, and the split into near and far agents.
-    double lo = kInf, lo2 = kInf, hi = 0.0;
-    int nn = 0;
-    std::size_t near = 0, far = 0;
-    for (std::size_t k = 0; k < m; ++k) {
-        const double x = cand[k].p.x() - c.x(), y = cand[k].p.y() - c.y();
-        const double d = x * x + y * y;
-        w.ax[k] = x;
-        w.ay[k] = y;
-        w.n2[k] = d;
-        const int ik = static_cast<int>(k);
-        lo2 = std::min(lo2, std::max(lo, d));
-        nn = d < lo ? ik : nn;
-        lo = std::min(lo, d);
-        hi = std::max(hi, d);
-        const bool is_near = d <= near2;
-        w.order[near] = ik;
-        w.far[far] = ik;
-        near += is_near;
-        far += !is_near;
-    }
     // Products of up to three squared lengths must neither underflow nor overflow.
-    if (!(lo > 1e-90 && hi < 1e90 && r2 > 1e-90 && r2 < 1e90)) return false;
+    if (!(w.lo > 1e-90 && w.hi < 1e90 && r2 > 1e-90 && r2 < 1e90)) return false;
     // The nearest neighbour, certified unique (else Boundary Scan breaks the tie exactly).
-    if (m > 1 && !(lo2 - lo > 8.0 * kU * lo2)) return false;
+    if (m > 1 && !(w.lo2 - w.lo > 8.0 * kU * w.lo2)) return false;
     // Clipping order: the nearest agent, the near ones (they shrink the cell to about its final
     // size; sorting them by distance costs more than it saves), then the far ones, which mostly
     // fail the screen: H_k holds the disk of radius |a_k| / 2, which holds the cell when that is
@@ -344,11 +376,11 @@ inline bool certified_clip_cell(const Vec2& c, const std::vector<Candidate>& can
         const double reach = clipper.reach();
         return w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU);
     };
-    for (std::size_t t = 0; t < near; ++t) {
+    for (std::size_t t = 0; t < w.near; ++t) {
         const int k = w.order[t];
         if (k != nn && !screened(k) && !clipper.cut(k)) return false;
     }
-    for (std::size_t t = 0; t < far; ++t) {
+    for (std::size_t t = 0; t < w.nfar; ++t) {
         const int k = w.far[t];
         if (!screened(k) && !clipper.cut(k)) return false;
     }
@@ -369,13 +401,27 @@ inline bool certified_clip_cell(const Vec2& c, const std::vector<Candidate>& can
         }
         const auto kk = static_cast<std::size_t>(k);
         w.cycle.push_back(static_cast<int>(w.lines.size()));
-        w.lines.push_back({cand[kk].p, Vec2(w.ax[kk], w.ay[kk]), w.n2[kk], cand[kk].id, 0.0, 0});
+        w.lines.push_back({Vec2(w.px[kk], w.py[kk]), Vec2(w.ax[kk], w.ay[kk]), w.n2[kk], w.id[kk], 0.0, 0});
         w.meets.push_back(1);
     }
     out.candidates = static_cast<Index>(m);
     out.chords_after_check = -1;
-    emit_cell(c, radius, w.lines, w.cycle, w.meets, out);
+    emit_cell(w.c, radius, w.lines, w.cycle, w.meets, out);
     return true;
+}
+
+/// The squared distance within which about kNearFirst of m candidates lie (local density
+/// m / (4 R^2)).
+inline double near_first_sq(double radius, std::size_t m) {
+    return 4.0 * radius * radius * static_cast<double>(clip::kNearFirst) / static_cast<double>(std::max<std::size_t>(m, 1));
+}
+
+/// The same from a candidate list (strictly within 2R of c, pairwise distinct, distinct from c).
+inline bool certified_clip_cell(const Vec2& c, const std::vector<Candidate>& cand, double radius,
+                                LimitedCell& out, ClipWorkspace& w) {
+    w.start(c, near_first_sq(radius, cand.size()));
+    for (const Candidate& q : cand) w.add(q.p, q.id);
+    return certified_clip_loaded(radius, out, w);
 }
 
 /// Boundary Scan's cell, by the certified clipping filter when it decides, else by Boundary Scan.

@@ -134,6 +134,12 @@ public:
         within_impl(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, out);
     }
 
+    /// The same as within_at, handing each agent to fn(p, j) instead of collecting them.
+    template <class Fn>
+    void for_each_within_at(std::size_t pos, double radius, Fn&& fn) const {
+        visit_within(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, fn);
+    }
+
     /// Calls fn(position, id) for every agent of the grid cells that meet the disk of radius r around
     /// `center` (a superset of the agents in the disk; the caller decides exactly) until fn returns
     /// false; returns false when it was stopped that way. Only the part of
@@ -204,11 +210,18 @@ private:
     void within_impl(double x, double y, Key k, Index i, double radius,
                      std::vector<detail::Candidate>& out) const {
         out.clear();
+        visit_within(x, y, k, i, radius, [&](const Vec2& p, Index j) { out.push_back({p, j}); });
+    }
+
+    /// Calls fn(p, j) for every agent j != i strictly within 2*radius of (x, y) (exact), in the
+    /// index's deterministic traversal order.
+    template <class Fn>
+    void visit_within(double x, double y, Key k, Index i, double radius, Fn&& fn) const {
         if (pts_.rows() == 0) return;
         const Vec2 c(x, y);
         if (!(radius < std::numeric_limits<double>::infinity())) {
             for (std::size_t s = 0; s < order_.size(); ++s)
-                if (order_[s] != i) out.push_back({Vec2(xs_[s], ys_[s]), order_[s]});
+                if (order_[s] != i) fn(Vec2(xs_[s], ys_[s]), order_[s]);
             return;
         }
         // Cells to scan on each side: one within the indexed range (its margin covers the rounding
@@ -222,26 +235,65 @@ private:
             // More cells than agents to visit: test every agent instead.
             for (std::size_t s = 0; s < order_.size(); ++s) {
                 const Vec2 p(xs_[s], ys_[s]);
-                if (order_[s] != i && pred::within_2r(c, p, radius) > 0) out.push_back({p, order_[s]});
+                if (order_[s] != i && pred::within_2r(c, p, radius) > 0) fn(p, order_[s]);
             }
             return;
         }
-        for (std::int64_t cx = std::max<std::int64_t>(0, k.cx - reach);
-             cx <= std::min<std::int64_t>(nx_ - 1, k.cx + reach); ++cx) {
-            const std::int64_t cy0 = std::max<std::int64_t>(0, k.cy - reach);
-            const std::int64_t cy1 = std::min<std::int64_t>(ny_ - 1, k.cy + reach);
+        // The agents of a column run: a branch-free pass keeps, in chunks, those not clearly
+        // outside (a branch there mispredicts often); then the rare exact checks near the circle.
+        const double r2 = 4.0 * radius * radius, r2hi = r2 * (1.0 + 1e-9), r2lo = r2 * (1.0 - 1e-9);
+        const auto scan = [&](std::int64_t cx, std::int64_t cy0, std::int64_t cy1) {
             std::size_t lo, hi;
             column_run(cx, cy0, cy1, lo, hi);
-            // Branch-free distance pass over the contiguous run, then the rare exact checks.
-            const double r2 = 4.0 * radius * radius, r2hi = r2 * (1.0 + 1e-9), r2lo = r2 * (1.0 - 1e-9);
-            for (std::size_t s = lo; s < hi; ++s) {
-                const double dx = xs_[s] - c.x(), dy = ys_[s] - c.y();
-                const double d2 = dx * dx + dy * dy;
-                if (d2 > r2hi) continue;
-                const Index j = order_[s];
-                const Vec2 p(xs_[s], ys_[s]);
-                if (j != i && (d2 < r2lo || pred::within_2r(c, p, radius) > 0)) out.push_back({p, j});
+            constexpr std::size_t kChunk = 64;
+            std::uint32_t keep[kChunk];
+            for (std::size_t s0 = lo; s0 < hi; s0 += kChunk) {
+                const std::size_t s1 = std::min(hi, s0 + kChunk);
+                std::size_t kept = 0;
+                for (std::size_t s = s0; s < s1; ++s) {
+                    const double dx = xs_[s] - c.x(), dy = ys_[s] - c.y();
+                    keep[kept] = static_cast<std::uint32_t>(s - s0);
+                    kept += dx * dx + dy * dy <= r2hi;
+                }
+                for (std::size_t t = 0; t < kept; ++t) {
+                    const std::size_t s = s0 + keep[t];
+                    const Index j = order_[s];
+                    if (j == i) continue;
+                    const Vec2 p(xs_[s], ys_[s]);
+                    const double dx = p.x() - c.x(), dy = p.y() - c.y();
+                    if (dx * dx + dy * dy < r2lo || pred::within_2r(c, p, radius) > 0) fn(p, j);
+                }
             }
+        };
+        if (reach == 1) {  // 3 x 3 cells
+            for (std::int64_t cx = std::max<std::int64_t>(0, k.cx - 1); cx <= std::min<std::int64_t>(nx_ - 1, k.cx + 1); ++cx)
+                scan(cx, std::max<std::int64_t>(0, k.cy - 1), std::min<std::int64_t>(ny_ - 1, k.cy + 1));
+            return;
+        }
+        // Cells finer than 2R: per column, only the rows the disk can reach. Keys are a monotone
+        // function of the coordinate (floor of rounded (v - v0) / cell), so a bound on the agents'
+        // coordinates, itself rounded outwards, bounds their keys: no margin of whole cells.
+        constexpr double u = 1.1102230246251565e-16;
+        const double rr = 2.0 * radius * (1.0 + 1e-9);
+        const auto key_lo = [&](double v, double v0, double d, std::int64_t nmax) {  // key of v - d, rounded down
+            const double m = d + 8.0 * u * (std::fabs(v) + d);
+            const double f = std::floor((v - m - v0) / cell_);
+            return static_cast<std::int64_t>(std::min(std::max(f, 0.0), static_cast<double>(nmax - 1)));
+        };
+        const auto key_hi = [&](double v, double v0, double d, std::int64_t nmax) {  // key of v + d, rounded up
+            const double m = d + 8.0 * u * (std::fabs(v) + d);
+            const double f = std::floor((v + m - v0) / cell_);
+            return static_cast<std::int64_t>(std::min(std::max(f, 0.0), static_cast<double>(nmax - 1)));
+        };
+        const std::int64_t cx0 = key_lo(x, x0_, rr, nx_), cx1 = key_hi(x, x0_, rr, nx_);
+        for (std::int64_t cx = cx0; cx <= cx1; ++cx) {
+            // Agents keyed in column cx lie in [xa, xb] up to the rounding of their keys (slack).
+            const double xa = x0_ + static_cast<double>(cx) * cell_, xb = xa + cell_;
+            const double slack = 8.0 * u * (std::fabs(x0_) + std::fabs(x) + std::fabs(xb)) + 1e-9 * cell_;
+            const double dx = std::max({0.0, xa - x, x - xb}) - slack;
+            const double half = dx <= 0.0 ? rr : std::sqrt(std::max(0.0, rr * rr - dx * dx)) * (1.0 + 1e-12);
+            if (dx >= rr) continue;
+            scan(cx, key_lo(y, y0_, half, ny_), key_hi(y, y0_, half, ny_));
         }
     }
 

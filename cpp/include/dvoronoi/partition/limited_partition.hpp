@@ -220,12 +220,21 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
             blk.pieces.reserve(static_cast<std::size_t>(hi - lo) * 7);
             for (Index pos = lo; pos < hi; ++pos) {
                 const auto pp = static_cast<std::size_t>(pos);
-                index.within_at(pp, radius, cand);
                 const Vec2 c = index.point_at(pp);
-                if (method == Method::Scan)  // Boundary Scan's cell; agents are distinct (checked above)
-                    detail::filtered_boundary_scan(c, cand, radius, cell, ws, clip_ws);
-                else
+                if (method == Method::Scan) {
+                    // Boundary Scan's cell: the certified clipping filter on the candidates as the
+                    // query finds them (agents are distinct: checked above), Boundary Scan itself
+                    // when the filter gives up. The previous agent's count sets the near radius.
+                    clip_ws.start(c, detail::near_first_sq(radius, clip_ws.m));
+                    index.for_each_within_at(pp, radius, [&](const Vec2& p, Index j) { clip_ws.add(p, j); });
+                    if (!detail::certified_clip_loaded(radius, cell, clip_ws)) {
+                        clip_ws.candidates(cand);
+                        detail::boundary_scan(c, cand, radius, cell, ws);
+                    }
+                } else {
+                    index.within_at(pp, radius, cand);
                     detail::rcvc(c, cand, radius, cell, ws);
+                }
                 const CellMeasures m = cell.measures();
                 Index edges = 0;
                 for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
