@@ -165,9 +165,12 @@ inline void require_distinct(const GridIndex& index, const Points& pts) {
 /// \param progress optional callback (done, total), called from the calling thread.
 /// \throws InputError for a bad radius or non-finite coordinates; CoincidentError for coinciding
 ///         agents (lowest pair named).
-/// \note Complexity O(n m log m) for Scan (m agents within 2R per agent), O(n m^2) worst case for
-///       Chords; the duplicate check is O(n) expected (identical points share a grid cell).
-///       Memory O(n m). Thread-safe.
+/// \note Scan gives Boundary Scan's cells bit for bit; most are computed by the certified clipping
+///       filter of cells/certified_clip.hpp (O(m) per agent in a swarm: the nearest agents shrink
+///       the cell, the others fail a one-comparison screen), the rest by Boundary Scan itself
+///       (O(m log m)); m = agents within 2R. Chords is O(m^2) per agent in the worst case. The
+///       duplicate check is O(n) expected (identical points share a grid cell). Memory O(n m).
+///       Thread-safe.
 inline LimitedPartition limited_cells(PointsRef points, double radius, Method method = Method::Scan,
                                       int threads = 0, const ProgressFn& progress = nullptr) {
     detail::require_finite_radius(radius);
