@@ -261,6 +261,7 @@ void bind_network(py::module_& m) {
             d["on_hull"] = copy_vec<bool>(r.on_hull);
             d["counts"] = counts_dict(r.counts);
             d["lost"] = r.lost;
+            d["discoveries"] = r.discoveries;
             d["delivered"] = r.delivered;
             d["refinements"] = r.refinements;
             if (a.has_bounds) {
@@ -365,7 +366,7 @@ void bind_network(py::module_& m) {
         }
         prog.rethrow();
         if (failure) std::rethrow_exception(failure);
-        const std::size_t T = N ? rows[0].by_type.size() : (algorithm == "bd07" ? 3 : algorithm == "cc" ? 2 : 0);
+        const std::size_t T = N ? rows[0].by_type.size() : (algorithm == "bd07" ? 3 : algorithm == "cc" ? 3 : 0);
         py::array_t<std::int64_t> by_type({static_cast<py::ssize_t>(N), static_cast<py::ssize_t>(T)});
         py::array_t<std::int64_t> lost(static_cast<py::ssize_t>(N));
         py::array_t<bool> cond(static_cast<py::ssize_t>(N)), exact(static_cast<py::ssize_t>(N));

@@ -158,6 +158,7 @@ int run_network(const NetworkOptions& o) {
         const auto r = network::run_cc(net, run, cc);
         counts = r.counts;
         j["lost_messages"] = r.lost;
+        j["route_discoveries"] = r.discoveries;
         csr_json(j, r.neighbors, true);
         std::vector<Index> ccw;
         for (const auto& l : r.neighbors) ccw.insert(ccw.end(), l.begin(), l.end());

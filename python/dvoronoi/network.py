@@ -93,6 +93,8 @@ class _NetworkMixin:
         self.sent = np.asarray(counts["sent"], dtype=np.int64)
         self.received = np.asarray(counts["received"], dtype=np.int64)
         self.lost_messages = int(d.get("lost", 0))
+        #: CC only: route discoveries (floods) after GPSR could not deliver (obstacles)
+        self.route_discoveries = int(d.get("discoveries", 0))
 
     @property
     def total_transmissions(self) -> int:
@@ -257,7 +259,9 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
         Only with ``bounds``: cells clipped to the box (hull cells are unbounded otherwise: their area
         is ``inf`` and ``cell(i)`` raises).
     sent, received : (n, T) int64
-        Transmissions per node and message type (``message_types``: location, notify).
+        Transmissions per node and message type (``message_types``: location, notify, discovery).
+        ``discovery`` counts the route discoveries (floods and answers) that take over where GPSR
+        cannot deliver (obstacles); ``route_discoveries`` is how many there were.
     """
 
     def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,

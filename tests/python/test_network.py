@@ -47,7 +47,10 @@ def check_cc(oracle, pts, comm_range, label, **kw):
     got = [set(res.neighbors(i).tolist()) for i in range(len(pts))]
     wrong = [i for i in range(len(pts)) if got[i] != want[i] or bool(res.on_hull[i]) != hull[i]]
     assert res.wrong_nodes.tolist() == wrong, f"{label}: wrong_nodes misreported"
-    if cond and res.lost_messages == 0:
+    if cond:
+        # Theorem 2's condition makes the network connected: every message arrives (GPSR, or the
+        # route discovery that takes over where it cannot), and every node is exact.
+        assert res.lost_messages == 0, f"{label}: {res.lost_messages} messages lost on a connected network"
         assert not wrong, f"{label}: Theorem 2 holds but nodes {wrong[:10]} are wrong"
     return res, cond
 
@@ -87,9 +90,28 @@ def test_cc_exact_with_obstacles_and_loss(oracle, seed):
         res, cond = check_cc(oracle, pts, 20.0, f"obstacles seed {seed} {routing}", loss=0.2, obstacles=bars,
                              seed=seed, routing=routing)
         assert cond and res.blocked_links > 0
+        assert res.exact and res.lost_messages == 0
         assert link_set(res.links) <= link_set(net.links(pts, 20.0))
         if routing == "shortest":
-            assert res.exact and res.lost_messages == 0
+            assert res.route_discoveries == 0 and res.transmissions_by_type["discovery"] == 0
+
+
+def test_cc_over_gpsr_with_obstacles_many_networks(oracle):
+    # The paper's obstacle setting over many networks, both Section 2.3 optimisations on and off:
+    # wherever Theorem 2's condition holds, CC over GPSR (with route discovery where GPSR cannot
+    # deliver) is exact; route discoveries happen and are paid for.
+    rng = np.random.default_rng(2024)
+    checked = discoveries = 0
+    for k in range(60):
+        pts = rng.uniform(0, 100, (100, 2))
+        bars = net.random_bars(rng, 50, 5.0, (0, 0, 100, 100))
+        comm_range = (14.0, 18.0, 22.0, 26.0, 30.0)[k % 5]
+        res, cond = check_cc(oracle, pts, comm_range, f"gpsr obstacles {k}", obstacles=bars, seed=k,
+                             loss=0.2 * (k % 2), cap_adjacency=k % 3 != 0, forward=k % 4 != 0)
+        checked += cond
+        discoveries += res.route_discoveries
+        assert (res.transmissions_by_type["discovery"] > 0) == (res.route_discoveries > 0)
+    assert checked >= 20 and discoveries > 0
 
 
 def test_cc_many_delivery_orders_same_answer(oracle):
@@ -372,7 +394,8 @@ def test_batch_matches_single_runs():
     for k in range(6):
         one = net.simulate("cc", nets[k], 25.0, loss=0.2, obstacles=obs[k], seed=seeds[k])
         assert out["by_type"][k].tolist() == [one.transmissions_by_type["location"],
-                                              one.transmissions_by_type["notify"]]
+                                              one.transmissions_by_type["notify"],
+                                              one.transmissions_by_type["discovery"]]
         assert bool(out["condition"][k]) == one.condition
         assert bool(out["exact"][k]) == one.exact
     b = net.batch("bd07", nets, 25.0, 0.0, [None] * 6, (0, 0, 100, 100), seeds, threads=2)

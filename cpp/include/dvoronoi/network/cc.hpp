@@ -16,7 +16,8 @@
 // which lists the other; (2) a notification goes to one of the two nodes only (the one nearer to the
 // notifying node), which tells the other if the news changed its own cell.
 // Notifications travel by GPSR (the paper uses it for fairness with BD07) or, optionally, along
-// hop-shortest paths; each hop is one transmission.
+// hop-shortest paths; each hop is one transmission. Where GPSR cannot deliver (obstacles make the
+// graph non-planar), a route discovery by flooding takes over (NodeRouter), counted separately.
 #pragma once
 
 #include "dvoronoi/cells/delaunay.hpp"
@@ -53,7 +54,8 @@ struct CcResult {
     std::vector<char> on_hull;
     TransmissionCounts counts;                  ///< message types: location, notify
     std::int64_t delivered = 0;                 ///< messages delivered (end to end)
-    std::int64_t lost = 0;                      ///< messages GPSR could not deliver (non-planar graphs only)
+    std::int64_t lost = 0;                      ///< messages not delivered (addressee unreachable)
+    std::int64_t discoveries = 0;               ///< route discoveries after GPSR gave up (obstacles only)
     std::int64_t refinements = 0;               ///< locations that changed a cell
 };
 
@@ -179,15 +181,24 @@ inline std::vector<std::vector<Index>> capped_adjacency(const Network& net, int 
     return out;
 }
 
-/// Routes from node `from` to node `to` (GPSR, or hop-shortest paths from a per-source BFS cache).
+/// Routes from node `from` to node `to`: GPSR, or hop-shortest paths (a per-destination BFS cache).
+///
+/// GPSR alone is not enough with obstacles: the communication graph is then no unit-disk graph,
+/// its Gabriel subgraph may keep crossing links, and face routing can loop or end at the wrong
+/// node. A node whose packet GPSR cannot deliver then does what on-demand routing protocols do
+/// (AODV's route discovery): it floods a route request through its connected component (every
+/// node forwards it once to each neighbour), the addressee answers back along the shortest path,
+/// and the packet follows that path. Every hop of the flood and of the answer is counted as a
+/// "discovery" transmission, so nothing is lost on a connected network and the cost is honest.
 class NodeRouter {
 public:
-    NodeRouter(const Network& net, Routing r) : net_(net), routing_(r) {
+    NodeRouter(const Network& net, Routing r) : net_(net), routing_(r), parent_(static_cast<std::size_t>(net.size())) {
         if (r == Routing::Gpsr) gpsr_.emplace(net);
-        else parent_.resize(static_cast<std::size_t>(net.size()));
     }
-    /// False when the message cannot be delivered (path then holds the hops it took anyway).
-    bool route(Index from, Index to, std::vector<Index>& path) {
+    /// False when the message cannot be delivered (different components). `path` holds the hops
+    /// the message takes (GPSR's attempt included), `discovery` the hops of a route discovery.
+    bool route(Index from, Index to, std::vector<Index>& path, std::vector<std::pair<Index, Index>>& discovery) {
+        discovery.clear();
         if (from == to) {
             path.assign(1, from);
             return true;
@@ -196,15 +207,34 @@ public:
             path.assign({from, to});
             return true;
         }
-        if (gpsr_) return gpsr_->route(from, net_.pos(to), path) && path.back() == to;
-        // Shortest: BFS tree rooted at the destination, walked from the source.
+        if (!gpsr_) {
+            path.assign(1, from);
+            return append_shortest(from, to, path);
+        }
+        if (gpsr_->route(from, net_.pos(to), path) && path.back() == to) return true;
+        // GPSR gave up at path.back(): route discovery from there.
+        const Index stuck = path.back();
+        const auto& comp = component_of(stuck);
+        for (Index u : comp)
+            for (Index w : net_.adj[static_cast<std::size_t>(u)]) discovery.emplace_back(u, w);
+        const std::size_t before = path.size();
+        if (!append_shortest(stuck, to, path)) return false;
+        for (std::size_t h = path.size() - 1; h > before - 1; --h) discovery.emplace_back(path[h], path[h - 1]);  // the answer
+        ++discoveries_;
+        return true;
+    }
+    const Gpsr* gpsr() const { return gpsr_ ? &*gpsr_ : nullptr; }
+    std::int64_t discoveries() const { return discoveries_; }
+
+private:
+    /// Appends the hop-shortest path from `from` (already path's last node) to `to`.
+    bool append_shortest(Index from, Index to, std::vector<Index>& path) {
         auto& par = parent_[static_cast<std::size_t>(to)];
         if (par.empty()) {
             std::vector<Index> hops;
             bfs(net_.adj, to, par, hops);
             par.push_back(0);  // marks "computed" even for an isolated node
         }
-        path.assign(1, from);
         if (par[static_cast<std::size_t>(from)] < 0) return false;
         for (Index u = from; u != to;) {
             u = par[static_cast<std::size_t>(u)];
@@ -212,13 +242,24 @@ public:
         }
         return true;
     }
-    const Gpsr* gpsr() const { return gpsr_ ? &*gpsr_ : nullptr; }
+    const std::vector<Index>& component_of(Index u) {
+        if (comp_id_.empty()) {
+            comp_id_ = components(net_.adj);
+            Index k = 0;
+            for (Index c : comp_id_) k = std::max(k, c + 1);
+            members_.assign(static_cast<std::size_t>(k), {});
+            for (Index v = 0; v < net_.size(); ++v) members_[static_cast<std::size_t>(comp_id_[static_cast<std::size_t>(v)])].push_back(v);
+        }
+        return members_[static_cast<std::size_t>(comp_id_[static_cast<std::size_t>(u)])];
+    }
 
-private:
     const Network& net_;
     Routing routing_;
     std::optional<Gpsr> gpsr_;
     std::vector<std::vector<Index>> parent_;
+    std::vector<Index> comp_id_;
+    std::vector<std::vector<Index>> members_;
+    std::int64_t discoveries_ = 0;
 };
 
 }  // namespace detail
@@ -232,12 +273,12 @@ inline CcResult run_cc(const Network& net, const RunOptions& run, const CcOption
     if (opt.cap_adjacency && opt.adjacency_cap < 0)
         throw InputError("adjacency_cap must be >= 0, got " + std::to_string(opt.adjacency_cap));
     const Index n = net.size();
-    enum : std::size_t { kLocation = 0, kNotify = 1 };
+    enum : std::size_t { kLocation = 0, kNotify = 1, kDiscovery = 2 };
     struct Msg {
         Index to, about;
         bool forward;  // optimisation 2: the receiver tells `about` of itself if the news was new
     };
-    Simulator<Msg> sim(n, {"location", "notify"}, run);
+    Simulator<Msg> sim(n, {"location", "notify", "discovery"}, run);
     detail::NodeRouter router(net, opt.routing);
     const auto capped = opt.cap_adjacency ? detail::capped_adjacency(net, opt.adjacency_cap)
                                           : std::vector<std::vector<Index>>{};
@@ -250,9 +291,11 @@ inline CcResult run_cc(const Network& net, const RunOptions& run, const CcOption
     std::vector<detail::CcCell> cells(static_cast<std::size_t>(n));
     CcResult res;
     std::vector<Index> path;
-    // A message GPSR cannot deliver (non-planar graphs only) costs its hops and is lost.
+    std::vector<std::pair<Index, Index>> discovery;
+    // A message that cannot be delivered (addressee in another component) costs its hops and is lost.
     const auto send = [&](Index from, Index to, Index about, bool forward) {
-        const bool ok = router.route(from, to, path);
+        const bool ok = router.route(from, to, path, discovery);
+        for (const auto& [u, w] : discovery) sim.count_hop(u, w, kDiscovery);
         if (ok) {
             sim.send_along(path, kNotify, Msg{to, about, forward});
         } else {
@@ -294,6 +337,7 @@ inline CcResult run_cc(const Network& net, const RunOptions& run, const CcOption
         }
     });
     res.counts = sim.counts();
+    res.discoveries = router.discoveries();
     res.neighbors.resize(static_cast<std::size_t>(n));
     res.on_hull.resize(static_cast<std::size_t>(n));
     for (Index i = 0; i < n; ++i) {
