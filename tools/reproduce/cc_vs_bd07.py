@@ -16,8 +16,10 @@ counted - and the same 1000 networks serve both error rates (paired comparison).
 Section 2.3 optimisations and GPSR routing, as in the paper; BD07's region is the 100 x 100 square.
 Each try over a link is one transmission (a multi-hop message costs one per hop; SPEC.md). The CSV has
 the mean, standard deviation and 95% confidence half-width of the total per algorithm, the mean per
-message type, messages GPSR lost (possible with obstacles: the Gabriel subgraph can be non-planar) and
-the fraction of CC runs whose diagram was exact (checked against the centralised exact diagram).
+message type (CC's "discovery": route discoveries where GPSR cannot deliver, because obstacles can
+leave the Gabriel subgraph non-planar; BD07's probes still go by GPSR alone, so it can lose replies),
+messages lost, and the fraction of CC runs whose diagram was exact (checked against the centralised
+exact diagram).
 
 Outputs: out/cc_vs_bd07.csv and out/cc_vs_bd07.png (or *_quick.* with --quick).
 """
@@ -102,7 +104,7 @@ def main(argv=None) -> int:
                 bar.n = done0 + n_net
                 bar.refresh()
                 tot = out["by_type"].sum(axis=1).astype(float)
-                types = ("location", "notify") if alg == "cc" else ("location", "probe", "reply")
+                types = ("location", "notify", "discovery") if alg == "cc" else ("location", "probe", "reply")
                 row = {
                     "range": r, "loss": loss, "algorithm": alg, "networks": n_net, "rejected_draws": rejected,
                     "mean_transmissions": tot.mean(), "std": tot.std(ddof=1) if n_net > 1 else 0.0,
@@ -117,7 +119,8 @@ def main(argv=None) -> int:
     elapsed = time.time() - t_start
 
     fields = ["range", "loss", "algorithm", "networks", "rejected_draws", "mean_transmissions", "std", "ci95",
-              "mean_location", "mean_notify", "mean_probe", "mean_reply", "lost_messages", "exact_fraction"]
+              "mean_location", "mean_notify", "mean_discovery", "mean_probe", "mean_reply", "lost_messages",
+              "exact_fraction"]
     csv_path = OUT / f"cc_vs_bd07{suffix}.csv"
     with open(csv_path, "w", newline="") as f:
         f.write(f"# {platform.node()} {os.cpu_count()} cores, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, "
