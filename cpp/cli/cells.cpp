@@ -78,10 +78,7 @@ Command add_cells(CLI::App& parent) {
         "cells",
         "every agent's Voronoi cell clipped to the disk of radius R around it (pieces, limited "
         "neighbours, areas, centroids, perimeters)");
-    sub->add_option("POINTS", o->points,
-                    "point file: 'x y' per line, whitespace- or comma-separated, '#' comments, "
-                    "optional header line; or a numpy .npy array of shape (n, 2); '-' reads stdin")
-        ->required();
+    add_points_options(sub, o->points, o->columns, o->threads);
     sub->add_option("-r,--radius", o->radius,
                     "cell radius R > 0 (each cell is clipped to the disk of radius R; agents within "
                     "2R shape it)")
@@ -89,12 +86,6 @@ Command add_cells(CLI::App& parent) {
     sub->add_option("-m,--method", o->method,
                     "algorithm: scan (Boundary Scan, O(m log m)) or chords (RCVC); same cells")
         ->check(CLI::IsMember({"scan", "chords"}))
-        ->capture_default_str();
-    sub->add_option("--columns", o->columns,
-                    "X,Y: the fields holding x and y, as 0-based indices (e.g. 1,2 for 'id x y') or "
-                    "header names (e.g. lon,lat)");
-    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     sub->add_option("-o,--output", o->output,
                     "output file, format from its extension: .json, .geojson (arcs densified) or "

@@ -88,6 +88,20 @@ inline std::unique_ptr<io::AtomicFile> open_output(const std::string& path, cons
     }
 }
 
+/// The options every point-file command shares: POINTS (required), --columns and -t/--threads.
+inline void add_points_options(CLI::App* sub, std::string& points, std::string& columns, int& threads) {
+    sub->add_option("POINTS", points,
+                    "point file: 'x y' per line, whitespace- or comma-separated, '#' comments, "
+                    "optional header line; or a numpy .npy array of shape (n, 2); '-' reads stdin")
+        ->required();
+    sub->add_option("--columns", columns,
+                    "X,Y: the fields holding x and y, as 0-based indices (e.g. 1,2 for 'id x y') or "
+                    "header names (e.g. lon,lat)");
+    sub->add_option("-t,--threads", threads, "worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+}
+
 /// Reads the POINTS argument with an optional --columns selection (InputError carries FILE:LINE:COL).
 inline io::PointFile read_points_argument(const std::string& path, const std::string& columns) {
     const io::Columns cols = columns.empty() ? io::Columns{} : io::parse_columns(columns, "--columns");

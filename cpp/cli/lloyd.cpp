@@ -164,10 +164,7 @@ Command add_lloyd(CLI::App& parent) {
         "Lloyd coverage control on limited cells (Cortes, Martinez & Bullo 2005): each agent moves "
         "--gain of the way to the centroid of its cell (uniform density), optionally clipped to a "
         "convex environment; writes the cost per step and the final positions as JSON");
-    sub->add_option("POINTS", o->points,
-                    "point file: 'x y' per line, whitespace- or comma-separated, '#' comments, "
-                    "optional header line; or a numpy .npy array of shape (n, 2); '-' reads stdin")
-        ->required();
+    add_points_options(sub, o->points, o->columns, o->threads);
     sub->add_option("-r,--radius", o->radius, "cell radius R > 0")->required();
     sub->add_option("--steps", o->steps, "number of Lloyd steps")->capture_default_str();
     sub->add_option("--gain", o->gain, "fraction of the way to the centroid per step, in (0, 1]")
@@ -175,10 +172,6 @@ Command add_lloyd(CLI::App& parent) {
     sub->add_option("--bounds", o->bounds, "box environment XMIN YMIN XMAX YMAX (agents must start in it)")
         ->expected(4);
     sub->add_option("--polygon", o->polygon, "convex polygon environment: a point file of its vertices in order");
-    sub->add_option("--columns", o->columns, "X,Y: the fields of POINTS holding x and y");
-    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber)
-        ->capture_default_str();
     sub->add_option("-o,--output", o->output, "JSON file for the run (default or '-': stdout)");
     sub->add_option("--svg-dir", o->svg_dir,
                     "draw the cells into DIR/step_NNNNNN.svg (every --svg-every steps and the last)");

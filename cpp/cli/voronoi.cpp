@@ -79,10 +79,7 @@ Command add_voronoi(CLI::App& parent) {
         "voronoi",
         "every agent's exact Voronoi cell by Adjust-Sensing-Radius: Voronoi neighbours, hull flags "
         "(unbounded cells), areas and centroids of the cells clipped to --bounds");
-    sub->add_option("POINTS", o->points,
-                    "point file: 'x y' per line, whitespace- or comma-separated, '#' comments, "
-                    "optional header line; or a numpy .npy array of shape (n, 2); '-' reads stdin")
-        ->required();
+    add_points_options(sub, o->points, o->columns, o->threads);
     sub->add_option("--bounds", o->bounds,
                     "XMIN YMIN XMAX YMAX: clip every cell to this box (hull agents' cells are "
                     "unbounded; without bounds they have no area and are drawn as rays)")
@@ -91,12 +88,6 @@ Command add_voronoi(CLI::App& parent) {
                     "inner step of ASR: scan (Boundary Scan limited cell) or evt (exact tessellation of "
                     "the agents in range); same cells")
         ->check(CLI::IsMember({"scan", "evt"}))
-        ->capture_default_str();
-    sub->add_option("--columns", o->columns,
-                    "X,Y: the fields holding x and y, as 0-based indices (e.g. 1,2 for 'id x y') or "
-                    "header names (e.g. lon,lat)");
-    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
     sub->add_option("-o,--output", o->output,
                     "output file, format from its extension: .json, .geojson (polygons; null for "
