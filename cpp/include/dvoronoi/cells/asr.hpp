@@ -17,6 +17,7 @@
 #pragma once
 
 #include "dvoronoi/cells/boundary_scan.hpp"
+#include "dvoronoi/cells/certified_clip.hpp"
 #include "dvoronoi/cells/clip.hpp"
 #include "dvoronoi/cells/delaunay.hpp"
 
@@ -234,15 +235,29 @@ bool certify_beyond_radius(Index self, const Vec2& c, double radius, AsrInner in
     }
 }
 
+/// The Voronoi edge of piece t of a certified limited cell (an edge on bisector line l).
+inline VoronoiEdge voronoi_edge(const LimitedCell& limited, std::size_t t, const Line& l) {
+    VoronoiEdge e;
+    e.neighbor = limited.pieces[t].neighbor;
+    e.start = limited.pieces[t].start;
+    e.end = limited.piece_end(t);
+    e.direction = edge_direction(l);
+    return e;
+}
+
 /// Adjust-Sensing-Radius around agent `self` at c. `query(radius, cand)` fills `cand` with the agents
 /// strictly within 2*radius of c (exact); `total` is the number of other agents; `first_radius`
 /// starts the schedule (the nearest-neighbour distance). From radius step Certificate::kFromStep on,
 /// an uncertified step also asks `cert` (see partition/empty_circle_certificate.hpp): +1 exact, 0 it
 /// added candidates (recompute and ask again), -1 widen the radius. Leaves the cell in `out`.
+/// `clip`, given only when the agents are pairwise distinct (the all-agents driver checks that), lets
+/// the inner Boundary Scan step run through the certified clipping filter (cells/certified_clip.hpp:
+/// the same cells, most of them faster).
 template <class Query, class Certificate = NoCertificate>
 void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInner inner,
          CellWorkspace& ws, DelaunayWorkspace& dws, std::vector<Candidate>& cand, LimitedCell& limited,
-         VoronoiCell& out, Index self = -1, const Certificate& cert = Certificate{}) {
+         VoronoiCell& out, Index self = -1, const Certificate& cert = Certificate{},
+         ClipWorkspace* clip = nullptr) {
     out.center = c;
     out.edges.clear();
     out.on_hull = false;
@@ -286,6 +301,16 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
             if (!std::isfinite(radius * 4.0)) break;
             continue;
         }
+        if (clip && certified_clip_cell(c, cand, radius, limited, *clip)) {
+            if (clip->inside_disk) {  // certified: the limited cell is the whole cell
+                for (std::size_t t = 0; t < limited.pieces.size(); ++t)
+                    out.edges.push_back(voronoi_edge(limited, t, clip->lines[static_cast<std::size_t>(clip->cycle[t])]));
+                return;
+            }
+            if (certify_beyond_radius(self, c, radius, inner, cert, ws, dws, cand, out)) return;
+            if (static_cast<Index>(cand.size()) == total || !std::isfinite(radius * 4.0)) break;
+            continue;
+        }
         boundary_scan(c, cand, radius, limited, ws);
         const auto& st = ws.stack;
         const auto& meets = ws.start_is_vertex;
@@ -294,15 +319,8 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
         for (std::size_t t = 0; certified && t < st.size(); ++t)
             certified = meets[t] && g.in_disk(st[t], st[(t + 1) % st.size()]) < 0;
         if (certified) {
-            for (std::size_t t = 0; t < limited.pieces.size(); ++t) {
-                const Line& l = ws.lines[static_cast<std::size_t>(st[t])];
-                VoronoiEdge e;
-                e.neighbor = limited.pieces[t].neighbor;
-                e.start = limited.pieces[t].start;
-                e.end = limited.piece_end(t);
-                e.direction = edge_direction(l);
-                out.edges.push_back(e);
-            }
+            for (std::size_t t = 0; t < limited.pieces.size(); ++t)
+                out.edges.push_back(voronoi_edge(limited, t, ws.lines[static_cast<std::size_t>(st[t])]));
             return;
         }
         if (certify_beyond_radius(self, c, radius, inner, cert, ws, dws, cand, out)) return;

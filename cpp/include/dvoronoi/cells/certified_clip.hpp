@@ -112,6 +112,9 @@ struct ClipWorkspace {
     std::vector<int> order, far;  // the near candidates, the far ones
     Vec2 c = Vec2::Zero();
     double near2 = 0.0, lo = 0.0, lo2 = 0.0, hi = 0.0;
+    /// After a successful clip: the cell has no arc and every vertex is certainly strictly inside
+    /// the disk, so it is the agent's whole (unlimited) Voronoi cell (what ASR certifies).
+    bool inside_disk = false;
     int nn = 0;
     std::size_t m = 0, near = 0, nfar = 0;
 
@@ -390,6 +393,12 @@ inline bool certified_clip_loaded(double radius, LimitedCell& out, ClipWorkspace
     for (std::size_t t = 0; t < s; ++t)
         if (clipper.vertex(t).side == nn) start = t;
     if (start == s) return false;  // Lemma 1 says it is there; give up rather than guess
+    w.inside_disk = s >= 3;
+    for (std::size_t t = 0; w.inside_disk && t < s; ++t) {
+        const CellVertex& v = clipper.vertex(t);
+        const double r = std::sqrt(v.x * v.x + v.y * v.y) * (1.0 + 4.0 * kU) + v.e;
+        w.inside_disk = v.side != kArcSide && r < radius * (1.0 - 4.0 * kU);
+    }
     w.lines.clear();
     w.meets.clear();
     w.cycle.clear();

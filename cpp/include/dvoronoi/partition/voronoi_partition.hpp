@@ -139,6 +139,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         detail::DelaunayWorkspace dws;
         LimitedCell limited;
         VoronoiCell cell;
+        detail::ClipWorkspace clip_ws;  // agents are distinct (checked above): the filter may serve
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             if (tracker.cancelled()) continue;
@@ -147,7 +148,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                 const auto spos = static_cast<std::size_t>(pos);
                 const Index i = order[spos];
                 const auto ii = static_cast<std::size_t>(i);
-                const Vec2 c = out.points.row(i).transpose();
+                const Vec2 c = index.point_at(spos);
                 const auto query = [&](double radius, std::vector<detail::Candidate>& cs) {
                     index.within_at(spos, radius, cs);
                 };
@@ -160,7 +161,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     for (const detail::Candidate& q : cand) best = std::min(best, (q.p - c).squaredNorm());
                     first = std::sqrt(best);
                 }
-                detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell, i, cert);
+                detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell, i, cert, &clip_ws);
                 out.on_hull[ii] = cell.on_hull ? 1 : 0;
                 out.radius_steps[ii] = cell.radius_steps;
                 out.agents_used[ii] = cell.agents_used;
