@@ -161,6 +161,22 @@ struct ClipWorkspace {
         nfar += !is_near;
         ++m;
     }
+    /// Appends, after the m candidates (not counted in m), four phantom agents at c + (+-2R, 0),
+    /// (0, +-2R): their bisectors bound the square of half-side R around c, the start of an
+    /// unlimited cell's clipping (Clipper::start_square). Their id is -1.
+    void add_square(double radius) {
+        while (m + 4 > px.size()) grow();
+        const double r2 = 2.0 * radius, n = r2 * r2;
+        const double dx[4] = {r2, 0.0, -r2, 0.0}, dy[4] = {0.0, r2, 0.0, -r2};
+        for (std::size_t t = 0; t < 4; ++t) {
+            px[m + t] = c.x() + dx[t];
+            py[m + t] = c.y() + dy[t];
+            ax[m + t] = dx[t];
+            ay[m + t] = dy[t];
+            n2[m + t] = n;
+            id[m + t] = -1;
+        }
+    }
     /// The loaded candidates as a list (for Boundary Scan when the filter gives up).
     void candidates(std::vector<Candidate>& out) const {
         out.resize(m);
@@ -182,13 +198,29 @@ namespace clip {
 /// The cell being clipped: a counter-clockwise cycle of vertices, each starting a side.
 class Clipper {
 public:
-    /// Room for m candidates: a cell has at most m + 1 sides, and a cut adds at most two.
-    Clipper(ClipWorkspace& w, double radius, std::size_t m) : w_(w), radius_(radius) {
-        if (w_.cur.size() < m + 4) {
-            w_.cur.resize(m + 4);
-            w_.next.resize(m + 4);
-            w_.flags.resize(m + 4);
+    /// Room for m candidates: a cell has at most m + 1 sides (m + 4 from the square), and a cut
+    /// adds at most two.
+    Clipper(ClipWorkspace& w, double radius, std::size_t m) : w_(w), radius_(radius), cap_(radius) {
+        if (w_.cur.size() < m + 8) {
+            w_.cur.resize(m + 8);
+            w_.next.resize(m + 8);
+            w_.flags.resize(m + 8);
         }
+    }
+
+    /// Starts from the square of the four phantom agents w.add_square(radius) put after the m
+    /// candidates, instead of the disk: the cell is then a polygon throughout (no arcs) and may
+    /// reach the square's corners, R sqrt(2) from c.
+    void start_square() {
+        const std::size_t m = w_.m;
+        for (std::size_t t = 0; t < 4; ++t) {
+            const std::size_t j = m + (t + 3) % 4, k = m + t;  // side k starts where j ends
+            w_.cur[t] = cell_vertex(line_vertex(w_.ax[j], w_.ay[j], w_.n2[j], w_.ax[k], w_.ay[k], w_.n2[k]),
+                                    static_cast<int>(k));
+        }
+        n_ = 4;
+        dirty_ = true;
+        cap_ = kInf;
     }
 
     /// Farthest distance from c of the cell (the exact cell lies within it), R while an arc remains.
@@ -202,7 +234,7 @@ public:
             v2 = std::max(v2, v.x * v.x + v.y * v.y);
             e = std::max(e, v.e);
         }
-        return reach_ = std::min(radius_, std::sqrt(v2) * (1.0 + 4.0 * kU) + e);
+        return reach_ = std::min(cap_, std::sqrt(v2) * (1.0 + 4.0 * kU) + e);
     }
 
     /// Cuts the cell with H_k; false when uncertain.
@@ -350,6 +382,7 @@ private:
 
     ClipWorkspace& w_;
     double radius_;
+    double cap_;  // the cell lies within this distance of c: R (inside the disk), or none (square)
     std::size_t n_ = 0;
     double reach_ = 0.0;
     bool dirty_ = true;
@@ -385,7 +418,7 @@ inline bool certified_clip_loaded(double radius, LimitedCell& out, ClipWorkspace
     }
     for (std::size_t t = 0; t < w.nfar; ++t) {
         const int k = w.far[t];
-        if (!screened(k) && !clipper.cut(k)) return false;
+        if (k != nn && !screened(k) && !clipper.cut(k)) return false;
     }
     // The cycle of boundary bisectors from the nearest neighbour's, and the vertex/arc labels.
     const std::size_t s = clipper.size();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "dvoronoi/cells/asr.hpp"
+#include "dvoronoi/cells/certified_exact_cell.hpp"
 #include "dvoronoi/core/convex_hull.hpp"
 #include "dvoronoi/partition/empty_circle_certificate.hpp"
 #include "dvoronoi/partition/limited_partition.hpp"
@@ -87,20 +88,24 @@ struct VoronoiPartition {
 
 
 /// Every agent's exact Voronoi neighbours and hull flag by ASR (inner step Boundary Scan or EVT, see
-/// AsrInner): each agent starts from its
-/// nearest-neighbour distance and doubles its sensing radius until its cell certifies itself
-/// (cells/asr.hpp); hull agents end with every agent.
+/// AsrInner): each agent starts from its nearest-neighbour distance and doubles its sensing radius
+/// until its cell certifies itself (cells/asr.hpp); hull agents end with every agent.
 ///
 /// \param threads number of OpenMP threads; 0 = all cores. Results do not depend on it.
 /// \param bounds  a convex region (box or polygon) to clip every cell to: `areas` and `centroids`
 ///                then measure the clipped cells, and `cell(i)` carries the clipped polygon.
 /// \throws InputError for non-finite coordinates; CoincidentError for coinciding agents.
-/// \note Each agent runs the radius schedule of cells/asr.hpp; from step
+/// \note With the Boundary Scan inner step, each agent first tries one certified clipping at a
+///       radius R of 1.5 mean spacings (cells/certified_exact_cell.hpp): when that certifies the
+///       cell and ASR's schedule would have certified it within EmptyCircleCertificate::kFromStep
+///       steps, the cell, its radius steps and its agents in range are ASR's, found with one grid
+///       query (about 28 agents in a uniform swarm). Every other agent (and every agent with
+///       inner = Evt) runs the radius schedule of cells/asr.hpp; from step
 ///       EmptyCircleCertificate::kFromStep on, a cell that the radius does not certify is certified
 ///       by empty vertex circles and the global convex hull (partition/empty_circle_certificate.hpp),
-///       so agents near the hull do not sweep most agents. Uniform agents cost O(log n) each
-///       (sorting), about 1.3 s for 1e5 on one core; inputs where k agents are (nearly)
-///       cocircular around a shared vertex cost O(k) exact tests per agent there. Thread-safe.
+///       so agents near the hull do not sweep most agents. Uniform agents cost O(1) each in
+///       expectation; inputs where k agents are (nearly) cocircular around a shared vertex cost O(k)
+///       exact tests per agent there. Thread-safe.
 inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInner::Scan,
                                       int threads = 0, const ProgressFn& progress = nullptr,
                                       const ConvexRegion& bounds = ConvexRegion()) {
@@ -116,11 +121,13 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     out.agents_used.assign(static_cast<std::size_t>(n), 0);
     out.indptr.assign(static_cast<std::size_t>(n) + 1, 0);
     if (n == 0) return out;
-    // The grid's cells are sized for a few agents each (the mean spacing over the bounding box).
+    // The mean spacing over the bounding box sets the one-shot radius (and the grid's cells).
     const double w = out.points.col(0).maxCoeff() - out.points.col(0).minCoeff();
     const double h = out.points.col(1).maxCoeff() - out.points.col(1).minCoeff();
-    double range = 2.0 * std::sqrt(std::max(w * h, std::max(w, h) * std::max(w, h) * 1e-12) / static_cast<double>(n));
-    if (!(range > 0.0) || !std::isfinite(range)) range = 1.0;
+    double spacing = std::sqrt(std::max(w * h, std::max(w, h) * std::max(w, h) * 1e-12) / static_cast<double>(n));
+    if (!(spacing > 0.0) || !std::isfinite(spacing)) spacing = 1.0;
+    const double one_shot = 1.5 * spacing;  // certifies ~97% of a uniform swarm's cells
+    const double range = 2.0 * one_shot;
     const GridIndex index(out.points, range);
     detail::require_distinct(index, out.points);
     const ConvexHull hull(out.points);
@@ -129,7 +136,16 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
     const int team = detail::thread_team(threads, nblocks);
-    std::vector<std::vector<Index>> nbrs(static_cast<std::size_t>(n));
+    // As in limited_cells: results by grid position and neighbour lists in per-block buffers (the hot
+    // loop writes sequentially), then one gather into input order.
+    struct Result {
+        double area, cx, cy;
+        Index used, count, first;  // first: offset of the neighbours in the block's buffer
+        int steps;
+        char hull;
+    };
+    std::vector<Result> by_pos(static_cast<std::size_t>(n));
+    std::vector<std::vector<Index>> block_nbrs(static_cast<std::size_t>(nblocks));
     detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)
@@ -140,53 +156,125 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         LimitedCell limited;
         VoronoiCell cell;
         detail::ClipWorkspace clip_ws;  // agents are distinct (checked above): the filter may serve
+        detail::ExactClip exact;
+        std::vector<Vec2> local;
+        std::vector<Index> mine;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             if (tracker.cancelled()) continue;
             const Index lo = b * block, hi = std::min(n, lo + block);
+            auto& buf = block_nbrs[static_cast<std::size_t>(b)];
+            buf.reserve(static_cast<std::size_t>(hi - lo) * 7);
             for (Index pos = lo; pos < hi; ++pos) {
                 const auto spos = static_cast<std::size_t>(pos);
                 const Index i = order[spos];
-                const auto ii = static_cast<std::size_t>(i);
                 const Vec2 c = index.point_at(spos);
-                const auto query = [&](double radius, std::vector<detail::Candidate>& cs) {
-                    index.within_at(spos, radius, cs);
-                };
-                // The nearest neighbour starts the schedule: widen a query until it finds someone.
-                double first = 0.0;
-                if (n > 1) {
-                    double r = 0.5 * range;
-                    for (index.within_at(spos, r, cand); cand.empty(); index.within_at(spos, r, cand)) r *= 2.0;
-                    double best = std::numeric_limits<double>::infinity();
-                    for (const detail::Candidate& q : cand) best = std::min(best, (q.p - c).squaredNorm());
-                    first = std::sqrt(best);
+                Result r{0.0, 0.0, 0.0, 0, 0, static_cast<Index>(buf.size()), 0, 0};
+                mine.clear();
+                bool done = false;
+                if (inner == AsrInner::Scan && n > 3) {
+                    clip_ws.start(c, detail::near_first_sq(one_shot, clip_ws.m));
+                    index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { clip_ws.add(p, j); });
+                    if (detail::certified_exact_cell(one_shot, exact, clip_ws)) {
+                        const double first = std::sqrt(clip_ws.lo);  // the nearest neighbour is in range
+                        r.steps = detail::certifying_step(exact, clip_ws, first,
+                                                          detail::EmptyCircleCertificate::kFromStep);
+                        done = r.steps > 0;
+                    }
+                    if (done) {
+                        // Agents strictly within 2 R_k: among the loaded ones when R_k <= R.
+                        const double rk = std::ldexp(std::sqrt(clip_ws.lo), r.steps - 1);
+                        if (rk <= one_shot) {
+                            const double r2 = 4.0 * rk * rk, r2lo = r2 * (1.0 - 1e-9), r2hi = r2 * (1.0 + 1e-9);
+                            for (std::size_t k = 0; k < clip_ws.m; ++k) {
+                                const double d = clip_ws.n2[k];
+                                r.used += d < r2lo || (d <= r2hi && pred::within_2r(c, Vec2(clip_ws.px[k], clip_ws.py[k]), rk) > 0);
+                            }
+                        } else {
+                            index.for_each_within_at(spos, rk, [&](const Vec2&, Index) { ++r.used; });
+                        }
+                        local.clear();
+                        for (std::size_t t = 0; t < exact.side.size(); ++t) {
+                            mine.push_back(clip_ws.id[static_cast<std::size_t>(exact.side[t])]);
+                            local.emplace_back(exact.vertex[t].x, exact.vertex[t].y);
+                        }
+                        ClippedCell m;
+                        detail::polygon_measures(local, c, m);
+                        r.area = m.area;
+                        r.cx = m.centroid.x();
+                        r.cy = m.centroid.y();
+                    }
                 }
-                detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell, i, cert, &clip_ws);
-                out.on_hull[ii] = cell.on_hull ? 1 : 0;
-                out.radius_steps[ii] = cell.radius_steps;
-                out.agents_used[ii] = cell.agents_used;
-                auto& mine = nbrs[ii];
-                for (const VoronoiEdge& e : cell.edges) mine.push_back(e.neighbor);
-                if (!bounds.empty()) {
-                    cand.clear();
-                    for (const VoronoiEdge& e : cell.edges) cand.push_back({out.points.row(e.neighbor).transpose(), e.neighbor});
-                    cell.clipped = detail::clip_to(c, cand, bounds);
-                    cell.is_clipped = true;
+                if (!done) {
+                    const auto query = [&](double radius, std::vector<detail::Candidate>& cs) {
+                        index.within_at(spos, radius, cs);
+                    };
+                    // The nearest neighbour starts the schedule: widen a query until it finds someone.
+                    double first = 0.0;
+                    if (n > 1) {
+                        double rr = 0.5 * range;
+                        for (index.within_at(spos, rr, cand); cand.empty(); index.within_at(spos, rr, cand)) rr *= 2.0;
+                        double best = std::numeric_limits<double>::infinity();
+                        for (const detail::Candidate& q : cand) best = std::min(best, (q.p - c).squaredNorm());
+                        first = std::sqrt(best);
+                    }
+                    detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell, i, cert, &clip_ws);
+                    r.hull = cell.on_hull ? 1 : 0;
+                    r.steps = cell.radius_steps;
+                    r.used = cell.agents_used;
+                    for (const VoronoiEdge& e : cell.edges) mine.push_back(e.neighbor);
+                    cell.is_clipped = false;
+                    const ClippedCell m = cell.measures();
+                    r.area = m.area;
+                    r.cx = m.centroid.x();
+                    r.cy = m.centroid.y();
                 }
-                const ClippedCell m = cell.measures();
-                out.areas[ii] = m.area;
-                out.centroids.row(i) = m.centroid.transpose();
                 std::sort(mine.begin(), mine.end());
                 mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+                if (!bounds.empty()) {
+                    cand.clear();
+                    for (Index j : mine) cand.push_back({out.points.row(j).transpose(), j});
+                    const ClippedCell m = detail::clip_to(c, cand, bounds);
+                    r.area = m.area;
+                    r.cx = m.centroid.x();
+                    r.cy = m.centroid.y();
+                }
+                r.count = static_cast<Index>(mine.size());
+                buf.insert(buf.end(), mine.begin(), mine.end());
+                by_pos[spos] = r;
             }
             tracker.block_done(hi - lo);
         }
     }
     tracker.rethrow_if_failed();
+
+    // Lay out the results and the neighbour CSR in input order (scattered reads, prefetched).
+    std::vector<Index> pos_of(static_cast<std::size_t>(n));
+    for (Index pos = 0; pos < n; ++pos) pos_of[static_cast<std::size_t>(order[static_cast<std::size_t>(pos)])] = pos;
+    constexpr Index kAhead = 16;
     for (Index i = 0; i < n; ++i) {
-        const auto& mine = nbrs[static_cast<std::size_t>(i)];
-        out.indptr[static_cast<std::size_t>(i) + 1] = out.indptr[static_cast<std::size_t>(i)] + static_cast<Index>(mine.size());
-        out.indices.insert(out.indices.end(), mine.begin(), mine.end());
+        const auto ii = static_cast<std::size_t>(i);
+        if (i + kAhead < n) detail::prefetch(&by_pos[static_cast<std::size_t>(pos_of[ii + kAhead])]);
+        const Result& r = by_pos[static_cast<std::size_t>(pos_of[ii])];
+        out.areas[ii] = r.area;
+        out.centroids(i, 0) = r.cx;
+        out.centroids(i, 1) = r.cy;
+        out.on_hull[ii] = r.hull;
+        out.radius_steps[ii] = r.steps;
+        out.agents_used[ii] = r.used;
+        out.indptr[ii + 1] = out.indptr[ii] + r.count;
+    }
+    out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
+#pragma omp parallel for num_threads(team) schedule(static)
+    for (Index i = 0; i < n; ++i) {
+        const auto ii = static_cast<std::size_t>(i);
+        const auto pos = static_cast<std::size_t>(pos_of[ii]);
+        if (i + kAhead < n) {
+            const auto ahead = static_cast<std::size_t>(pos_of[ii + kAhead]);
+            detail::prefetch(block_nbrs[ahead / static_cast<std::size_t>(block)].data() + by_pos[ahead].first);
+        }
+        const Index* src = block_nbrs[pos / static_cast<std::size_t>(block)].data() + by_pos[pos].first;
+        std::copy(src, src + by_pos[pos].count, out.indices.begin() + out.indptr[ii]);
     }
     tracker.report_all();
     return out;

@@ -1,0 +1,98 @@
+// The exact (unlimited) Voronoi cell of an agent by certified clipping, for the all-agents driver of
+// exact cells (partition/voronoi_partition.hpp): the square of half-side R around the agent is
+// clipped by the bisector half-planes of the agents strictly within 2R (nearest first, every
+// decision certified by a forward error bound, cells/certified_clip.hpp). When the result has no
+// side of the square left and every vertex lies certainly strictly inside the disk of radius R, it
+// is the agent's exact Voronoi cell: the same certificate as Adjust-Sensing-Radius (an agent not
+// closer than 2R has its bisector at distance >= R, so it cannot cut a polygon inside the open disk).
+// Otherwise (ties, a far vertex, an unbounded cell) it gives up and the caller runs ASR itself.
+//
+// Why a square and not the disk: the exact cell has no arcs, so starting from a polygon spares the
+// chord ends (square roots) and the arc bookkeeping of the limited cell; why one radius for every
+// agent instead of ASR's schedule: the schedule computes two or three limited cells per agent, each
+// with its own grid query, where one query at a radius chosen from the density certifies ~97% of a
+// uniform swarm's cells at once. The schedule's own numbers (radius steps, agents in range) follow
+// exactly from the certified cell (certifying_step, below).
+#pragma once
+
+#include "dvoronoi/cells/certified_clip.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace dvoronoi::detail {
+
+/// A certified exact cell: its sides (workspace candidate indices), counter-clockwise, and the
+/// vertex where each side starts (relative to c, with its error bound).
+struct ExactClip {
+    std::vector<int> side;
+    std::vector<clip::CellVertex> vertex;
+};
+
+/// The exact cell of w.c among the loaded candidates (every agent strictly within 2R of c, pairwise
+/// distinct and distinct from c), certified as above; false when it gives up (`out` unspecified).
+inline bool certified_exact_cell(double radius, ExactClip& out, ClipWorkspace& w) {
+    using namespace clip;
+    const std::size_t m = w.m;
+    if (m < 3) return false;
+    const double r2 = radius * radius;
+    // Products of up to three squared lengths must neither underflow nor overflow.
+    if (!(w.lo > 1e-90 && w.hi < 1e90 && r2 > 1e-90 && r2 < 1e90)) return false;
+    w.add_square(radius);
+    Clipper clipper(w, radius, m);
+    clipper.start_square();
+    const auto screened = [&](int k) {
+        const double reach = clipper.reach();
+        return w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU);
+    };
+    if (!clipper.cut(w.nn)) return false;
+    for (std::size_t t = 0; t < w.near; ++t) {
+        const int k = w.order[t];
+        if (k != w.nn && !screened(k) && !clipper.cut(k)) return false;
+    }
+    for (std::size_t t = 0; t < w.nfar; ++t) {
+        const int k = w.far[t];
+        if (k != w.nn && !screened(k) && !clipper.cut(k)) return false;
+    }
+    const std::size_t s = clipper.size();
+    out.side.resize(s);
+    out.vertex.resize(s);
+    for (std::size_t t = 0; t < s; ++t) {
+        const CellVertex& v = clipper.vertex(t);
+        const double r = std::sqrt(v.x * v.x + v.y * v.y) * (1.0 + 4.0 * kU) + v.e;
+        if (v.side < 0 || static_cast<std::size_t>(v.side) >= m || !(r < radius * (1.0 - 4.0 * kU))) return false;
+        out.side[t] = v.side;
+        out.vertex[t] = v;
+    }
+    return true;
+}
+
+/// The first step k (1 <= k <= max_step) of ASR's schedule R_k = d1 2^(k-1) at which the limited
+/// cell certifies itself, given the certified exact cell: exactly when every vertex lies strictly
+/// inside the disk of radius R_k (then V ∩ B(R_k) = V, a polygon with its vertices inside; and a
+/// certified limited cell is V). Decided per vertex by its error bound, else by the exact
+/// predicate. 0 when no step up to max_step certifies.
+inline int certifying_step(const ExactClip& cell, const ClipWorkspace& w, double d1, int max_step) {
+    using namespace clip;
+    const std::size_t s = cell.side.size();
+    double radius = d1;
+    for (int k = 1; k <= max_step; ++k, radius *= 2.0) {
+        bool all = true;
+        for (std::size_t t = 0; all && t < s; ++t) {
+            const CellVertex& v = cell.vertex[t];
+            const double r = std::sqrt(v.x * v.x + v.y * v.y);
+            if (r * (1.0 + 4.0 * kU) + v.e < radius * (1.0 - 4.0 * kU)) continue;
+            if (r * (1.0 - 4.0 * kU) - v.e > radius * (1.0 + 4.0 * kU)) {
+                all = false;
+                break;
+            }
+            const auto j = static_cast<std::size_t>(cell.side[t == 0 ? s - 1 : t - 1]);
+            const auto i = static_cast<std::size_t>(cell.side[t]);
+            all = pred::vertex_in_disk(w.c, Vec2(w.px[j], w.py[j]), Vec2(w.px[i], w.py[i]), radius) < 0;
+        }
+        if (all) return k;
+    }
+    return 0;
+}
+
+}  // namespace dvoronoi::detail
