@@ -23,6 +23,13 @@ bool supports(const Points& p, Index i, Index q, int side) {
 void check_against_brute_force(const Points& p) {
     const ConvexHull hull(p);
     const Index n = p.rows();
+    // The farthest agent from any agent is a corner.
+    for (Index i = 0; i < n; ++i) {
+        double all = 0.0, corners = 0.0;
+        for (Index q = 0; q < n; ++q) all = std::max(all, (at(p, q) - at(p, i)).squaredNorm());
+        for (Index q : hull.corners()) corners = std::max(corners, (at(p, q) - at(p, i)).squaredNorm());
+        CHECK(corners == all);
+    }
     for (Index i = 0; i < n; ++i) {
         bool on = n == 1;
         for (Index q = 0; q < n && !on; ++q)
@@ -58,6 +65,16 @@ TEST_CASE("hull boundary of random points, lattices with long collinear edges, a
         }
         check_against_brute_force(p.topRows(static_cast<Index>(seen.size()) < n ? static_cast<Index>(seen.size()) : n));
     }
+    // Larger sets, where the extreme-agent prefilter drops most agents: ties in every direction
+    // (a lattice), and agents on a circle around an interior cloud.
+    Points lattice(289, 2);
+    for (Index i = 0; i < 289; ++i) lattice.row(i) << static_cast<double>(i % 17), static_cast<double>(i / 17);
+    check_against_brute_force(lattice);
+    Points ring(300, 2);
+    std::uniform_real_distribution<double> u(-0.7, 0.7);
+    for (Index i = 0; i < 200; ++i) ring.row(i) << std::cos(0.0314 * static_cast<double>(i)), std::sin(0.0314 * static_cast<double>(i));
+    for (Index i = 200; i < 300; ++i) ring.row(i) << u(rng), u(rng);
+    check_against_brute_force(ring);
     Points line(7, 2);
     for (Index i = 0; i < 7; ++i) line.row(i) << 3.0 * static_cast<double>((i * 5) % 7), 1.0 + 2.0 * static_cast<double>((i * 5) % 7);
     const ConvexHull h(line);

@@ -67,7 +67,7 @@ TEST_CASE("within / within_at equal the exact brute force for radii below, at an
         const double range = 0.04 * scale;
         const GridIndex index(p, range);
         std::vector<detail::Candidate> got;
-        for (double radius : {0.01 * scale, 0.02 * scale, 0.025 * scale, 0.05 * scale, 0.11 * scale, 0.4 * scale}) {
+        for (double radius : {0.01 * scale, 0.02 * scale, 0.025 * scale, 0.05 * scale, 0.11 * scale, 0.2 * scale, 0.25 * scale, 0.4 * scale, 0.7 * scale, 3.0 * scale}) {
             for (std::size_t pos = 0; pos < 500; pos += 3) {
                 const Index i = index.grid_order()[pos];
                 index.within_at(pos, radius, got);
@@ -81,6 +81,7 @@ TEST_CASE("within / within_at equal the exact brute force for radii below, at an
                 CHECK(ids == brute_within(p, i, radius));
                 index.within(i, radius, got);
                 CHECK(got.size() == ids.size());
+                CHECK(index.count_within_at(pos, radius) == static_cast<Index>(ids.size()));
             }
         }
     }

@@ -12,7 +12,7 @@
 // agent instead of ASR's schedule: the schedule computes two or three limited cells per agent, each
 // with its own grid query, where one query at a radius chosen from the density certifies ~97% of a
 // uniform swarm's cells at once. The schedule's own numbers (radius steps, agents in range) follow
-// exactly from the certified cell (certifying_step, below).
+// exactly from the certified cell (vertices_inside, below; partition/asr_schedule.hpp).
 #pragma once
 
 #include "dvoronoi/cells/certified_clip.hpp"
@@ -67,32 +67,29 @@ inline bool certified_exact_cell(double radius, ExactClip& out, ClipWorkspace& w
     return true;
 }
 
-/// The first step k (1 <= k <= max_step) of ASR's schedule R_k = d1 2^(k-1) at which the limited
-/// cell certifies itself, given the certified exact cell: exactly when every vertex lies strictly
-/// inside the disk of radius R_k (then V ∩ B(R_k) = V, a polygon with its vertices inside; and a
-/// certified limited cell is V). Decided per vertex by its error bound, else by the exact
-/// predicate. 0 when no step up to max_step certifies.
-inline int certifying_step(const ExactClip& cell, const ClipWorkspace& w, double d1, int max_step) {
+/// Every vertex of the certified cell lies strictly inside B(c, radius) (what ASR's certificate
+/// asks of its limited cell at that radius): decided per vertex by its error bound, else by the
+/// exact predicate.
+inline bool vertices_inside(const ExactClip& cell, const ClipWorkspace& w, double radius) {
     using namespace clip;
     const std::size_t s = cell.side.size();
-    double radius = d1;
-    for (int k = 1; k <= max_step; ++k, radius *= 2.0) {
-        bool all = true;
-        for (std::size_t t = 0; all && t < s; ++t) {
-            const CellVertex& v = cell.vertex[t];
-            const double r = std::sqrt(v.x * v.x + v.y * v.y);
-            if (r * (1.0 + 4.0 * kU) + v.e < radius * (1.0 - 4.0 * kU)) continue;
-            if (r * (1.0 - 4.0 * kU) - v.e > radius * (1.0 + 4.0 * kU)) {
-                all = false;
-                break;
-            }
-            const auto j = static_cast<std::size_t>(cell.side[t == 0 ? s - 1 : t - 1]);
-            const auto i = static_cast<std::size_t>(cell.side[t]);
-            all = pred::vertex_in_disk(w.c, Vec2(w.px[j], w.py[j]), Vec2(w.px[i], w.py[i]), radius) < 0;
-        }
-        if (all) return k;
+    for (std::size_t t = 0; t < s; ++t) {
+        const CellVertex& v = cell.vertex[t];
+        const double r = std::sqrt(v.x * v.x + v.y * v.y);
+        if (r * (1.0 + 4.0 * kU) + v.e < radius * (1.0 - 4.0 * kU)) continue;
+        if (r * (1.0 - 4.0 * kU) - v.e > radius * (1.0 + 4.0 * kU)) return false;
+        const auto j = static_cast<std::size_t>(cell.side[t == 0 ? s - 1 : t - 1]);
+        const auto i = static_cast<std::size_t>(cell.side[t]);
+        if (pred::vertex_in_disk(w.c, Vec2(w.px[j], w.py[j]), Vec2(w.px[i], w.py[i]), radius) >= 0) return false;
     }
-    return 0;
+    return true;
+}
+
+/// About the distance from c of the cell's farthest vertex.
+inline double farthest_vertex(const ExactClip& cell) {
+    double r2 = 0.0;
+    for (const clip::CellVertex& v : cell.vertex) r2 = std::max(r2, v.x * v.x + v.y * v.y);
+    return std::sqrt(r2);
 }
 
 }  // namespace dvoronoi::detail

@@ -27,13 +27,12 @@ public:
         next_.assign(static_cast<std::size_t>(n), -1);
         if (n == 0) return;
         const auto P = [&](Index i) { return Vec2(pts(i, 0), pts(i, 1)); };
-        std::vector<Index> s(static_cast<std::size_t>(n));
-        std::iota(s.begin(), s.end(), Index{0});
+        std::vector<Index> s = candidates(pts);
         std::sort(s.begin(), s.end(), [&](Index a, Index b) {
             return pts(a, 0) != pts(b, 0) ? pts(a, 0) < pts(b, 0) : pts(a, 1) < pts(b, 1);
         });
         if (n == 1) {
-            boundary_ = {s[0]};
+            boundary_ = corners_ = {s[0]};
             return;
         }
         // Strict corners of the lower and upper chains, as positions in the sorted order.
@@ -48,6 +47,7 @@ public:
             // Every agent on one line: the boundary is the sorted order, walked both ways.
             collinear_ = true;
             boundary_ = s;
+            corners_ = {s.front(), s.back()};
             for (std::size_t k = 0; k < s.size(); ++k) {
                 const auto i = static_cast<std::size_t>(s[k]);
                 prev_[i] = s[k > 0 ? k - 1 : k + 1];
@@ -104,6 +104,9 @@ public:
     bool collinear() const noexcept { return collinear_; }
     /// The boundary, counter-clockwise from the lexicographically smallest agent.
     const std::vector<Index>& boundary() const noexcept { return boundary_; }
+    /// The corners, counter-clockwise (collinear input: the two ends of the line); the agent
+    /// farthest from any point is one of them.
+    const std::vector<Index>& corners() const noexcept { return corners_; }
     /// Agents that together span the plane (empty for a collinear input): for any line, one of them
     /// lies off it.
     const std::vector<Index>& witnesses() const noexcept { return witnesses_; }
@@ -125,6 +128,46 @@ public:
     }
 
 private:
+    /// Akl-Toussaint: the agents that are not strictly inside the polygon of the extreme agents in
+    /// eight directions. Those strictly inside lie strictly inside the hull, so neither corners nor
+    /// on its edges; dropping them (exact orientation tests) leaves O(sqrt n) agents of a uniform
+    /// swarm to sort instead of n. A degenerate polygon (collinear input) drops nothing.
+    static std::vector<Index> candidates(const Points& pts) {
+        const Index n = pts.rows();
+        const auto P = [&](Index i) { return Vec2(pts(i, 0), pts(i, 1)); };
+        // Directions in counter-clockwise order: their extreme agents go round the hull that way.
+        constexpr double dir[8][2] = {{0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}};
+        Index ext[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        double best[8];
+        for (int d = 0; d < 8; ++d) best[d] = dir[d][0] * pts(0, 0) + dir[d][1] * pts(0, 1);
+        for (Index i = 1; i < n; ++i)
+            for (int d = 0; d < 8; ++d) {
+                const double v = dir[d][0] * pts(i, 0) + dir[d][1] * pts(i, 1);
+                if (v > best[d]) best[d] = v, ext[d] = i;
+            }
+        // An extreme agent of a diagonal is only approximately extreme (the sum rounds), which is
+        // harmless: an agent strictly left of every (non-degenerate) edge of any closed polygon of
+        // agents has the polygon winding around it with only left turns, so it lies strictly inside
+        // the polygon's hull, hence strictly inside the agents' hull.
+        std::vector<Vec2> q;
+        for (int d = 0; d < 8; ++d) q.push_back(P(ext[d]));
+        bool any_edge = false;
+        for (std::size_t t = 0; t < q.size(); ++t) any_edge = any_edge || q[t] != q[(t + 1) % q.size()];
+        std::vector<Index> out;
+        out.reserve(static_cast<std::size_t>(n));
+        for (Index i = 0; i < n; ++i) {
+            const Vec2 p = P(i);
+            bool inside = any_edge;
+            for (std::size_t t = 0; inside && t < q.size(); ++t) {
+                const Vec2& a = q[t];
+                const Vec2& b = q[(t + 1) % q.size()];
+                inside = a == b || pred::orient(a, b, p) > 0;
+            }
+            if (!inside) out.push_back(i);
+        }
+        return out;
+    }
+
     std::vector<Index> prev_, next_, boundary_, witnesses_, corners_;
     std::vector<double> normal_angle_;
     bool collinear_ = false;

@@ -27,8 +27,10 @@ public:
         if (n == 0) return;
         x0_ = pts.col(0).minCoeff();
         y0_ = pts.col(1).minCoeff();
-        const double xspan = pts.col(0).maxCoeff() - x0_;
-        const double yspan = pts.col(1).maxCoeff() - y0_;
+        x1_ = pts.col(0).maxCoeff();
+        y1_ = pts.col(1).maxCoeff();
+        const double xspan = x1_ - x0_;
+        const double yspan = y1_ - y0_;
         // A margin of 2^-16 covers the relative rounding of (x - x0) / cell for up to 2^32 cells per
         // axis; beyond that the cells are made coarser (still correct, only slower).
         cell_ = range * (1.0 + std::ldexp(1.0, -16));
@@ -138,6 +140,77 @@ public:
     template <class Fn>
     void for_each_within_at(std::size_t pos, double radius, Fn&& fn) const {
         visit_within(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, fn);
+    }
+
+    /// The number of agents j != i strictly within 2*radius of the agent at position `pos` of
+    /// grid_order() (exact; the same count as within_at). Runs of cells that lie certainly inside
+    /// the disk are counted whole, so a wide disk costs O(columns + agents near the circle) instead
+    /// of O(agents inside): ASR's agents-in-range count for cells with far vertices needs that.
+    Index count_within_at(std::size_t pos, double radius) const {
+        const auto n = static_cast<Index>(order_.size());
+        const double x = xs_[pos], y = ys_[pos];
+        const Vec2 c(x, y);
+        const Index i = order_[pos];
+        if (!(radius < std::numeric_limits<double>::infinity())) return n - 1;
+        const double rr = 2.0 * radius;
+        // The disk holds the agents' bounding box: every agent is in range.
+        const double fx = std::max(x - x0_, x1_ - x), fy = std::max(y - y0_, y1_ - y);
+        if (std::sqrt(fx * fx + fy * fy) * (1.0 + 1e-12) < rr * (1.0 - 1e-12)) return n - 1;
+        const double span = rr / cell_;
+        if (!dense_ || !(span < static_cast<double>(n))) {
+            Index count = 0;
+            visit_within(x, y, key_at(x, y), i, radius, [&](const Vec2&, Index) { ++count; });
+            return count;
+        }
+        constexpr double u = 1.1102230246251565e-16;
+        const double r2 = rr * rr, r2lo = r2 * (1.0 - 1e-9);
+        Index count = 0;
+        const auto scan = [&](std::int64_t cx, std::int64_t cy0, std::int64_t cy1) {
+            if (cy0 > cy1) return;
+            std::size_t lo, hi;
+            column_run(cx, cy0, cy1, lo, hi);
+            for (std::size_t s = lo; s < hi; ++s) {
+                const double dx = xs_[s] - x, dy = ys_[s] - y;
+                const double d = dx * dx + dy * dy;
+                count += s != pos && (d < r2lo || (d <= r2 * (1.0 + 1e-9) && pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0));
+            }
+        };
+        const auto row_of = [&](double v) {  // row key of v, clamped (a double: no overflow)
+            return std::min(std::max(std::floor((v - y0_) / cell_), -1.0), static_cast<double>(ny_));
+        };
+        const double rrm = rr * (1.0 + 1e-9);
+        const auto cx0 = static_cast<std::int64_t>(std::max(0.0, std::floor((x - rrm - x0_) / cell_) - 1.0));
+        const auto cx1 = static_cast<std::int64_t>(std::min(static_cast<double>(nx_ - 1), std::floor((x + rrm - x0_) / cell_) + 1.0));
+        for (std::int64_t cx = cx0; cx <= cx1; ++cx) {
+            // Agents keyed in column cx lie in [xa, xb] up to the rounding of their keys (slack).
+            const double xa = x0_ + static_cast<double>(cx) * cell_, xb = xa + cell_;
+            const double slack = 8.0 * u * (std::fabs(x0_) + std::fabs(x) + std::fabs(xb)) + 1e-9 * cell_;
+            const double near = std::max({0.0, xa - slack - x, x - xb - slack});
+            if (near >= rrm) continue;
+            const double outer = std::sqrt(std::max(0.0, rrm * rrm - near * near)) * (1.0 + 1e-12) + slack;
+            const auto ra = static_cast<std::int64_t>(std::max(0.0, row_of(y - outer) - 1.0));
+            const auto rb = static_cast<std::int64_t>(std::min(static_cast<double>(ny_ - 1), row_of(y + outer) + 1.0));
+            // Rows whose agents lie certainly strictly inside: a whole cell of margin at each end.
+            const double far = (std::max(std::fabs(xa - slack - x), std::fabs(xb + slack - x))) * (1.0 + 1e-12);
+            std::int64_t ia = rb + 1, ib = rb;
+            if (far < rr) {
+                const double inner = std::sqrt(r2 - far * far) * (1.0 - 1e-9) - slack;
+                if (inner > 2.0 * cell_) {
+                    ia = std::max(ra, static_cast<std::int64_t>(row_of(y - inner)) + 2);
+                    ib = std::min(rb, static_cast<std::int64_t>(row_of(y + inner)) - 2);
+                }
+            }
+            if (ia > ib) {
+                scan(cx, ra, rb);
+                continue;
+            }
+            std::size_t lo, hi;
+            column_run(cx, ia, ib, lo, hi);
+            count += static_cast<Index>(hi - lo) - (pos >= lo && pos < hi ? 1 : 0);
+            scan(cx, ra, ia - 1);
+            scan(cx, ib + 1, rb);
+        }
+        return count;
     }
 
     /// Calls fn(position, id) for every agent of the grid cells that meet the disk of radius r around
@@ -299,7 +372,7 @@ private:
 
 
     const Points& pts_;
-    double x0_ = 0.0, y0_ = 0.0, cell_ = 1.0;
+    double x0_ = 0.0, y0_ = 0.0, x1_ = 0.0, y1_ = 0.0, cell_ = 1.0;
     std::int64_t nx_ = 0, ny_ = 0;
     bool dense_ = true;
     std::vector<Key> keys_;

@@ -5,6 +5,7 @@
 #include "dvoronoi/cells/asr.hpp"
 #include "dvoronoi/cells/certified_exact_cell.hpp"
 #include "dvoronoi/core/convex_hull.hpp"
+#include "dvoronoi/partition/asr_schedule.hpp"
 #include "dvoronoi/partition/empty_circle_certificate.hpp"
 #include "dvoronoi/partition/limited_partition.hpp"
 
@@ -32,8 +33,11 @@ struct VoronoiPartition {
     std::vector<Index> indptr{0};     ///< Voronoi neighbours (positive-length edges), CSR, ascending
     std::vector<Index> indices;
     std::vector<char> on_hull;        ///< the agent's cell is unbounded
-    std::vector<int> radius_steps;    ///< limited cells the radius schedule computed per agent
-    std::vector<Index> agents_used;   ///< agents within the final sensing radius per agent
+    /// ASR's own numbers per agent, as asr_cell reports them for that agent alone: the limited cells
+    /// its radius schedule computes, and the agents within twice its final radius (all others when
+    /// the radius never certified the cell). See partition/asr_schedule.hpp.
+    std::vector<int> radius_steps;
+    std::vector<Index> agents_used;
     ConvexRegion bounds;              ///< the region cells are clipped to (empty: none given)
     /// Per agent: area and centroid of the clipped cell when `bounds` is given (0 and NaN when the
     /// cell misses it), else of the bounded cell (NaN for hull agents).
@@ -89,18 +93,17 @@ struct VoronoiPartition {
 
 /// Every agent's exact Voronoi neighbours and hull flag by ASR (inner step Boundary Scan or EVT, see
 /// AsrInner): each agent starts from its nearest-neighbour distance and doubles its sensing radius
-/// until its cell certifies itself (cells/asr.hpp); hull agents end with every agent.
+/// until its cell certifies itself (cells/asr.hpp); hull agents end with every agent. `radius_steps`
+/// and `agents_used` are that schedule's numbers for each agent, however the cell was found.
 ///
 /// \param threads number of OpenMP threads; 0 = all cores. Results do not depend on it.
 /// \param bounds  a convex region (box or polygon) to clip every cell to: `areas` and `centroids`
 ///                then measure the clipped cells, and `cell(i)` carries the clipped polygon.
 /// \throws InputError for non-finite coordinates; CoincidentError for coinciding agents.
 /// \note With the Boundary Scan inner step, each agent first tries one certified clipping at a
-///       radius R of 1.5 mean spacings (cells/certified_exact_cell.hpp): when that certifies the
-///       cell and ASR's schedule would have certified it within EmptyCircleCertificate::kFromStep
-///       steps, the cell, its radius steps and its agents in range are ASR's, found with one grid
-///       query (about 28 agents in a uniform swarm). Every other agent (and every agent with
-///       inner = Evt) runs the radius schedule of cells/asr.hpp; from step
+///       radius R of 1.5 mean spacings (cells/certified_exact_cell.hpp), from one grid query (about
+///       7 agents in a uniform swarm); that certifies ~97% of a uniform swarm's cells. Every other
+///       agent (and every agent with inner = Evt) runs the radius schedule of cells/asr.hpp; from step
 ///       EmptyCircleCertificate::kFromStep on, a cell that the radius does not certify is certified
 ///       by empty vertex circles and the global convex hull (partition/empty_circle_certificate.hpp),
 ///       so agents near the hull do not sweep most agents. Uniform agents cost O(1) each in
@@ -132,6 +135,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     detail::require_distinct(index, out.points);
     const ConvexHull hull(out.points);
     const detail::EmptyCircleCertificate cert(out.points, index, hull);
+    const detail::AsrSchedule schedule(out.points, index, hull);
     const std::vector<Index>& order = index.grid_order();
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
@@ -176,22 +180,22 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     clip_ws.start(c, detail::near_first_sq(one_shot, clip_ws.m));
                     index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { clip_ws.add(p, j); });
                     if (detail::certified_exact_cell(one_shot, exact, clip_ws)) {
-                        const double first = std::sqrt(clip_ws.lo);  // the nearest neighbour is in range
-                        r.steps = detail::certifying_step(exact, clip_ws, first,
-                                                          detail::EmptyCircleCertificate::kFromStep);
-                        done = r.steps > 0;
-                    }
-                    if (done) {
+                        done = true;
+                        const double d1 = std::sqrt(clip_ws.lo);  // the nearest neighbour is in range
+                        const auto [k, certified] = schedule.stop(
+                            c, d1, detail::farthest_vertex(exact),
+                            [&](double radius) { return detail::vertices_inside(exact, clip_ws, radius); });
+                        r.steps = k;
                         // Agents strictly within 2 R_k: among the loaded ones when R_k <= R.
-                        const double rk = std::ldexp(std::sqrt(clip_ws.lo), r.steps - 1);
-                        if (rk <= one_shot) {
+                        const double rk = std::ldexp(d1, k - 1);
+                        if (certified && rk <= one_shot) {
                             const double r2 = 4.0 * rk * rk, r2lo = r2 * (1.0 - 1e-9), r2hi = r2 * (1.0 + 1e-9);
-                            for (std::size_t k = 0; k < clip_ws.m; ++k) {
-                                const double d = clip_ws.n2[k];
-                                r.used += d < r2lo || (d <= r2hi && pred::within_2r(c, Vec2(clip_ws.px[k], clip_ws.py[k]), rk) > 0);
+                            for (std::size_t t = 0; t < clip_ws.m; ++t) {
+                                const double d = clip_ws.n2[t];
+                                r.used += d < r2lo || (d <= r2hi && pred::within_2r(c, Vec2(clip_ws.px[t], clip_ws.py[t]), rk) > 0);
                             }
                         } else {
-                            index.for_each_within_at(spos, rk, [&](const Vec2&, Index) { ++r.used; });
+                            r.used = schedule.used(spos, rk, certified);
                         }
                         local.clear();
                         for (std::size_t t = 0; t < exact.side.size(); ++t) {
@@ -220,8 +224,26 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     }
                     detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell, i, cert, &clip_ws);
                     r.hull = cell.on_hull ? 1 : 0;
-                    r.steps = cell.radius_steps;
-                    r.used = cell.agents_used;
+                    if (n > 1) {  // the schedule's numbers from the exact cell
+                        const auto at = [&](Index j) { return Vec2(out.points(j, 0), out.points(j, 1)); };
+                        const std::size_t s = cell.edges.size();
+                        double reach = std::numeric_limits<double>::infinity();
+                        if (!cell.on_hull) {
+                            reach = 0.0;
+                            for (const VoronoiEdge& e : cell.edges) reach = std::max(reach, (e.start - c).norm());
+                        }
+                        const auto inside = [&](double radius) {
+                            if (cell.on_hull || s < 3) return false;
+                            for (std::size_t t = 0; t < s; ++t)
+                                if (pred::vertex_in_disk(c, at(cell.edges[t == 0 ? s - 1 : t - 1].neighbor),
+                                                         at(cell.edges[t].neighbor), radius) >= 0)
+                                    return false;
+                            return true;
+                        };
+                        const auto [k, certified] = schedule.stop(c, first, reach, inside);
+                        r.steps = k;
+                        r.used = schedule.used(spos, std::ldexp(first, k - 1), certified);
+                    }
                     for (const VoronoiEdge& e : cell.edges) mine.push_back(e.neighbor);
                     cell.is_clipped = false;
                     const ClippedCell m = cell.measures();

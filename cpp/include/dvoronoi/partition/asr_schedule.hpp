@@ -1,0 +1,104 @@
+// ASR's own numbers per agent — the radius steps and the agents in range that one robot running
+// Adjust-Sensing-Radius alone needs (cells/asr.hpp: asr_cell) — derived from its exact cell, for the
+// all-agents driver (partition/voronoi_partition.hpp), whose certificates (the one-shot clip, empty
+// vertex circles) reach the same cell by other means. So the reported numbers are the paper's
+// quantity, the same whichever way the driver computed the cell and whichever inner step ran.
+//
+// With radii R_k = d1 2^(k-1) (d1 the nearest-neighbour distance), ASR stops at the first k where
+//   - its limited cell certifies itself: exactly when the exact cell is bounded and every vertex lies
+//     strictly inside B(c, R_k) (then the limited cell is the cell; otherwise it has an arc or a
+//     vertex outside), or
+//   - every other agent is strictly within 2 R_k, or 4 R_k overflows: then it uses them all.
+// Both conditions are monotone in k, so the first k is found by a short search from an estimate.
+// It reports k and the agents strictly within 2 R_k when it certified there, else all others.
+#pragma once
+
+#include "dvoronoi/core/convex_hull.hpp"
+#include "dvoronoi/core/grid_index.hpp"
+#include "dvoronoi/core/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dvoronoi::detail {
+
+class AsrSchedule {
+public:
+    /// `hull` of the same points as `index` (whose query positions are grid positions).
+    AsrSchedule(const Points& pts, const GridIndex& index, const ConvexHull& hull)
+        : pts_(pts), index_(index), hull_(hull) {
+        const Index n = pts.rows();
+        for (int d = 0; d < 4 && n > 0; ++d) {  // the agents of least/greatest x and y
+            Index best = 0;
+            for (Index i = 1; i < n; ++i) {
+                const double a = pts(i, d / 2), b = pts(best, d / 2);
+                if (d % 2 == 0 ? a < b : a > b) best = i;
+            }
+            extreme_[d] = best;
+        }
+    }
+
+    /// Where ASR stops for the agent at c with nearest-neighbour distance d1: `steps`, and whether
+    /// it certified its cell there (else it used every agent). `inside(R)`: every vertex of the exact
+    /// cell lies strictly inside B(c, R) (exact; false for an unbounded cell); `reach`: about the
+    /// farthest vertex's distance (a hint for the search; infinite for an unbounded cell).
+    template <class Inside>
+    std::pair<int, bool> stop(const Vec2& c, double d1, double reach, Inside&& inside) const {
+        const double far = far_lower(c);
+        const auto all_in = [&](int k) {
+            const double r = std::ldexp(d1, k - 1);
+            return !std::isfinite(4.0 * r) || all_within(c, r, far);
+        };
+        const auto done = [&](int k) { return all_in(k) || inside(std::ldexp(d1, k - 1)); };
+        // Estimates: R_k just beyond the farthest vertex, 2 R_k just beyond the farthest agent.
+        const auto step_beyond = [&](double dist) {
+            int e = 0;
+            const double q = dist / d1;
+            if (!(q < std::numeric_limits<double>::max())) return 1100;  // overflow: the search corrects it
+            std::frexp(q, &e);  // q < 2^e
+            return std::max(1, e + 1);
+        };
+        int k = step_beyond(far * 0.5);
+        if (std::isfinite(reach)) k = std::min(k, step_beyond(reach));
+        if (done(k)) {
+            while (k > 1 && done(k - 1)) --k;
+        } else {
+            do ++k;
+            while (!done(k));
+        }
+        const double r = std::ldexp(d1, k - 1);
+        return {k, std::isfinite(4.0 * r) && inside(r)};
+    }
+
+    /// The agents strictly within 2R of the agent at grid position `pos` (all others when `all`).
+    Index used(std::size_t pos, double radius, bool certified) const {
+        return certified ? index_.count_within_at(pos, radius) : static_cast<Index>(pts_.rows()) - 1;
+    }
+
+private:
+    /// A lower bound on the distance from c to the farthest agent (an axis-extreme agent's).
+    double far_lower(const Vec2& c) const {
+        double f = 0.0;
+        for (Index e : extreme_) f = std::max(f, (Vec2(pts_(e, 0), pts_(e, 1)) - c).norm());
+        return f;
+    }
+
+    /// Every agent strictly within 2R of c: the farthest agent is a hull corner, so the corners
+    /// decide (exactly), after a cheap rejection by `far` (far_lower(c)).
+    bool all_within(const Vec2& c, double radius, double far) const {
+        if (2.0 * radius * (1.0 + 1e-12) < far * (1.0 - 1e-12)) return false;
+        for (Index q : hull_.corners()) {
+            const Vec2 p(pts_(q, 0), pts_(q, 1));
+            if (p != c && pred::within_2r(c, p, radius) <= 0) return false;
+        }
+        return true;
+    }
+
+    const Points& pts_;
+    const GridIndex& index_;
+    const ConvexHull& hull_;
+    Index extreme_[4] = {0, 0, 0, 0};
+};
+
+}  // namespace dvoronoi::detail

@@ -1,0 +1,91 @@
+// voronoi_cells: every agent's radius steps and agents in range are ASR's own (what asr_cell reports
+// for that agent alone), whichever certificate found the cell and whichever inner step ran; cells
+// and numbers do not depend on the thread count.
+#include "dvoronoi/partition/voronoi_partition.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace dvoronoi;
+
+namespace {
+
+Points from(const std::vector<Vec2>& v) {
+    Points P(static_cast<Index>(v.size()), 2);
+    for (std::size_t i = 0; i < v.size(); ++i) P.row(static_cast<Index>(i)) = v[i].transpose();
+    return P;
+}
+
+/// Point sets whose schedules end every way: certified at step 1, after many steps (close pairs,
+/// far vertices near the hull), or with every agent (hull agents, and a collinear set).
+std::vector<std::pair<std::string, Points>> families() {
+    std::vector<std::pair<std::string, Points>> out;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Vec2> v;
+    for (int i = 0; i < 600; ++i) v.emplace_back(u(rng), u(rng));
+    out.emplace_back("uniform", from(v));
+    v.clear();
+    for (int i = 0; i < 300; ++i) {  // close pairs: the nearest neighbour is far below the spacing
+        const Vec2 p(u(rng), u(rng));
+        v.push_back(p);
+        if (i % 3 == 0) v.push_back(p + Vec2(1e-4 * u(rng) + 1e-6, 1e-4 * u(rng)));
+    }
+    out.emplace_back("close pairs", from(v));
+    v.clear();
+    for (int x = 0; x < 18; ++x)
+        for (int y = 0; y < 18; ++y) v.emplace_back(1e7 + x, 1e7 + y);
+    out.emplace_back("far lattice", from(v));
+    v.clear();
+    for (int k = 0; k < 64; ++k) v.emplace_back(std::cos(k * M_PI / 32), std::sin(k * M_PI / 32));
+    v.emplace_back(0.0, 0.0);
+    out.emplace_back("cocircular", from(v));
+    v.clear();
+    for (int k = 0; k < 40; ++k) v.emplace_back(k * 0.1, k * 0.1 * 1e-9 * (k % 3));
+    out.emplace_back("nearly collinear", from(v));
+    v.clear();
+    for (int k = 0; k < 30; ++k) v.emplace_back(k * 3.0, k * 2.0);
+    out.emplace_back("collinear", from(v));
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("radius steps and agents in range equal the one-agent ASR's, for both inner steps") {
+    for (const auto& [name, P] : families()) {
+        const Index n = P.rows();
+        for (AsrInner inner : {AsrInner::Scan, AsrInner::Evt}) {
+            const VoronoiPartition part = voronoi_cells(P, inner, 1);
+            int bad = 0, deep = 0, all = 0;
+            for (Index i = 0; i < n; ++i) {
+                Points others(n - 1, 2);
+                others << P.topRows(i), P.bottomRows(n - 1 - i);
+                const VoronoiCell cell = asr_cell(P.row(i).transpose(), others, inner);
+                const auto si = static_cast<std::size_t>(i);
+                bad += part.radius_steps[si] != cell.radius_steps || part.agents_used[si] != cell.agents_used;
+                deep += cell.radius_steps >= 4;
+                all += cell.agents_used == n - 1;
+            }
+            INFO(name, " inner ", inner == AsrInner::Scan ? "scan" : "evt");
+            CHECK(bad == 0);
+            CHECK(all > 0);  // hull agents use every agent
+            if (name == "close pairs") CHECK(deep > 20);
+        }
+    }
+}
+
+TEST_CASE("thread count does not change cells or numbers") {
+    const Points P = families()[1].second;
+    const VoronoiPartition a = voronoi_cells(P, AsrInner::Scan, 1);
+    const VoronoiPartition b = voronoi_cells(P, AsrInner::Scan, 2);
+    CHECK(a.indptr == b.indptr);
+    CHECK(a.indices == b.indices);
+    CHECK(a.on_hull == b.on_hull);
+    CHECK(a.radius_steps == b.radius_steps);
+    CHECK(a.agents_used == b.agents_used);
+}
