@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdint>
 #include <ctime>
+#include <limits>
+#include <thread>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -159,34 +161,64 @@ inline void build_roadmap(GridVoronoi& r) {
 }  // namespace detail
 
 /// Builds the result from the kept cells of every worker (without the graph: see build_graph).
-/// \note O(cells + rows).
+/// Slices that are column ranges from left to right (what the workers and MPI ranks hand over) are
+/// ordered and written by one thread each: a row's cells are slice 0's, then slice 1's, ...; any
+/// other split is first joined into one.
+/// \note O(cells + rows x slices).
 inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vector<std::vector<TracedCell>> slices,
                             double robot_radius) {
-    std::vector<TracedCell> cells;
-    if (slices.size() == 1) {
-        cells.swap(slices[0]);
-    } else {
-        std::size_t total = 0;
-        for (const auto& v : slices) total += v.size();
-        cells.reserve(total);
+    // Column ranges from left to right?
+    bool ordered = true;
+    std::int32_t right = std::numeric_limits<std::int32_t>::min();
+    for (const auto& v : slices) {
+        if (v.empty()) continue;
+        std::int32_t lo = v.front().i, hi = v.front().i;
+        for (const TracedCell& c : v) lo = std::min(lo, c.i), hi = std::max(hi, c.i);
+        ordered = ordered && lo > right;
+        right = hi;
+    }
+    if (!ordered) {
+        std::vector<TracedCell> all;
         for (auto& v : slices) {
-            cells.insert(cells.end(), v.begin(), v.end());
+            all.insert(all.end(), v.begin(), v.end());
             std::vector<TracedCell>().swap(v);
         }
+        slices.assign(1, std::move(all));
     }
-    // Order by (row, col): counting sort by row, then each row by column (rows hold few cells).
-    const std::size_t n = cells.size();
-    std::vector<std::uint32_t> order(n);
-    {
-        std::vector<std::size_t> start(static_cast<std::size_t>(grid.ny) + 1, 0);
-        for (const TracedCell& c : cells) ++start[static_cast<std::size_t>(c.j) + 1];
-        for (std::size_t j = 1; j < start.size(); ++j) start[j] += start[j - 1];
-        std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t k = 0; k < n; ++k) order[fill[static_cast<std::size_t>(cells[k].j)]++] = static_cast<std::uint32_t>(k);
-        for (std::size_t j = 0; j + 1 < start.size(); ++j)
-            std::sort(order.begin() + static_cast<std::ptrdiff_t>(start[j]), order.begin() + static_cast<std::ptrdiff_t>(start[j + 1]),
+    const std::size_t K = slices.size();
+    const auto ny = static_cast<std::size_t>(grid.ny);
+    auto run = [K](auto&& fn) {  // fn(k) for every slice, one thread each
+        if (K == 1) return fn(std::size_t{0});
+        std::vector<std::thread> team;
+        for (std::size_t k = 0; k < K; ++k) team.emplace_back(fn, k);
+        for (auto& t : team) t.join();
+    };
+    // Per slice: order by (row, col) (counting sort by row, then each row by column: rows hold few
+    // cells) and count the cells of each row.
+    std::vector<std::vector<std::uint32_t>> order(K);
+    std::vector<std::vector<std::size_t>> start(K);
+    run([&](std::size_t k) {
+        const auto& cells = slices[k];
+        auto& st = start[k];
+        auto& ord = order[k];
+        st.assign(ny + 1, 0);
+        for (const TracedCell& c : cells) ++st[static_cast<std::size_t>(c.j) + 1];
+        for (std::size_t j = 1; j <= ny; ++j) st[j] += st[j - 1];
+        ord.resize(cells.size());
+        std::vector<std::size_t> fill(st.begin(), st.end() - 1);
+        for (std::size_t t = 0; t < cells.size(); ++t) ord[fill[static_cast<std::size_t>(cells[t].j)]++] = static_cast<std::uint32_t>(t);
+        for (std::size_t j = 0; j < ny; ++j)
+            std::sort(ord.begin() + static_cast<std::ptrdiff_t>(st[j]), ord.begin() + static_cast<std::ptrdiff_t>(st[j + 1]),
                       [&](std::uint32_t a, std::uint32_t b) { return cells[a].i < cells[b].i; });
-    }
+    });
+    // Where each slice's part of each row goes.
+    std::vector<std::vector<std::size_t>> offset(K, std::vector<std::size_t>(ny));
+    std::size_t n = 0;
+    for (std::size_t j = 0; j < ny; ++j)
+        for (std::size_t k = 0; k < K; ++k) {
+            offset[k][j] = n;
+            n += start[k][j + 1] - start[k][j];
+        }
     GridVoronoi r;
     r.grid = grid;
     r.robot_radius = robot_radius;
@@ -198,18 +230,26 @@ inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vecto
     r.clearance.resize(n);
     r.blocked.resize(n);
     const double r2 = robot_radius * robot_radius;
-    for (std::size_t k = 0; k < n; ++k) {
-        const TracedCell& c = cells[order[k]];
-        r.col[k] = c.i;
-        r.row[k] = c.j;
-        for (int t = 0; t < 4; ++t) r.labels[4 * k + static_cast<std::size_t>(t)] = c.labels[static_cast<std::size_t>(t)];
-        r.clearance[k] = std::sqrt(c.min_sq);
-        // Paper: free only when every corner is farther than r from its nearest obstacle.
-        r.blocked[k] = c.min_sq <= r2 ? 1 : 0;
-    }
-    std::vector<TracedCell>().swap(cells);
-    for (std::size_t k = 0; k < n; ++k)
-        if (r.distinct_labels(k) >= 3) r.vertices.push_back(static_cast<std::int64_t>(k));
+    std::vector<std::vector<std::int64_t>> vertices(K);
+    run([&](std::size_t k) {
+        const auto& cells = slices[k];
+        for (std::size_t j = 0; j < ny; ++j) {
+            std::size_t out = offset[k][j];
+            for (std::size_t t = start[k][j]; t < start[k][j + 1]; ++t, ++out) {
+                const TracedCell& c = cells[order[k][t]];
+                r.col[out] = c.i;
+                r.row[out] = c.j;
+                for (int q = 0; q < 4; ++q) r.labels[4 * out + static_cast<std::size_t>(q)] = c.labels[static_cast<std::size_t>(q)];
+                r.clearance[out] = std::sqrt(c.min_sq);
+                // Paper: free only when every corner is farther than r from its nearest obstacle.
+                r.blocked[out] = c.min_sq <= r2 ? 1 : 0;
+                if (r.distinct_labels(out) >= 3) vertices[k].push_back(static_cast<std::int64_t>(out));
+            }
+        }
+        std::vector<TracedCell>().swap(slices[k]);
+    });
+    for (const auto& v : vertices) r.vertices.insert(r.vertices.end(), v.begin(), v.end());
+    std::sort(r.vertices.begin(), r.vertices.end());
     return r;
 }
 

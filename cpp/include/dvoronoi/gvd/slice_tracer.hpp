@@ -83,7 +83,8 @@ public:
         if (l[0] == l[1] && l[1] == l[2] && l[2] == l[3]) return false;
         index_of_.at(i, j) = static_cast<std::int32_t>(cells_.size());
         if (anchor) anchors_.push_back(static_cast<std::uint32_t>(cells_.size()));
-        cells_.push_back({i, j, l});
+        // The clearance now, while the corners are in cache (the hand-over reads cells in order).
+        cells_.push_back({i, j, l, min_sq(i, j)});
         return true;
     }
 
@@ -152,30 +153,10 @@ public:
 
     std::size_t size() const { return cells_.size(); }
 
-    /// Traced cell k with its corner labels and exact smallest squared corner distance (recomputed
-    /// from the stored parts with the index's own distance function: the same doubles).
-    TracedCell cell(std::size_t k) {
-        const Cell c = cells_[k];
-        TracedCell t;
-        t.i = c.i;
-        t.j = c.j;
-        t.labels = c.labels;
-        const std::int32_t ci[4] = {c.i, c.i + 1, c.i + 1, c.i}, cj[4] = {c.j, c.j, c.j + 1, c.j + 1};
-        Corner q[4];
-        float fmin = std::numeric_limits<float>::infinity();
-        for (int k4 = 0; k4 < 4; ++k4) {
-            q[k4] = corner(ci[k4], cj[k4]);
-            fmin = std::min(fmin, q[k4].sq);
-        }
-        // Rounding to float is monotone, so the exact smallest distance is at a corner whose float
-        // equals the smallest float: only those are recomputed exactly.
-        t.min_sq = std::numeric_limits<double>::infinity();
-        for (int k4 = 0; k4 < 4; ++k4)
-            if (!(q[k4].sq > fmin)) {
-                const auto& part = scene_->parts[static_cast<std::size_t>(q[k4].part)];
-                t.min_sq = std::min(t.min_sq, sq_distance(*scene_, part, grid_.corner(ci[k4], cj[k4]), index_->visibility()));
-            }
-        return t;
+    /// Traced cell k with its corner labels and exact smallest squared corner distance.
+    TracedCell cell(std::size_t k) const {
+        const Cell& c = cells_[k];
+        return TracedCell{c.i, c.j, c.labels, c.min_sq};
     }
     const std::vector<std::int32_t>& components() const { return component_; }
     const std::vector<std::uint8_t>& anchored() const { return anchored_; }
@@ -192,6 +173,26 @@ private:
         float sq = 0.0f;         // its squared distance, rounded to float
     };
 
+    /// Cell (i, j)'s smallest squared corner distance, exact. Rounding to float is monotone, so it
+    /// is at a corner whose float equals the smallest float: only those are recomputed (with the
+    /// index's own distance function: the same doubles).
+    double min_sq(std::int32_t i, std::int32_t j) {
+        const std::int32_t ci[4] = {i, i + 1, i + 1, i}, cj[4] = {j, j, j + 1, j + 1};
+        Corner q[4];
+        float fmin = std::numeric_limits<float>::infinity();
+        for (int k = 0; k < 4; ++k) {
+            q[k] = corner(ci[k], cj[k]);
+            fmin = std::min(fmin, q[k].sq);
+        }
+        double best = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < 4; ++k)
+            if (!(q[k].sq > fmin)) {
+                const auto& part = scene_->parts[static_cast<std::size_t>(q[k].part)];
+                best = std::min(best, sq_distance(*scene_, part, grid_.corner(ci[k], cj[k]), index_->visibility()));
+            }
+        return best;
+    }
+
     Corner corner(std::int32_t i, std::int32_t j) {
         Corner& c = corners_.at(i, j);
         if (c.part < 0) {
@@ -206,6 +207,7 @@ private:
     struct Cell {
         std::int32_t i, j;
         std::array<std::int32_t, 4> labels;  // kept: the queue and the components read them again
+        double min_sq;                       // smallest squared corner distance
     };
 
     /// Labels of cell (i, j)'s corners: bottom-left, bottom-right, top-right, top-left.
