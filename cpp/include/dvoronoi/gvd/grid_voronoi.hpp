@@ -107,14 +107,11 @@ inline void check_options(const GvdOptions& o) {
 inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
     check_options(options);
     const GridSpec grid = make_grid(scene, options.resolution);
-    const ObstacleIndex index(scene, options.visibility);
     const int workers = std::min<int>(options.workers, grid.nx);
+    const ObstacleIndex index(scene, options.visibility, workers);
     const auto bounds = slice_bounds(grid.nx, workers);
 
-    std::vector<SliceTracer> tracers;
-    tracers.reserve(static_cast<std::size_t>(workers));
-    for (int k = 0; k < workers; ++k)
-        tracers.emplace_back(scene, index, grid, bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1]);
+    std::vector<SliceTracer> tracers(static_cast<std::size_t>(workers));  // each built by its worker
     std::vector<SliceSummary> summaries(static_cast<std::size_t>(workers));
     std::vector<std::promise<std::vector<std::int32_t>>> mail(static_cast<std::size_t>(workers));
     std::vector<double> seconds(static_cast<std::size_t>(workers), 0.0), cpu(static_cast<std::size_t>(workers), 0.0);
@@ -126,6 +123,7 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         const double c0 = thread_cpu_seconds();
         const auto uk = static_cast<std::size_t>(k);
         try {
+            tracers[uk] = SliceTracer(scene, index, grid, bounds[uk], bounds[uk + 1]);
             BorderChannel ch;
             ch.send_left = [&](const std::vector<std::int32_t>& rows) { mail[uk].set_value(rows); };  // mail[k]: for k-1
             ch.receive_right = [&]() { return mail[uk + 1].get_future().get(); };

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -42,8 +43,10 @@ class ObstacleIndex {
 public:
     ObstacleIndex() = default;
 
-    /// Builds the buckets over `scene.box`. \note O(parts x buckets each overlaps).
-    explicit ObstacleIndex(const Scene& scene, bool visibility = true) : scene_(&scene), visibility_(visibility) {
+    /// Builds the buckets over `scene.box`, the candidate lists with `threads` threads (the same
+    /// index for every count). \note O(parts x buckets each overlaps).
+    explicit ObstacleIndex(const Scene& scene, bool visibility = true, int threads = 1)
+        : scene_(&scene), visibility_(visibility) {
         const Box& b = scene.box;
         const double w = b.x1 - b.x0, h = b.y1 - b.y0;
         const double n = static_cast<double>(std::max<std::size_t>(1, scene.parts.size()));
@@ -74,7 +77,7 @@ public:
             for (int j = j0; j <= j1; ++j)
                 for (int i = i0; i <= i1; ++i) items_[count[bucket(i, j)]++] = static_cast<std::uint32_t>(pi);
         }
-        build_candidates();
+        build_candidates(threads);
     }
 
     const Scene& scene() const { return *scene_; }
@@ -197,44 +200,65 @@ private:
     /// such maximum over the parts bounds the nearest distance everywhere in B, and only parts whose
     /// bounding box comes within U of B can win (or tie). Found by growing rings of buckets around B
     /// until they are farther than U.
-    void build_candidates() {
-        const Scene& s = *scene_;
-        QueryContext ctx = context();
-        cand_start_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 1, 0);
-        std::vector<std::uint32_t> seen;
-        for (int bj = 0; bj < ny_; ++bj)
-            for (int bi = 0; bi < nx_; ++bi) {
-                Box B;
-                B.add(Vec2(x0_ + bi * cell_, y0_ + bj * cell_));
-                B.add(Vec2(x0_ + (bi + 1) * cell_, y0_ + (bj + 1) * cell_));
-                const Vec2 corner[4] = {Vec2(B.x0, B.y0), Vec2(B.x1, B.y0), Vec2(B.x1, B.y1), Vec2(B.x0, B.y1)};
-                next_stamp(ctx);
-                seen.clear();
-                double U = std::numeric_limits<double>::infinity();
-                const int max_ring = std::max({bi, nx_ - 1 - bi, bj, ny_ - 1 - bj});
-                for (int r = 0; r <= max_ring; ++r) {
-                    for (int j = std::max(bj - r, 0); j <= std::min(bj + r, ny_ - 1); ++j)
-                        for (int i = std::max(bi - r, 0); i <= std::min(bi + r, nx_ - 1); ++i) {
-                            if (std::max(std::abs(i - bi), std::abs(j - bj)) != r) continue;
-                            const std::size_t bk = bucket(i, j);
-                            for (std::uint32_t k = start_[bk]; k < start_[bk + 1]; ++k) {
-                                const std::uint32_t pi = items_[k];
-                                if (ctx.stamp[pi] == ctx.current) continue;
-                                ctx.stamp[pi] = ctx.current;
-                                seen.push_back(pi);
-                                double ub = 0.0;
-                                for (const Vec2& c : corner) ub = std::max(ub, sq_distance(s, s.parts[pi], c, false));
-                                U = std::min(U, std::sqrt(ub));
+    /// Candidate lists of every bucket, rows split between threads (each builds its rows' lists;
+    /// they are joined in row order, so the result does not depend on the thread count).
+    void build_candidates(int threads) {
+        const int T = std::max(1, std::min(threads, ny_));
+        const std::size_t nb = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
+        std::vector<std::uint32_t> count(nb, 0);
+        std::vector<std::vector<std::uint32_t>> items(static_cast<std::size_t>(T));
+        auto rows = [&](int t) {
+            const Scene& s = *scene_;
+            QueryContext ctx = context();
+            std::vector<std::uint32_t> seen;
+            auto& out = items[static_cast<std::size_t>(t)];
+            for (int bj = ny_ * t / T; bj < ny_ * (t + 1) / T; ++bj)
+                for (int bi = 0; bi < nx_; ++bi) {
+                    Box B;
+                    B.add(Vec2(x0_ + bi * cell_, y0_ + bj * cell_));
+                    B.add(Vec2(x0_ + (bi + 1) * cell_, y0_ + (bj + 1) * cell_));
+                    const Vec2 corner[4] = {Vec2(B.x0, B.y0), Vec2(B.x1, B.y0), Vec2(B.x1, B.y1), Vec2(B.x0, B.y1)};
+                    next_stamp(ctx);
+                    seen.clear();
+                    double U = std::numeric_limits<double>::infinity();
+                    const int max_ring = std::max({bi, nx_ - 1 - bi, bj, ny_ - 1 - bj});
+                    for (int r = 0; r <= max_ring; ++r) {
+                        for (int j = std::max(bj - r, 0); j <= std::min(bj + r, ny_ - 1); ++j)
+                            for (int i = std::max(bi - r, 0); i <= std::min(bi + r, nx_ - 1); ++i) {
+                                if (std::max(std::abs(i - bi), std::abs(j - bj)) != r) continue;
+                                const std::size_t bk = bucket(i, j);
+                                for (std::uint32_t k = start_[bk]; k < start_[bk + 1]; ++k) {
+                                    const std::uint32_t pi = items_[k];
+                                    if (ctx.stamp[pi] == ctx.current) continue;
+                                    ctx.stamp[pi] = ctx.current;
+                                    seen.push_back(pi);
+                                    double ub = 0.0;
+                                    for (const Vec2& c : corner) ub = std::max(ub, sq_distance(s, s.parts[pi], c, false));
+                                    U = std::min(U, std::sqrt(ub));
+                                }
                             }
-                        }
-                    // parts not seen yet lie outside the searched square: at least r * cell_ from B
-                    if (static_cast<double>(r) * cell_ > U * (1.0 + 1e-9) + 4 * eps_) break;
+                        // parts not seen yet lie outside the searched square: at least r * cell_ from B
+                        if (static_cast<double>(r) * cell_ > U * (1.0 + 1e-9) + 4 * eps_) break;
+                    }
+                    const double limit = U * (1.0 + 1e-9) + 4 * eps_;
+                    const std::size_t before = out.size();
+                    for (std::uint32_t pi : seen)
+                        if (box_box_distance(s.parts[pi].box, B) <= limit) out.push_back(pi);
+                    count[bucket(bi, bj)] = static_cast<std::uint32_t>(out.size() - before);
                 }
-                const double limit = U * (1.0 + 1e-9) + 4 * eps_;
-                for (std::uint32_t pi : seen)
-                    if (box_box_distance(s.parts[pi].box, B) <= limit) cand_items_.push_back(pi);
-                cand_start_[bucket(bi, bj) + 1] = static_cast<std::uint32_t>(cand_items_.size());
-            }
+        };
+        if (T == 1) {
+            rows(0);
+        } else {
+            std::vector<std::thread> team;
+            for (int t = 0; t < T; ++t) team.emplace_back(rows, t);
+            for (auto& th : team) th.join();
+        }
+        cand_start_.assign(nb + 1, 0);
+        for (std::size_t b = 0; b < nb; ++b) cand_start_[b + 1] = cand_start_[b] + count[b];
+        cand_items_.clear();
+        cand_items_.reserve(cand_start_.back());
+        for (const auto& v : items) cand_items_.insert(cand_items_.end(), v.begin(), v.end());
     }
 
     static void next_stamp(QueryContext& ctx) {
