@@ -304,7 +304,8 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: int = 512, robot_
     Parameters
     ----------
     obstacles : list of shape dicts, a dict ``{"area": ..., "obstacles": [...]}``, a JSON file path,
-        or the output of :func:`obstacles_from_occupancy_grid`.
+        the output of :func:`obstacles_from_occupancy_grid`, or a scene from :func:`load_obstacles`
+        (parsed and checked once; reuse it when re-planning on the same map).
     area : ``(xmin, ymin, xmax, ymax)`` box, a convex polygon ``(k, 2)``, or None when `obstacles`
         carries it. Its edges are obstacles of their own (labels ``n_obstacles + k``).
     resolution : cells along the longer side of the area's bounding box.
