@@ -32,10 +32,12 @@ class VoronoiPartition(Result):
     on_hull : (n,) bool
         The agent's cell is unbounded (it lies on the convex hull).
     radius_steps : (n,) int32
-        Limited cells the radius schedule computed per agent.
+        Limited cells ASR's radius schedule computes for the agent (doubling from its
+        nearest-neighbour distance until the cell certifies itself, or every agent is in range):
+        the same as ``voronoi_cell`` reports for that agent alone, however the cell was found here.
     agents_used : (n,) int64
-        Agents the certificate needed per agent (within the final sensing radius, plus those the
-        empty-circle and hull certificates added).
+        Agents strictly within twice the final radius (all others when the radius never certified
+        the cell), likewise ASR's own number.
     areas : (n,) float64
         Area of each cell clipped to ``bounds``; without bounds, of each bounded cell (NaN for hull
         agents).
