@@ -92,6 +92,27 @@ inline void prefetch(const void* p) {
 #endif
 }
 
+/// Where each agent sits in `order` (the grid order the drivers compute in): pos_of[i].
+inline std::vector<Index> positions_of(const std::vector<Index>& order) {
+    std::vector<Index> pos_of(order.size());
+    for (std::size_t pos = 0; pos < order.size(); ++pos) pos_of[static_cast<std::size_t>(order[pos])] = static_cast<Index>(pos);
+    return pos_of;
+}
+
+/// How many agents ahead the gathers prefetch.
+inline constexpr Index kAhead = 16;
+
+/// Reads per-agent results stored by grid position in input order: fn(i, by_pos[pos_of[i]]). The
+/// reads are scattered, so a few agents ahead are prefetched and the misses overlap.
+template <class R, class Fn>
+void gather_in_input_order(const std::vector<Index>& pos_of, const std::vector<R>& by_pos, Fn&& fn) {
+    const auto n = static_cast<Index>(pos_of.size());
+    for (Index i = 0; i < n; ++i) {
+        if (i + kAhead < n) prefetch(&by_pos[static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i + kAhead)])]);
+        fn(i, by_pos[static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i)])]);
+    }
+}
+
 /// Progress of a parallel loop over blocks: counts finished agents, calls the callback from the
 /// calling thread (OpenMP thread 0), and turns an exception thrown by the callback (e.g. a Python
 /// KeyboardInterrupt) into a cancellation that is rethrown after the parallel region.
@@ -251,16 +272,11 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     tracker.rethrow_if_failed();
 
     // Lay out the results, the pieces and the neighbour CSR in input order.
-    std::vector<Index> pos_of(static_cast<std::size_t>(n));
-    for (Index pos = 0; pos < n; ++pos) pos_of[static_cast<std::size_t>(order[static_cast<std::size_t>(pos)])] = pos;
+    const std::vector<Index> pos_of = detail::positions_of(order);
     out.piece_ptr.resize(static_cast<std::size_t>(n) + 1);
     out.indptr.resize(static_cast<std::size_t>(n) + 1);
-    // The reads are scattered: prefetch a few agents ahead so the misses overlap.
-    constexpr Index kAhead = 16;
-    for (Index i = 0; i < n; ++i) {
+    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
-        if (i + kAhead < n) detail::prefetch(&by_pos[static_cast<std::size_t>(pos_of[ii + kAhead])]);
-        const Result& r = by_pos[static_cast<std::size_t>(pos_of[ii])];
         out.areas[ii] = r.area;
         out.perimeters[ii] = r.perimeter;
         out.centroids(i, 0) = r.cx;
@@ -268,7 +284,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         out.candidates[ii] = r.candidates;
         out.piece_ptr[ii + 1] = out.piece_ptr[ii] + r.pieces;
         out.indptr[ii + 1] = out.indptr[ii] + r.edges;
-    }
+    });
     const auto total = static_cast<std::size_t>(out.piece_ptr.back());
     out.piece_neighbor.resize(total);
     out.piece_x.resize(total);
@@ -283,9 +299,9 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
             const auto pos = static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i_)]);
             return blocks[pos / static_cast<std::size_t>(block)].pieces.data() + by_pos[pos].first;
         };
-        if (i + 2 * kAhead < n) detail::prefetch(&by_pos[static_cast<std::size_t>(pos_of[ii + 2 * kAhead])]);
-        if (i + kAhead < n) {
-            const Piece* ahead = piece_src(i + kAhead);
+        if (i + 2 * detail::kAhead < n) detail::prefetch(&by_pos[static_cast<std::size_t>(pos_of[ii + 2 * detail::kAhead])]);
+        if (i + detail::kAhead < n) {
+            const Piece* ahead = piece_src(i + detail::kAhead);
             for (int line = 0; line < 4; ++line) detail::prefetch(ahead + 2 * line);
         }
         const Piece* src = piece_src(i);

@@ -271,13 +271,9 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     tracker.rethrow_if_failed();
 
     // Lay out the results and the neighbour CSR in input order (scattered reads, prefetched).
-    std::vector<Index> pos_of(static_cast<std::size_t>(n));
-    for (Index pos = 0; pos < n; ++pos) pos_of[static_cast<std::size_t>(order[static_cast<std::size_t>(pos)])] = pos;
-    constexpr Index kAhead = 16;
-    for (Index i = 0; i < n; ++i) {
+    const std::vector<Index> pos_of = detail::positions_of(order);
+    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
-        if (i + kAhead < n) detail::prefetch(&by_pos[static_cast<std::size_t>(pos_of[ii + kAhead])]);
-        const Result& r = by_pos[static_cast<std::size_t>(pos_of[ii])];
         out.areas[ii] = r.area;
         out.centroids(i, 0) = r.cx;
         out.centroids(i, 1) = r.cy;
@@ -285,14 +281,14 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         out.radius_steps[ii] = r.steps;
         out.agents_used[ii] = r.used;
         out.indptr[ii + 1] = out.indptr[ii] + r.count;
-    }
+    });
     out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
 #pragma omp parallel for num_threads(team) schedule(static)
     for (Index i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
         const auto pos = static_cast<std::size_t>(pos_of[ii]);
-        if (i + kAhead < n) {
-            const auto ahead = static_cast<std::size_t>(pos_of[ii + kAhead]);
+        if (i + detail::kAhead < n) {
+            const auto ahead = static_cast<std::size_t>(pos_of[ii + detail::kAhead]);
             detail::prefetch(block_nbrs[ahead / static_cast<std::size_t>(block)].data() + by_pos[ahead].first);
         }
         const Index* src = block_nbrs[pos / static_cast<std::size_t>(block)].data() + by_pos[pos].first;
