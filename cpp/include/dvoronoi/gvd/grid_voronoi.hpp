@@ -19,11 +19,11 @@
 #include "dvoronoi/gvd/result.hpp"
 #include "dvoronoi/gvd/slice_merge.hpp"
 #include "dvoronoi/gvd/slice_tracer.hpp"
+#include "dvoronoi/gvd/team.hpp"
 
 #include <chrono>
 #include <functional>
 #include <future>
-#include <thread>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -135,13 +135,7 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         seconds[uk] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         cpu[uk] = thread_cpu_seconds() - c0;
     };
-    if (workers == 1) {
-        work(0);
-    } else {
-        std::vector<std::thread> team;
-        for (int k = 0; k < workers; ++k) team.emplace_back(work, k);
-        for (auto& t : team) t.join();
-    }
+    run_team(workers, work);
     for (auto& e : errors)
         if (e) std::rethrow_exception(e);
 
@@ -169,13 +163,7 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         tracers[uk] = SliceTracer();
         cpu[uk] += thread_cpu_seconds() - c0;
     };
-    if (workers == 1) {
-        hand_over(0);
-    } else {
-        std::vector<std::thread> team;
-        for (int k = 0; k < workers; ++k) team.emplace_back(hand_over, k);
-        for (auto& t : team) t.join();
-    }
+    run_team(workers, hand_over);
     std::size_t n_kept = 0;
     for (const auto& v : kept) n_kept += v.size();
     st.discarded_cells = st.traced_cells - n_kept;

@@ -14,11 +14,11 @@
 #pragma once
 
 #include "dvoronoi/gvd/distance.hpp"
+#include "dvoronoi/gvd/team.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <thread>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -247,13 +247,7 @@ private:
                     count[bucket(bi, bj)] = static_cast<std::uint32_t>(out.size() - before);
                 }
         };
-        if (T == 1) {
-            rows(0);
-        } else {
-            std::vector<std::thread> team;
-            for (int t = 0; t < T; ++t) team.emplace_back(rows, t);
-            for (auto& th : team) th.join();
-        }
+        run_team(T, rows);
         cand_start_.assign(nb + 1, 0);
         for (std::size_t b = 0; b < nb; ++b) cand_start_[b + 1] = cand_start_[b] + count[b];
         cand_items_.clear();

@@ -8,6 +8,7 @@
 #include "dvoronoi/gvd/grid.hpp"
 #include "dvoronoi/gvd/lazy_grid.hpp"
 #include "dvoronoi/gvd/slice_tracer.hpp"
+#include "dvoronoi/gvd/team.hpp"
 
 #include <algorithm>
 #include <array>
@@ -15,7 +16,6 @@
 #include <cstdint>
 #include <ctime>
 #include <limits>
-#include <thread>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -188,10 +188,7 @@ inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vecto
     const std::size_t K = slices.size();
     const auto ny = static_cast<std::size_t>(grid.ny);
     auto run = [K](auto&& fn) {  // fn(k) for every slice, one thread each
-        if (K == 1) return fn(std::size_t{0});
-        std::vector<std::thread> team;
-        for (std::size_t k = 0; k < K; ++k) team.emplace_back(fn, k);
-        for (auto& t : team) t.join();
+        run_team(static_cast<int>(K), [&](int k) { fn(static_cast<std::size_t>(k)); });
     };
     // Per slice: order by (row, col) (counting sort by row, then each row by column: rows hold few
     // cells) and count the cells of each row.
