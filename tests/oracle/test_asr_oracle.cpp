@@ -127,20 +127,27 @@ TEST_CASE("voronoi_cells (all agents, grid index, 2 threads) equals the oracle")
         const auto exact = dvoronoi_oracle::compute_oracle(pts, 1.0);
         dvoronoi::Points P(static_cast<Eigen::Index>(pts.size()), 2);
         for (std::size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) << pts[i][0], pts[i][1];
-        const dvoronoi::VoronoiPartition part =
-            dvoronoi::voronoi_cells(P, cases % 2 ? dvoronoi::AsrInner::Scan : dvoronoi::AsrInner::Evt, 2);
-        for (std::size_t i = 0; i < pts.size(); ++i) {
-            const auto [b, e] = part.neighbors(static_cast<dvoronoi::Index>(i));
-            const std::vector<std::size_t> got(b, e);
-            if (got != exact.voronoi_neighbors[i] || (part.on_hull[i] != 0) != static_cast<bool>(exact.on_hull[i])) {
-                if (bad < 5) MESSAGE(label << ": agent " << i);
-                ++bad;
+        for (auto inner : {dvoronoi::AsrInner::Scan, dvoronoi::AsrInner::Evt}) {
+            const dvoronoi::VoronoiPartition part = dvoronoi::voronoi_cells(P, inner, 2);
+            for (std::size_t i = 0; i < pts.size(); ++i) {
+                const auto [b, e] = part.neighbors(static_cast<dvoronoi::Index>(i));
+                const std::vector<std::size_t> got(b, e);
+                if (got != exact.voronoi_neighbors[i] || (part.on_hull[i] != 0) != static_cast<bool>(exact.on_hull[i])) {
+                    if (bad < 5) MESSAGE(label << (inner == dvoronoi::AsrInner::Scan ? " scan" : " evt") << ": agent " << i);
+                    ++bad;
+                }
             }
         }
     };
     for (std::uint64_t seed = 0; seed < 10; ++seed) {
-        check(fam::uniform(3000, 10.0, seed).points, "uniform 3000");
-        check(fam::grid_subset(30, 500, 1.0, seed).points, "grid subset 30x30");
+        const auto uniform = fam::uniform(3000, 10.0, seed);
+        const auto grid = fam::grid_subset(30, 500, 1.0, seed);
+        check(uniform.points, "uniform 3000");
+        check(grid.points, "grid subset 30x30");
+        if (seed < 2)  // transformed copies through the one-shot clip (far offsets, tiny scales, turns)
+            for (const auto& base : {uniform, grid})
+                for (const auto& t : dvoronoi_oracle::exact_transforms(base.points, 1.0, seed))
+                    check(t.points, base.name + " " + t.name);
     }
     for (const auto& c : dvoronoi_oracle::read_corpus(std::string(DVORONOI_TEST_DATA_DIR) + "/degenerate_corpus.txt"))
         check(c.points, c.name);
