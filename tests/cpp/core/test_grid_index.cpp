@@ -86,3 +86,17 @@ TEST_CASE("within / within_at equal the exact brute force for radii below, at an
         }
     }
 }
+
+TEST_CASE("count_within_at on a sparse grid (two far clusters) and for disks holding every agent") {
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Points p(400, 2);
+    for (Index i = 0; i < 400; ++i) p.row(i) << (i < 200 ? 0.0 : 1e6) + u(rng), u(rng);
+    const GridIndex index(p, 0.05);
+    for (double radius : {0.01, 0.1, 0.4, 1.0, 4e5, 6e5, 1e7})
+        for (std::size_t pos = 0; pos < 400; pos += 7) {
+            const Index i = index.grid_order()[pos];
+            INFO("radius ", radius, " agent ", i);
+            CHECK(index.count_within_at(pos, radius) == static_cast<Index>(brute_within(p, i, radius).size()));
+        }
+}

@@ -51,6 +51,12 @@ std::vector<std::pair<std::string, Points>> families() {
     v.clear();
     for (int k = 0; k < 30; ++k) v.emplace_back(k * 3.0, k * 2.0);
     out.emplace_back("collinear", from(v));
+    // Tiny teams: a pair, three in a line, a triangle, a square (cocircular), a square and its center.
+    out.emplace_back("pair", from({Vec2(0, 0), Vec2(1, 2)}));
+    out.emplace_back("three in a line", from({Vec2(0, 0), Vec2(1, 1), Vec2(3, 3)}));
+    out.emplace_back("triangle", from({Vec2(0, 0), Vec2(4, 0), Vec2(1, 3)}));
+    out.emplace_back("square", from({Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}));
+    out.emplace_back("square and center", from({Vec2(0, 0), Vec2(2, 0), Vec2(2, 2), Vec2(0, 2), Vec2(1, 1)}));
     return out;
 }
 
@@ -74,6 +80,7 @@ TEST_CASE("radius steps and agents in range equal the one-agent ASR's, for both 
             INFO(name, " inner ", inner == AsrInner::Scan ? "scan" : "evt");
             CHECK(bad == 0);
             CHECK(all > 0);  // hull agents use every agent
+            if (n == 5) CHECK(part.radius_steps[4] == 1);  // the center of the square: certified at once
             if (name == "close pairs") CHECK(deep > 20);
         }
     }
