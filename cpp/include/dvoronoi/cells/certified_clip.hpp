@@ -221,6 +221,7 @@ public:
         n_ = 4;
         dirty_ = true;
         cap_ = kInf;
+        square_ = true;
     }
 
     /// Farthest distance from c of the cell (the exact cell lies within it), R while an arc remains.
@@ -261,7 +262,8 @@ public:
 #ifdef CLIP_STAT_CUT
         CLIP_STAT_CUT(s, outside);
 #endif
-        return outside == 0 ? cut_arc(k) : cut_run(k, s, outside);
+        if (outside == 0) return square_ || cut_arc(k);  // a square's cell has no arc to cut
+        return cut_run(k, s, outside);
     }
 
     std::size_t size() const { return n_; }
@@ -383,6 +385,7 @@ private:
     ClipWorkspace& w_;
     double radius_;
     double cap_;  // the cell lies within this distance of c: R (inside the disk), or none (square)
+    bool square_ = false;  // started from the square: a polygon throughout
     std::size_t n_ = 0;
     double reach_ = 0.0;
     bool dirty_ = true;

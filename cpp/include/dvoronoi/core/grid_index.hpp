@@ -165,15 +165,29 @@ public:
         constexpr double u = 1.1102230246251565e-16;
         const double r2 = rr * rr, r2lo = r2 * (1.0 - 1e-9);
         Index count = 0;
+        const double r2hi = r2 * (1.0 + 1e-9);
         const auto scan = [&](std::int64_t cx, std::int64_t cy0, std::int64_t cy1) {
             if (cy0 > cy1) return;
             std::size_t lo, hi;
             column_run(cx, cy0, cy1, lo, hi);
+            // Branch-free (inside or not is a coin flip near the circle); the rare agents within
+            // rounding of the circle are decided exactly in a second pass. The agent itself counts
+            // here (distance 0) and is taken off.
+            Index inside = 0;
+            bool near_circle = false;
             for (std::size_t s = lo; s < hi; ++s) {
                 const double dx = xs_[s] - x, dy = ys_[s] - y;
                 const double d = dx * dx + dy * dy;
-                count += s != pos && (d < r2lo || (d <= r2 * (1.0 + 1e-9) && pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0));
+                inside += d < r2lo;
+                near_circle |= (d >= r2lo) & (d <= r2hi);
             }
+            if (near_circle)
+                for (std::size_t s = lo; s < hi; ++s) {
+                    const double dx = xs_[s] - x, dy = ys_[s] - y;
+                    const double d = dx * dx + dy * dy;
+                    if (d >= r2lo && d <= r2hi) inside += pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0;
+                }
+            count += inside - (pos >= lo && pos < hi ? 1 : 0);
         };
         const auto row_of = [&](double v) {  // row key of v, clamped (a double: no overflow)
             return std::min(std::max(std::floor((v - y0_) / cell_), -1.0), static_cast<double>(ny_));

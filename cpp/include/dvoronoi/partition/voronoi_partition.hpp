@@ -189,10 +189,18 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                         // Agents strictly within 2 R_k: among the loaded ones when R_k <= R.
                         const double rk = std::ldexp(d1, k - 1);
                         if (certified && rk <= one_shot) {
+                            // Branch-free; the rare agents within rounding of the circle exactly.
                             const double r2 = 4.0 * rk * rk, r2lo = r2 * (1.0 - 1e-9), r2hi = r2 * (1.0 + 1e-9);
+                            bool near_circle = false;
                             for (std::size_t t = 0; t < clip_ws.m; ++t) {
                                 const double d = clip_ws.n2[t];
-                                r.used += d < r2lo || (d <= r2hi && pred::within_2r(c, Vec2(clip_ws.px[t], clip_ws.py[t]), rk) > 0);
+                                r.used += d < r2lo;
+                                near_circle |= (d >= r2lo) & (d <= r2hi);
+                            }
+                            for (std::size_t t = 0; near_circle && t < clip_ws.m; ++t) {
+                                const double d = clip_ws.n2[t];
+                                if (d >= r2lo && d <= r2hi)
+                                    r.used += pred::within_2r(c, Vec2(clip_ws.px[t], clip_ws.py[t]), rk) > 0;
                             }
                         } else {
                             r.used = schedule.used(spos, rk, certified);
