@@ -140,32 +140,35 @@ struct ClipWorkspace {
     __attribute__((always_inline))  // called per agent in the query's inner loop
 #endif
     void add(const Vec2& p, Index j) {
-        if (m == px.size()) grow();
+        // Locals and raw pointers throughout: a store through id (Index) may alias the size_t
+        // counters and the vectors' internals, which would make the compiler reload them after it.
+        const std::size_t k = m, nr = near, nf = nfar;
+        if (k == cap_) grow();
         const double x = p.x() - c.x(), y = p.y() - c.y();
         const double d = x * x + y * y;
-        px[m] = p.x();
-        py[m] = p.y();
-        id[m] = j;
-        ax[m] = x;
-        ay[m] = y;
-        n2[m] = d;
-        const int k = static_cast<int>(m);
-        lo2 = std::min(lo2, std::max(lo, d));
-        nn = d < lo ? k : nn;
-        lo = std::min(lo, d);
+        pxp_[k] = p.x();
+        pyp_[k] = p.y();
+        axp_[k] = x;
+        ayp_[k] = y;
+        n2p_[k] = d;
+        idp_[k] = j;
+        const double l = lo;
+        lo2 = std::min(lo2, std::max(l, d));
+        nn = d < l ? static_cast<int>(k) : nn;
+        lo = std::min(l, d);
         hi = std::max(hi, d);
         const bool is_near = d <= near2;
-        order[near] = k;
-        far[nfar] = k;
-        near += is_near;
-        nfar += !is_near;
-        ++m;
+        orderp_[nr] = static_cast<int>(k);
+        farp_[nf] = static_cast<int>(k);
+        near = nr + is_near;
+        nfar = nf + !is_near;
+        m = k + 1;
     }
     /// Appends, after the m candidates (not counted in m), four phantom agents at c + (+-2R, 0),
     /// (0, +-2R): their bisectors bound the square of half-side R around c, the start of an
     /// unlimited cell's clipping (Clipper::start_square). Their id is -1.
     void add_square(double radius) {
-        while (m + 4 > px.size()) grow();
+        while (m + 4 > cap_) grow();
         const double r2 = 2.0 * radius, n = r2 * r2;
         const double dx[4] = {r2, 0.0, -r2, 0.0}, dy[4] = {0.0, r2, 0.0, -r2};
         for (std::size_t t = 0; t < 4; ++t) {
@@ -185,12 +188,19 @@ struct ClipWorkspace {
 
 private:
     void grow() {
-        const std::size_t cap = std::max<std::size_t>(64, 2 * px.size());
-        for (auto* v : {&px, &py, &ax, &ay, &n2}) v->resize(cap);
-        id.resize(cap);
-        order.resize(cap);
-        far.resize(cap);
+        cap_ = std::max<std::size_t>(64, 2 * px.size());
+        for (auto* v : {&px, &py, &ax, &ay, &n2}) v->resize(cap_);
+        id.resize(cap_);
+        order.resize(cap_);
+        far.resize(cap_);
+        pxp_ = px.data(), pyp_ = py.data(), axp_ = ax.data(), ayp_ = ay.data(), n2p_ = n2.data();
+        idp_ = id.data(), orderp_ = order.data(), farp_ = far.data();
     }
+    // The vectors' storage, for add().
+    std::size_t cap_ = 0;
+    double *pxp_ = nullptr, *pyp_ = nullptr, *axp_ = nullptr, *ayp_ = nullptr, *n2p_ = nullptr;
+    Index* idp_ = nullptr;
+    int *orderp_ = nullptr, *farp_ = nullptr;
 };
 
 namespace clip {
