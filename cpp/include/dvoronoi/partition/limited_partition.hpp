@@ -92,6 +92,25 @@ inline void prefetch(const void* p) {
 #endif
 }
 
+/// Sorts a handful of indices (a cell's neighbours) ascending: each lands at its rank (ties by
+/// position), counted without branches (insertion sort's branches mispredict about once per element on
+/// neighbours in angular order, which costs more than these n^2 comparisons).
+inline void sort_small(Index* first, Index* last) {
+    constexpr std::ptrdiff_t kSmall = 12;
+    const std::ptrdiff_t n = last - first;
+    if (n > kSmall) {
+        std::sort(first, last);
+        return;
+    }
+    Index tmp[kSmall];
+    for (std::ptrdiff_t a = 0; a < n; ++a) {
+        std::ptrdiff_t rank = 0;
+        for (std::ptrdiff_t b = 0; b < n; ++b) rank += (first[b] < first[a]) | ((first[b] == first[a]) & (b < a));
+        tmp[rank] = first[a];
+    }
+    std::copy(tmp, tmp + n, first);
+}
+
 /// Where each agent sits in `order` (the grid order the drivers compute in): pos_of[i].
 inline std::vector<Index> positions_of(const std::vector<Index>& order) {
     std::vector<Index> pos_of(order.size());
@@ -315,11 +334,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
             out.piece_span[dst] = src[k].arc_span;
             if (!src[k].is_arc()) out.indices[nb++] = src[k].neighbor;
         }
-        // Ascending neighbours: a handful per agent, insertion sort.
-        Index* first = out.indices.data() + out.indptr[ii];
-        Index* last = out.indices.data() + out.indptr[ii + 1];
-        for (Index* x = first + 1; x < last; ++x)
-            for (Index* y = x; y > first && *y < *(y - 1); --y) std::swap(*y, *(y - 1));
+        detail::sort_small(out.indices.data() + out.indptr[ii], out.indices.data() + out.indptr[ii + 1]);
     }
     tracker.report_all();
     return out;

@@ -259,7 +259,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     r.cx = m.centroid.x();
                     r.cy = m.centroid.y();
                 }
-                std::sort(mine.begin(), mine.end());
+                detail::sort_small(mine.data(), mine.data() + mine.size());
                 mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
                 if (!bounds.empty()) {
                     cand.clear();
