@@ -78,7 +78,8 @@ inline SliceSummary run_slice(SliceTracer& tracer, int k, int workers, SliceMode
         tracer.trace();
     }
     SliceSummary s;
-    s.n_components = tracer.label_components();
+    // A lone worker traced everything from the area's corners: one anchored whole, nothing to join.
+    s.n_components = workers == 1 ? tracer.single_component() : tracer.label_components();
     s.anchored = tracer.anchored();
     for (std::int32_t j : rows_left) s.left_links.push_back(tracer.component_at(left, j));
     for (std::int32_t j : rows_right) s.right_links.push_back(tracer.component_at(right - 1, j));

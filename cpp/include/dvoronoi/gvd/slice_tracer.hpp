@@ -144,6 +144,14 @@ public:
         return count;
     }
 
+    /// The same when every traced cell grew from an area-corner seed (a lone worker): one anchored
+    /// component, without the union-find. Returns the count (0 when nothing was traced).
+    std::int32_t single_component() {
+        component_.assign(cells_.size(), 0);
+        anchored_.assign(cells_.empty() ? 0 : 1, 1);
+        return cells_.empty() ? 0 : 1;
+    }
+
     /// Component of traced cell (i, j), or -1 if it was not traced.
     std::int32_t component_at(std::int32_t i, std::int32_t j) const {
         if (i < c0_ || i >= c1_ || j < 0 || j >= grid_.ny) return -1;
