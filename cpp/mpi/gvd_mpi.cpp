@@ -171,6 +171,7 @@ int run(const Args& a, int rank, int size) {
     std::vector<std::uint8_t> keep(static_cast<std::size_t>(summary.n_components));
     MPI_Scatterv(keep_all.data(), keep_counts.data(), keep_displs.data(), MPI_UINT8_T, keep.data(), summary.n_components,
                  MPI_UINT8_T, 0, MPI_COMM_WORLD);
+    const unsigned long long traced = tracer.size(), traced_bytes = tracer.memory_bytes();  // before the hand-over
     std::vector<gvd::TracedCell> mine;
     gvd::append_kept(tracer, keep, mine);
     std::vector<gvd::TracedCell> cells = gather(mine, rank, size);  // same binary on every rank: bytes are fine
@@ -178,7 +179,7 @@ int run(const Args& a, int rank, int size) {
     // Statistics.
     const gvd::QueryContext& c = tracer.context();
     unsigned long long local[6] = {c.queries, c.counters.part_evaluations, c.counters.edge_evaluations,
-                                   tracer.size(), lines, tracer.memory_bytes()};
+                                   traced, lines, traced_bytes};
     unsigned long long sum[6] = {0, 0, 0, 0, 0, 0}, peak = 0;
     MPI_Reduce(local, sum, 5, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
     MPI_Reduce(&local[5], &peak, 1, MPI_UNSIGNED_LONG_LONG, MPI_MAX, 0, MPI_COMM_WORLD);

@@ -203,6 +203,9 @@ def test_threads_give_the_single_worker_diagram(mode):
             assert np.array_equal(many.labels, one.labels)
             assert np.array_equal(many.clearance, one.clearance)
             assert many.stats["workers"] == k
+            # every traced cell is either kept or discarded by the join
+            assert many.stats["traced_cells"] - many.stats["discarded_cells"] == len(many.cells)
+        assert one.stats["traced_cells"] == len(one.cells) and one.stats["discarded_cells"] == 0
         if mode == "independent":
             assert many.stats["border_lines_scanned"] == 2 * (6 - 1)
         else:
@@ -240,6 +243,7 @@ def test_mpi_ranks_give_the_single_worker_diagram(tmp_path):
             assert got["cells"] == one["cells"], (k, mode)
             assert got["roadmap"] == one["roadmap"]
             assert got["stats"]["workers"] == k
+            assert got["stats"]["traced_cells"] - got["stats"]["discarded_cells"] == len(got["cells"]["col"])
 
 
 def test_visibility_test_gives_the_same_diagram_with_fewer_edge_distances():

@@ -21,6 +21,7 @@
 #include "dvoronoi/gvd/slice_tracer.hpp"
 #include "dvoronoi/gvd/team.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <future>
@@ -86,8 +87,14 @@ inline SliceSummary run_slice(SliceTracer& tracer, int k, int workers, SliceMode
     return s;
 }
 
-/// The kept cells of one slice.
+/// The kept cells of one slice (moved out of the tracer when it keeps them all: read its
+/// statistics first).
 inline void append_kept(SliceTracer& t, const std::vector<std::uint8_t>& keep, std::vector<TracedCell>& out) {
+    if (out.empty() && std::all_of(keep.begin(), keep.end(), [](std::uint8_t x) { return x != 0; })) {
+        out = t.take_cells();  // all of them: no copy
+        return;
+    }
+    out.reserve(out.size() + t.size());
     const auto& comp = t.components();
     for (std::size_t c = 0; c < t.size(); ++c)
         if (keep[static_cast<std::size_t>(comp[c])]) out.push_back(t.cell(c));
@@ -159,7 +166,6 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
     auto hand_over = [&](int k) {
         const auto uk = static_cast<std::size_t>(k);
         const double c0 = thread_cpu_seconds();
-        kept[uk].reserve(tracers[uk].size());
         append_kept(tracers[uk], keep[uk], kept[uk]);
         tracers[uk] = SliceTracer();
         cpu[uk] += thread_cpu_seconds() - c0;

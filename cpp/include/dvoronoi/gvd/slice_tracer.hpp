@@ -162,10 +162,10 @@ public:
     std::size_t size() const { return cells_.size(); }
 
     /// Traced cell k with its corner labels and exact smallest squared corner distance.
-    TracedCell cell(std::size_t k) const {
-        const Cell& c = cells_[k];
-        return TracedCell{c.i, c.j, c.labels, c.min_sq};
-    }
+    const TracedCell& cell(std::size_t k) const { return cells_[k]; }
+
+    /// Hands over every traced cell (the tracer is left without cells).
+    std::vector<TracedCell> take_cells() { return std::move(cells_); }
     const std::vector<std::int32_t>& components() const { return component_; }
     const std::vector<std::uint8_t>& anchored() const { return anchored_; }
     std::size_t corners_labelled() const { return labelled_; }
@@ -212,11 +212,7 @@ private:
         return c;
     }
 
-    struct Cell {
-        std::int32_t i, j;
-        std::array<std::int32_t, 4> labels;  // kept: the queue and the components read them again
-        double min_sq;                       // smallest squared corner distance
-    };
+    using Cell = TracedCell;  // the queue entry is the handed-over cell: a lone worker moves them out
 
     /// Labels of cell (i, j)'s corners: bottom-left, bottom-right, top-right, top-left.
     std::array<std::int32_t, 4> labels(std::int32_t i, std::int32_t j) {
