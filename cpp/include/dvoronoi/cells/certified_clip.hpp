@@ -276,6 +276,29 @@ public:
         return cut_run(k, s, outside);
     }
 
+    /// Cuts the cell with every loaded candidate's half-plane; false when a cut was uncertain.
+    /// Order: the nearest agent, the near ones (they shrink the cell to about its final size;
+    /// sorting them by distance costs more than it saves), then the far ones, which mostly fail the
+    /// screen: H_k holds the disk of radius |a_k| / 2, which holds the cell when that is beyond the
+    /// cell's reach (with room for the rounding of n2).
+    bool cut_loaded() {
+        const int nn = w_.nn;
+        if (!cut(nn)) return false;
+        const auto screened = [&](int k) {
+            const double r = reach();
+            return w_.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * r * r * (1.0 + 8.0 * kU);
+        };
+        for (std::size_t t = 0; t < w_.near; ++t) {
+            const int k = w_.order[t];
+            if (k != nn && !screened(k) && !cut(k)) return false;
+        }
+        for (std::size_t t = 0; t < w_.nfar; ++t) {
+            const int k = w_.far[t];
+            if (k != nn && !screened(k) && !cut(k)) return false;
+        }
+        return true;
+    }
+
     std::size_t size() const { return n_; }
     const CellVertex& vertex(std::size_t t) const { return w_.cur[t]; }
 
@@ -415,24 +438,8 @@ inline bool certified_clip_loaded(double radius, LimitedCell& out, ClipWorkspace
     if (!(w.lo > 1e-90 && w.hi < 1e90 && r2 > 1e-90 && r2 < 1e90)) return false;
     // The nearest neighbour, certified unique (else Boundary Scan breaks the tie exactly).
     if (m > 1 && !(w.lo2 - w.lo > 8.0 * kU * w.lo2)) return false;
-    // Clipping order: the nearest agent, the near ones (they shrink the cell to about its final
-    // size; sorting them by distance costs more than it saves), then the far ones, which mostly
-    // fail the screen: H_k holds the disk of radius |a_k| / 2, which holds the cell when that is
-    // beyond the cell's reach (with room for the rounding of n2).
     Clipper clipper(w, radius, m);
-    if (!clipper.cut(nn)) return false;
-    const auto screened = [&](int k) {
-        const double reach = clipper.reach();
-        return w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU);
-    };
-    for (std::size_t t = 0; t < w.near; ++t) {
-        const int k = w.order[t];
-        if (k != nn && !screened(k) && !clipper.cut(k)) return false;
-    }
-    for (std::size_t t = 0; t < w.nfar; ++t) {
-        const int k = w.far[t];
-        if (k != nn && !screened(k) && !clipper.cut(k)) return false;
-    }
+    if (!clipper.cut_loaded()) return false;
     // The cycle of boundary bisectors from the nearest neighbour's, and the vertex/arc labels.
     const std::size_t s = clipper.size();
     std::size_t start = s;

@@ -41,19 +41,7 @@ inline bool certified_exact_cell(double radius, ExactClip& out, ClipWorkspace& w
     w.add_square(radius);
     Clipper clipper(w, radius, m);
     clipper.start_square();
-    const auto screened = [&](int k) {
-        const double reach = clipper.reach();
-        return w.n2[static_cast<std::size_t>(k)] * (1.0 - 8.0 * kU) > 4.0 * reach * reach * (1.0 + 8.0 * kU);
-    };
-    if (!clipper.cut(w.nn)) return false;
-    for (std::size_t t = 0; t < w.near; ++t) {
-        const int k = w.order[t];
-        if (k != w.nn && !screened(k) && !clipper.cut(k)) return false;
-    }
-    for (std::size_t t = 0; t < w.nfar; ++t) {
-        const int k = w.far[t];
-        if (k != w.nn && !screened(k) && !clipper.cut(k)) return false;
-    }
+    if (!clipper.cut_loaded()) return false;
     const std::size_t s = clipper.size();
     out.side.resize(s);
     out.vertex.resize(s);

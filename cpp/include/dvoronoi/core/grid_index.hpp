@@ -19,6 +19,29 @@
 
 namespace dvoronoi {
 
+namespace detail {
+/// How many k in [lo, hi) lie strictly within 2R of their centre, exactly: `d2(k)` is the rounded
+/// squared distance, `exact(k)` the exact test (pred::within_2r > 0). Branch-free (inside or not is
+/// a coin flip near the circle); only the rare agents within rounding of the circle take the exact
+/// test, in a second pass.
+template <class D2, class Exact>
+Index count_within_2r(std::size_t lo, std::size_t hi, double radius, D2&& d2, Exact&& exact) {
+    const double r2 = 4.0 * radius * radius, r2lo = r2 * (1.0 - 1e-9), r2hi = r2 * (1.0 + 1e-9);
+    Index inside = 0;
+    bool near_circle = false;
+    for (std::size_t k = lo; k < hi; ++k) {
+        const double d = d2(k);
+        inside += d < r2lo;
+        near_circle |= (d >= r2lo) & (d <= r2hi);
+    }
+    for (std::size_t k = lo; near_circle && k < hi; ++k) {
+        const double d = d2(k);
+        if (d >= r2lo && d <= r2hi) inside += exact(k);
+    }
+    return inside;
+}
+}  // namespace detail
+
 class GridIndex {
 public:
     /// Index `pts` (kept by reference: it must outlive the index) for queries of range `range` (2R).
@@ -163,31 +186,19 @@ public:
             return count;
         }
         constexpr double u = 1.1102230246251565e-16;
-        const double r2 = rr * rr, r2lo = r2 * (1.0 - 1e-9);
+        const double r2 = rr * rr;
         Index count = 0;
-        const double r2hi = r2 * (1.0 + 1e-9);
+        const auto d2 = [&](std::size_t s) {
+            const double dx = xs_[s] - x, dy = ys_[s] - y;
+            return dx * dx + dy * dy;
+        };
+        const auto exact = [&](std::size_t s) { return pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0; };
         const auto scan = [&](std::int64_t cx, std::int64_t cy0, std::int64_t cy1) {
             if (cy0 > cy1) return;
             std::size_t lo, hi;
             column_run(cx, cy0, cy1, lo, hi);
-            // Branch-free (inside or not is a coin flip near the circle); the rare agents within
-            // rounding of the circle are decided exactly in a second pass. The agent itself counts
-            // here (distance 0) and is taken off.
-            Index inside = 0;
-            bool near_circle = false;
-            for (std::size_t s = lo; s < hi; ++s) {
-                const double dx = xs_[s] - x, dy = ys_[s] - y;
-                const double d = dx * dx + dy * dy;
-                inside += d < r2lo;
-                near_circle |= (d >= r2lo) & (d <= r2hi);
-            }
-            if (near_circle)
-                for (std::size_t s = lo; s < hi; ++s) {
-                    const double dx = xs_[s] - x, dy = ys_[s] - y;
-                    const double d = dx * dx + dy * dy;
-                    if (d >= r2lo && d <= r2hi) inside += pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0;
-                }
-            count += inside - (pos >= lo && pos < hi ? 1 : 0);
+            // The agent itself counts there (distance 0) and is taken off.
+            count += detail::count_within_2r(lo, hi, radius, d2, exact) - (pos >= lo && pos < hi ? 1 : 0);
         };
         const auto row_of = [&](double v) {  // row key of v, clamped (a double: no overflow)
             return std::min(std::max(std::floor((v - y0_) / cell_), -1.0), static_cast<double>(ny_));

@@ -13,6 +13,7 @@
 // It reports k and the agents strictly within 2 R_k when it certified there, else all others.
 #pragma once
 
+#include "dvoronoi/cells/asr.hpp"
 #include "dvoronoi/core/convex_hull.hpp"
 #include "dvoronoi/core/grid_index.hpp"
 #include "dvoronoi/core/predicates.hpp"
@@ -71,7 +72,28 @@ public:
         return {k, std::isfinite(4.0 * r) && inside(r)};
     }
 
-    /// The agents strictly within 2R of the agent at grid position `pos` (all others when `all`).
+    /// The same for a cell as cells/asr.hpp returns it (edges counter-clockwise; a vertex between
+    /// consecutive edges).
+    std::pair<int, bool> stop(const Vec2& c, double d1, const VoronoiCell& cell) const {
+        const std::size_t s = cell.edges.size();
+        const bool bounded = !cell.on_hull && s >= 3;
+        double reach = std::numeric_limits<double>::infinity();
+        if (bounded) {
+            reach = 0.0;
+            for (const VoronoiEdge& e : cell.edges) reach = std::max(reach, (e.start - c).norm());
+        }
+        const auto at = [&](Index j) { return Vec2(pts_(j, 0), pts_(j, 1)); };
+        return stop(c, d1, reach, [&](double radius) {
+            for (std::size_t t = 0; bounded && t < s; ++t)
+                if (pred::vertex_in_disk(c, at(cell.edges[t == 0 ? s - 1 : t - 1].neighbor), at(cell.edges[t].neighbor),
+                                         radius) >= 0)
+                    return false;
+            return bounded;
+        });
+    }
+
+    /// The agents strictly within 2R of the agent at grid position `pos` (all others when the
+    /// radius did not certify the cell).
     Index used(std::size_t pos, double radius, bool certified) const {
         return certified ? index_.count_within_at(pos, radius) : static_cast<Index>(pts_.rows()) - 1;
     }

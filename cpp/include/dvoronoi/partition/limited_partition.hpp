@@ -93,8 +93,8 @@ inline void prefetch(const void* p) {
 }
 
 /// Sorts a handful of indices (a cell's neighbours) ascending: each lands at its rank (ties by
-/// position), counted without branches (insertion sort's branches mispredict about once per element on
-/// neighbours in angular order, which costs more than these n^2 comparisons).
+/// position), counted without branches. Neighbours come in angular order, where the branches of an
+/// insertion sort are unpredictable; measured, this is on par with it or up to ~1% faster per run.
 inline void sort_small(Index* first, Index* last) {
     constexpr std::ptrdiff_t kSmall = 12;
     const std::ptrdiff_t n = last - first;

@@ -189,19 +189,9 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                         // Agents strictly within 2 R_k: among the loaded ones when R_k <= R.
                         const double rk = std::ldexp(d1, k - 1);
                         if (certified && rk <= one_shot) {
-                            // Branch-free; the rare agents within rounding of the circle exactly.
-                            const double r2 = 4.0 * rk * rk, r2lo = r2 * (1.0 - 1e-9), r2hi = r2 * (1.0 + 1e-9);
-                            bool near_circle = false;
-                            for (std::size_t t = 0; t < clip_ws.m; ++t) {
-                                const double d = clip_ws.n2[t];
-                                r.used += d < r2lo;
-                                near_circle |= (d >= r2lo) & (d <= r2hi);
-                            }
-                            for (std::size_t t = 0; near_circle && t < clip_ws.m; ++t) {
-                                const double d = clip_ws.n2[t];
-                                if (d >= r2lo && d <= r2hi)
-                                    r.used += pred::within_2r(c, Vec2(clip_ws.px[t], clip_ws.py[t]), rk) > 0;
-                            }
+                            r.used = detail::count_within_2r(
+                                0, clip_ws.m, rk, [&](std::size_t t) { return clip_ws.n2[t]; },
+                                [&](std::size_t t) { return pred::within_2r(c, Vec2(clip_ws.px[t], clip_ws.py[t]), rk) > 0; });
                         } else {
                             r.used = schedule.used(spos, rk, certified);
                         }
@@ -233,22 +223,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell, i, cert, &clip_ws);
                     r.hull = cell.on_hull ? 1 : 0;
                     if (n > 1) {  // the schedule's numbers from the exact cell
-                        const auto at = [&](Index j) { return Vec2(out.points(j, 0), out.points(j, 1)); };
-                        const std::size_t s = cell.edges.size();
-                        double reach = std::numeric_limits<double>::infinity();
-                        if (!cell.on_hull) {
-                            reach = 0.0;
-                            for (const VoronoiEdge& e : cell.edges) reach = std::max(reach, (e.start - c).norm());
-                        }
-                        const auto inside = [&](double radius) {
-                            if (cell.on_hull || s < 3) return false;
-                            for (std::size_t t = 0; t < s; ++t)
-                                if (pred::vertex_in_disk(c, at(cell.edges[t == 0 ? s - 1 : t - 1].neighbor),
-                                                         at(cell.edges[t].neighbor), radius) >= 0)
-                                    return false;
-                            return true;
-                        };
-                        const auto [k, certified] = schedule.stop(c, first, reach, inside);
+                        const auto [k, certified] = schedule.stop(c, first, cell);
                         r.steps = k;
                         r.used = schedule.used(spos, std::ldexp(first, k - 1), certified);
                     }
