@@ -102,7 +102,7 @@ struct VoronoiPartition {
 /// \throws InputError for non-finite coordinates; CoincidentError for coinciding agents.
 /// \note With the Boundary Scan inner step, each agent first tries one certified clipping at a
 ///       radius R of 1.5 mean spacings (cells/certified_exact_cell.hpp), from one grid query (about
-///       7 agents in a uniform swarm); that certifies ~97% of a uniform swarm's cells. Every other
+///       28 agents within 2R in a uniform swarm); that certifies ~97% of a uniform swarm's cells. Every other
 ///       agent (and every agent with inner = Evt) runs the radius schedule of cells/asr.hpp; from step
 ///       EmptyCircleCertificate::kFromStep on, a cell that the radius does not certify is certified
 ///       by empty vertex circles and the global convex hull (partition/empty_circle_certificate.hpp),
