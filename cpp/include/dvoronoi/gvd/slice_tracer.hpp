@@ -83,6 +83,7 @@ public:
         if (l[0] == l[1] && l[1] == l[2] && l[2] == l[3]) return false;
         index_of_.at(i, j) = static_cast<std::int32_t>(cells_.size());
         if (anchor) anchors_.push_back(static_cast<std::uint32_t>(cells_.size()));
+        waiting_.push_back(static_cast<std::uint32_t>(cells_.size()));
         // The clearance now, while the corners are in cache (the hand-over reads cells in order).
         cells_.push_back({i, j, l, min_sq(i, j)});
         return true;
@@ -106,8 +107,9 @@ public:
 
     /// Runs the queue empty (Section 2's loop).
     void trace() {
-        while (head_ < cells_.size()) {
-            const Cell c = cells_[head_++];
+        while (!waiting_.empty()) {
+            const Cell c = cells_[waiting_.back()];
+            waiting_.pop_back();
             const auto& l = c.labels;
             if (l[0] != l[1]) seed(c.i, c.j - 1);  // bottom edge
             if (l[1] != l[2]) seed(c.i + 1, c.j);  // right edge
@@ -227,9 +229,13 @@ private:
     LazyGrid<Corner> corners_;         // corner columns [c0, c1]
     LazyGrid<std::int32_t> index_of_;  // cell -> position in cells_, -1 when not traced
     std::size_t labelled_ = 0;
-    std::vector<Cell> cells_;  // also the queue: cells_[head_..] are waiting
+    std::vector<Cell> cells_;
     std::vector<std::uint32_t> anchors_;  // cells seeded at the area's corners
-    std::size_t head_ = 0;
+    // Cells queued and not yet taken, taken last-in first-out: the trace then follows one branch of
+    // the diagram at a time, so consecutive cells share corner tiles, obstacle buckets and the
+    // previous nearest part (a first-in first-out queue hops between all branches' fronts). The
+    // traced set is what is reachable from the seeds, whatever the order.
+    std::vector<std::uint32_t> waiting_;
     std::vector<std::int32_t> component_;
     std::vector<std::uint8_t> anchored_;
 };

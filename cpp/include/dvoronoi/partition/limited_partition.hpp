@@ -18,6 +18,9 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace dvoronoi {
 
@@ -83,15 +86,6 @@ using ProgressFn = std::function<void(Index, Index)>;
 
 namespace detail {
 
-/// A hint to load the cache line at p (no effect on results).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p);
-#else
-    (void)p;
-#endif
-}
-
 /// Sorts a handful of indices (a cell's neighbours) ascending: each lands at its rank (ties by
 /// position), counted without branches. Neighbours come in angular order, where the branches of an
 /// insertion sort are unpredictable; measured, this is on par with it or up to ~1% faster per run.
@@ -109,6 +103,32 @@ inline void sort_small(Index* first, Index* last) {
         tmp[rank] = first[a];
     }
     std::copy(tmp, tmp + n, first);
+}
+
+/// Maps the pages of [p, p + bytes) by one system call (MADV_POPULATE_WRITE, Linux 5.14+) instead
+/// of one page fault each; elsewhere, on older kernels or for small buffers it does nothing and the
+/// pages fault in as before. Measured: page faults are about a sixth of limited_cells at 1e6 agents
+/// (700 MB of results and scratch), and mapping the pages up front takes about a quarter off that.
+inline void prefault(const void* p, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    constexpr std::uintptr_t kPage = 4096;
+    if (bytes < (std::size_t{1} << 20)) return;
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t lo = (at + kPage - 1) & ~(kPage - 1), hi = (at + bytes) & ~(kPage - 1);
+    if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_POPULATE_WRITE);  // a hint: failure is harmless
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+
+/// v.assign(n, value) on prefaulted pages.
+template <class T>
+void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
+    v.clear();
+    v.reserve(n);
+    prefault(v.data(), n * sizeof(T));
+    v.assign(n, value);
 }
 
 /// Where each agent sits in `order` (the grid order the drivers compute in): pos_of[i].
@@ -220,10 +240,11 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     out.radius = radius;
     out.method = method;
     out.points = points;
-    out.areas.assign(static_cast<std::size_t>(n), 0.0);
-    out.perimeters.assign(static_cast<std::size_t>(n), 0.0);
+    detail::assign_prefaulted(out.areas, static_cast<std::size_t>(n));
+    detail::assign_prefaulted(out.perimeters, static_cast<std::size_t>(n));
     out.centroids.resize(n, 2);
-    out.candidates.assign(static_cast<std::size_t>(n), 0);
+    detail::prefault(out.centroids.data(), static_cast<std::size_t>(out.centroids.size()) * sizeof(double));
+    detail::assign_prefaulted(out.candidates, static_cast<std::size_t>(n));
     if (n == 0) return out;
 
     const GridIndex index(out.points, 2.0 * radius);
@@ -244,7 +265,8 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         double area, perimeter, cx, cy;
         Index candidates, pieces, edges, first;  // first: offset of its pieces in its block's buffer
     };
-    std::vector<Result> by_pos(static_cast<std::size_t>(n));
+    std::vector<Result> by_pos;
+    detail::assign_prefaulted(by_pos, static_cast<std::size_t>(n), Result{});
     detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)
@@ -261,6 +283,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
             // About six pieces per cell in a swarm: room for seven, so the buffer rarely regrows
             // (each regrowth copies it and faults in fresh pages).
             blk.pieces.reserve(static_cast<std::size_t>(hi - lo) * 7);
+            detail::prefault(blk.pieces.data(), blk.pieces.capacity() * sizeof(Piece));
             for (Index pos = lo; pos < hi; ++pos) {
                 const auto pp = static_cast<std::size_t>(pos);
                 const Vec2 c = index.point_at(pp);
@@ -292,8 +315,8 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
 
     // Lay out the results, the pieces and the neighbour CSR in input order.
     const std::vector<Index> pos_of = detail::positions_of(order);
-    out.piece_ptr.resize(static_cast<std::size_t>(n) + 1);
-    out.indptr.resize(static_cast<std::size_t>(n) + 1);
+    detail::assign_prefaulted(out.piece_ptr, static_cast<std::size_t>(n) + 1);
+    detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1);
     detail::gather_in_input_order(pos_of, by_pos, [&](Index i, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
         out.areas[ii] = r.area;
@@ -305,11 +328,11 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         out.indptr[ii + 1] = out.indptr[ii] + r.edges;
     });
     const auto total = static_cast<std::size_t>(out.piece_ptr.back());
-    out.piece_neighbor.resize(total);
-    out.piece_x.resize(total);
-    out.piece_y.resize(total);
-    out.piece_span.resize(total);
-    out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
+    detail::assign_prefaulted(out.piece_neighbor, total);
+    detail::assign_prefaulted(out.piece_x, total);
+    detail::assign_prefaulted(out.piece_y, total);
+    detail::assign_prefaulted(out.piece_span, total);
+    detail::assign_prefaulted(out.indices, static_cast<std::size_t>(out.indptr.back()));
 #pragma omp parallel for num_threads(team) schedule(static)
     for (Index i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
