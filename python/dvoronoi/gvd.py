@@ -44,15 +44,6 @@ __all__ = ["grid_voronoi", "GridVoronoi", "obstacles_from_occupancy_grid", "load
 _NODE_KINDS = ("vertex", "end", "junction")
 
 
-def _to_plain(obj: Any) -> Any:
-    """numpy scalars/arrays -> Python numbers/lists, for json.dumps."""
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, np.generic):
-        return obj.item()
-    raise TypeError(f"object of type {type(obj).__name__} is not JSON serialisable")
-
-
 def _area_json(area: Any) -> Dict[str, Any]:
     if isinstance(area, dict):
         return area
@@ -88,7 +79,7 @@ def load_obstacles(obstacles: Any, area: Any = None) -> "_core._GvdScene":
     elif "area" not in doc:
         raise ValueError("area: required (a box (xmin, ymin, xmax, ymax) or a convex polygon), "
                          "either as the area= argument or in the obstacle document")
-    return _core._GvdScene(json.dumps(doc, default=_to_plain), name)
+    return _core._GvdScene.from_doc(doc, name)
 
 
 class GridVoronoi(Result):
@@ -112,15 +103,26 @@ class GridVoronoi(Result):
         self.robot_radius = float(core.robot_radius)
         self.n_obstacles = int(core.n_obstacles)
         self.n_labels = int(core.n_labels)
-        col, row = core.col, core.row
-        self.cells = np.stack([col, row], axis=1).astype(np.int64)
-        self.centers = np.stack([x0 + (col + 0.5) * h, y0 + (row + 0.5) * h], axis=1)
         self.labels = core.labels
         self.clearance = core.clearance
         self.blocked = core.blocked
         self.vertices = core.vertices
         self.stats: Dict[str, Any] = core.stats
         self._relation: Optional[Tuple[np.ndarray, np.ndarray]] = None
+
+    # cells and centers are built on first use: a few ms for a large diagram that many callers
+    # never read.
+    @functools.cached_property
+    def cells(self) -> np.ndarray:
+        """``(n, 2)`` int64 ``(col, row)`` of every traced cell."""
+        return np.stack([self._core.col, self._core.row], axis=1).astype(np.int64)
+
+    @functools.cached_property
+    def centers(self) -> np.ndarray:
+        """``(n, 2)`` cell centers."""
+        x0, y0 = self.origin
+        h = self.cell_size
+        return np.stack([x0 + (self._core.col + 0.5) * h, y0 + (self._core.row + 0.5) * h], axis=1)
 
     @property
     def indptr(self) -> np.ndarray:  # type: ignore[override]

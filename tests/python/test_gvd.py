@@ -383,6 +383,25 @@ def test_bad_obstacles_name_index_and_field(doc, message):
         dv.grid_voronoi(doc, resolution=16)
 
 
+def test_python_documents_equal_their_json_text():
+    # Documents of Python objects (numpy arrays and scalars, tuples) are read without a JSON text round
+    # trip: the scene must be the one parsed from the text json.dumps writes.
+    doc = mixed_shapes()
+    text = dv.grid_voronoi(json.loads(json.dumps(doc)), resolution=64)
+    numpyish = {"area": {"box": np.array(doc["area"]["box"], dtype=np.float64)},
+                "obstacles": [{k: (np.asarray(v) if k in ("vertices", "center", "position") else
+                                   np.float64(v) if k == "radius" else v) for k, v in o.items()}
+                              for o in doc["obstacles"]]}
+    a = dv.grid_voronoi(numpyish, resolution=64)
+    assert np.array_equal(a.cells, text.cells) and np.array_equal(a.labels, text.labels)
+    with pytest.raises(TypeError, match=r"obstacles\[0\]\.position\[1\]: object of type object is not JSON serialisable"):
+        dv.grid_voronoi({"area": {"box": [0, 0, 1, 1]}, "obstacles": [{"type": "point", "position": [0.5, object()]}]},
+                        resolution=16)
+    with pytest.raises(ValueError, match=r"obstacles\[0\]\.position\[0\]: must be finite"):
+        dv.grid_voronoi({"area": {"box": [0, 0, 1, 1]}, "obstacles": [{"type": "point", "position": [float("nan"), 0.5]}]},
+                        resolution=16)
+
+
 def test_bad_arguments_and_files(tmp_path):
     doc = mixed_shapes()
     with pytest.raises(ValueError, match="resolution"):

@@ -59,16 +59,26 @@ inline double number(const json& j, const std::string& path) {
     return v;
 }
 
-inline Vec2 point(const json& j, const std::string& path) {
-    if (!j.is_array() || j.size() != 2) throw InputError(path + ": expected a point [x, y], got " + (j.is_array() ? "an array of " + std::to_string(j.size()) : type_name(j)));
-    return Vec2(number(j[0], path + "[0]"), number(j[1], path + "[1]"));
+/// A point [x, y]; `path` and `at` name it in messages ("path[at]", or "path" when at < 0). The
+/// name is built only for a message: a map has thousands of points.
+inline Vec2 point(const json& j, const std::string& path, std::ptrdiff_t at = -1) {
+    const auto name = [&] { return at < 0 ? path : path + "[" + std::to_string(at) + "]"; };
+    if (!j.is_array() || j.size() != 2) throw InputError(name() + ": expected a point [x, y], got " + (j.is_array() ? "an array of " + std::to_string(j.size()) : type_name(j)));
+    double v[2];
+    for (std::size_t k = 0; k < 2; ++k) {
+        const json& c = j[k];
+        v[k] = c.is_number() ? c.get<double>() : 0.0;
+        if (!c.is_number() || !std::isfinite(v[k])) number(c, name() + "[" + std::to_string(k) + "]");  // throws
+    }
+    return Vec2(v[0], v[1]);
 }
 
 inline std::vector<Vec2> points(const json& j, const std::string& path, std::size_t at_least) {
     if (!j.is_array()) throw InputError(path + ": expected an array of points [[x, y], ...], got " + type_name(j));
     if (j.size() < at_least) throw InputError(path + ": needs at least " + std::to_string(at_least) + " points, got " + std::to_string(j.size()));
     std::vector<Vec2> out;
-    for (std::size_t k = 0; k < j.size(); ++k) out.push_back(point(j[k], path + "[" + std::to_string(k) + "]"));
+    out.reserve(j.size());
+    for (std::size_t k = 0; k < j.size(); ++k) out.push_back(point(j[k], path, static_cast<std::ptrdiff_t>(k)));
     return out;
 }
 
@@ -132,6 +142,8 @@ inline gvd::Shape shape(const json& j, const std::string& path, bool allow_union
 
 }  // namespace detail
 
+inline ObstacleFile obstacles_from_json(const nlohmann::json& doc, const std::string& name);
+
 /// Parses obstacle JSON text. `name` prefixes every message (a file name, or "obstacles").
 /// \throws InputError as described above.
 inline ObstacleFile parse_obstacles(const std::string& text, const std::string& name) {
@@ -159,6 +171,12 @@ inline ObstacleFile parse_obstacles(const std::string& text, const std::string& 
         throw InputError(name + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " +
                          (pos == std::string::npos ? what : what.substr(pos)));
     }
+    return obstacles_from_json(doc, name);
+}
+
+/// The same from a parsed document (e.g. converted from Python objects without a text round trip).
+inline ObstacleFile obstacles_from_json(const nlohmann::json& doc, const std::string& name) {
+    using nlohmann::json;
     ObstacleFile out;
     try {
         if (!doc.is_object()) throw InputError("expected an object {\"area\": ..., \"obstacles\": [...]}");
