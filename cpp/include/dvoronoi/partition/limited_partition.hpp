@@ -141,14 +141,16 @@ inline std::vector<Index> positions_of(const std::vector<Index>& order) {
 /// How many agents ahead the gathers prefetch.
 inline constexpr Index kAhead = 16;
 
-/// Reads per-agent results stored by grid position in input order: fn(i, by_pos[pos_of[i]]). The
-/// reads are scattered, so a few agents ahead are prefetched and the misses overlap.
+/// Reads per-agent results stored by grid position in input order: fn(i, pos, by_pos[pos]) with
+/// pos = pos_of[i]. The reads are scattered, so a few agents ahead are prefetched and the misses
+/// overlap.
 template <class R, class Fn>
 void gather_in_input_order(const std::vector<Index>& pos_of, const std::vector<R>& by_pos, Fn&& fn) {
     const auto n = static_cast<Index>(pos_of.size());
     for (Index i = 0; i < n; ++i) {
         if (i + kAhead < n) prefetch(&by_pos[static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i + kAhead)])]);
-        fn(i, by_pos[static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i)])]);
+        const auto pos = static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i)]);
+        fn(i, pos, by_pos[pos]);
     }
 }
 
@@ -317,8 +319,12 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     const std::vector<Index> pos_of = detail::positions_of(order);
     detail::assign_prefaulted(out.piece_ptr, static_cast<std::size_t>(n) + 1);
     detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1);
-    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, const Result& r) {
+    // Where each agent's pieces are, in input order: the piece pass then reads only the pieces at
+    // random, not the records again.
+    std::vector<const Piece*> piece_src(static_cast<std::size_t>(n));
+    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, std::size_t pos, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
+        piece_src[ii] = blocks[pos / static_cast<std::size_t>(block)].pieces.data() + r.first;
         out.areas[ii] = r.area;
         out.perimeters[ii] = r.perimeter;
         out.centroids(i, 0) = r.cx;
@@ -336,17 +342,11 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
 #pragma omp parallel for num_threads(team) schedule(static)
     for (Index i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
-        // Two stages of prefetch: the agent's record 2 * kAhead ahead, its pieces kAhead ahead.
-        const auto piece_src = [&](Index i_) {
-            const auto pos = static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i_)]);
-            return blocks[pos / static_cast<std::size_t>(block)].pieces.data() + by_pos[pos].first;
-        };
-        if (i + 2 * detail::kAhead < n) detail::prefetch(&by_pos[static_cast<std::size_t>(pos_of[ii + 2 * detail::kAhead])]);
         if (i + detail::kAhead < n) {
-            const Piece* ahead = piece_src(i + detail::kAhead);
+            const Piece* ahead = piece_src[ii + detail::kAhead];
             for (int line = 0; line < 4; ++line) detail::prefetch(ahead + 2 * line);
         }
-        const Piece* src = piece_src(i);
+        const Piece* src = piece_src[ii];
         auto dst = static_cast<std::size_t>(out.piece_ptr[ii]);
         auto nb = static_cast<std::size_t>(out.indptr[ii]);
         const Index cnt = out.piece_ptr[ii + 1] - out.piece_ptr[ii];

@@ -255,8 +255,11 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
 
     // Lay out the results and the neighbour CSR in input order (scattered reads, prefetched).
     const std::vector<Index> pos_of = detail::positions_of(order);
-    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, const Result& r) {
+    // Where each agent's neighbours are, in input order (the copy then reads only those at random).
+    std::vector<const Index*> nbr_src(static_cast<std::size_t>(n));
+    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, std::size_t pos, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
+        nbr_src[ii] = block_nbrs[pos / static_cast<std::size_t>(block)].data() + r.first;
         out.areas[ii] = r.area;
         out.centroids(i, 0) = r.cx;
         out.centroids(i, 1) = r.cy;
@@ -269,13 +272,8 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
 #pragma omp parallel for num_threads(team) schedule(static)
     for (Index i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
-        const auto pos = static_cast<std::size_t>(pos_of[ii]);
-        if (i + detail::kAhead < n) {
-            const auto ahead = static_cast<std::size_t>(pos_of[ii + detail::kAhead]);
-            detail::prefetch(block_nbrs[ahead / static_cast<std::size_t>(block)].data() + by_pos[ahead].first);
-        }
-        const Index* src = block_nbrs[pos / static_cast<std::size_t>(block)].data() + by_pos[pos].first;
-        std::copy(src, src + by_pos[pos].count, out.indices.begin() + out.indptr[ii]);
+        if (i + detail::kAhead < n) detail::prefetch(nbr_src[ii + detail::kAhead]);
+        std::copy(nbr_src[ii], nbr_src[ii] + (out.indptr[ii + 1] - out.indptr[ii]), out.indices.begin() + out.indptr[ii]);
     }
     tracker.report_all();
     return out;
