@@ -116,16 +116,6 @@ gvd::SliceMode parse_mode(const std::string& m) {
 
 void bind_gvd(py::module_& m) {
     py::class_<PyScene, std::shared_ptr<PyScene>>(m, "_GvdScene", "Compiled obstacles and working area (private).")
-        .def(py::init([](const std::string& text, const std::string& name) {
-                 auto s = std::make_shared<PyScene>();
-                 try {
-                     s->file = dvoronoi::io::parse_obstacles(text, name);
-                 } catch (const dvoronoi::InputError& e) {
-                     throw py::value_error(e.what());
-                 }
-                 return s;
-             }),
-             py::arg("text"), py::arg("name"))
         .def_static("from_doc", [](py::handle doc, const std::string& name) {
                  nlohmann::json j;
                  try {

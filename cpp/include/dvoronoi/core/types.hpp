@@ -83,7 +83,6 @@ void require_finite_points(const Eigen::MatrixBase<Derived>& pts, const char* na
                                  std::to_string(d) + "] is not finite (NaN or inf)");
 }
 
-
 /// A hint to load the cache line at p (no effect on results).
 inline void prefetch(const void* p) {
 #if defined(__GNUC__) || defined(__clang__)

@@ -191,9 +191,8 @@ inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vecto
         run_team(static_cast<int>(K), [&](int k) { fn(static_cast<std::size_t>(k)); });
     };
     // Per slice: order by (row, col) (counting sort by row, then each row by column: rows hold few
-    // cells) and count the cells of each row.
-    // The sort keys are (column << 32 | cell), so sorting compares integers instead of reading
-    // cells in trace order (a cache miss each).
+    // cells) and count the cells of each row. The keys are (column << 32 | cell), so sorting
+    // compares integers instead of reading cells in trace order (a cache miss each).
     std::vector<std::vector<std::uint64_t>> order(K);
     std::vector<std::vector<std::size_t>> start(K);
     run([&](std::size_t k) {
