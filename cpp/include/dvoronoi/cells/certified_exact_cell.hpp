@@ -5,7 +5,9 @@
 // side of the square left and every vertex lies certainly strictly inside the disk of radius R, it
 // is the agent's exact Voronoi cell: the same certificate as Adjust-Sensing-Radius (an agent not
 // closer than 2R has its bisector at distance >= R, so it cannot cut a polygon inside the open disk).
-// Otherwise (ties, a far vertex, an unbounded cell) it gives up and the caller runs ASR itself.
+// Otherwise (ties, a far vertex, an unbounded cell) it gives up and the caller finishes the cell by
+// other means. certified_candidate_cell is the same clipping from any square, for candidate sets
+// known to hold every neighbour.
 //
 // Why a square and not the disk: the exact cell has no arcs, so starting from a polygon spares the
 // chord ends (square roots) and the arc bookkeeping of the limited cell; why one radius for every
@@ -29,17 +31,18 @@ struct ExactClip {
     std::vector<clip::CellVertex> vertex;
 };
 
-/// The exact cell of w.c among the loaded candidates (every agent strictly within 2R of c, pairwise
-/// distinct and distinct from c), certified as above; false when it gives up (`out` unspecified).
-inline bool certified_exact_cell(double radius, ExactClip& out, ClipWorkspace& w) {
+/// The cell of w.c among the loaded candidates (pairwise distinct and distinct from c, at any
+/// distance) when it lies within the square of half-side `half` around c: clipped from that square,
+/// every decision certified; false when a side of the square is left or a decision is uncertain
+/// (`out` unspecified).
+inline bool certified_candidate_cell(double half, ExactClip& out, ClipWorkspace& w) {
     using namespace clip;
     const std::size_t m = w.m;
     if (m < 3) return false;
-    const double r2 = radius * radius;
     // Products of up to three squared lengths must neither underflow nor overflow.
-    if (!(w.lo > 1e-90 && w.hi < 1e90 && r2 > 1e-90 && r2 < 1e90)) return false;
-    w.add_square(radius);
-    Clipper clipper(w, radius, m);
+    if (!(w.lo > 1e-90 && w.hi < 1e90 && half * half > 1e-90 && half * half < 1e90)) return false;
+    w.add_square(half);
+    Clipper clipper(w, half, m);
     clipper.start_square();
     if (!clipper.cut_loaded()) return false;
     const std::size_t s = clipper.size();
@@ -47,10 +50,21 @@ inline bool certified_exact_cell(double radius, ExactClip& out, ClipWorkspace& w
     out.vertex.resize(s);
     for (std::size_t t = 0; t < s; ++t) {
         const CellVertex& v = clipper.vertex(t);
-        const double r = std::sqrt(v.x * v.x + v.y * v.y) * (1.0 + 4.0 * kU) + v.e;
-        if (v.side < 0 || static_cast<std::size_t>(v.side) >= m || !(r < radius * (1.0 - 4.0 * kU))) return false;
+        if (v.side < 0 || static_cast<std::size_t>(v.side) >= m || !(v.e < kInf)) return false;
         out.side[t] = v.side;
         out.vertex[t] = v;
+    }
+    return true;
+}
+
+/// The exact cell of w.c among the loaded candidates (every agent strictly within 2R of c, pairwise
+/// distinct and distinct from c), certified as above; false when it gives up (`out` unspecified).
+inline bool certified_exact_cell(double radius, ExactClip& out, ClipWorkspace& w) {
+    using namespace clip;
+    if (!certified_candidate_cell(radius, out, w)) return false;
+    for (const CellVertex& v : out.vertex) {
+        const double r = std::sqrt(v.x * v.x + v.y * v.y) * (1.0 + 4.0 * kU) + v.e;
+        if (!(r < radius * (1.0 - 4.0 * kU))) return false;
     }
     return true;
 }

@@ -73,7 +73,9 @@ public:
     /// Triangulates `pts` (distinct; the caller's order is kept as vertex ids 0..n-1). Returns the
     /// dimension: -1 (no point), 0 (one point), 1 (all collinear: nothing is built, see line_order),
     /// 2 (a triangulation). Throws CoincidentError (with vertex ids) when two points coincide.
-    int build(const std::vector<Vec2>& pts) {
+    /// `spatial`: insert in biased randomized rounds (BRIO: rounds of doubling size, each sorted
+    /// along a Hilbert curve), so each walk starts near its target; for thousands of points.
+    int build(const std::vector<Vec2>& pts, bool spatial = false) {
         P_ = &pts;
         n_ = static_cast<int>(pts.size());
         ghost_ = n_;
@@ -89,6 +91,7 @@ public:
         rng_ = 0x9E3779B97F4A7C15ull;
         for (int i = n_ - 1; i > 0; --i)
             std::swap(order_[static_cast<std::size_t>(i)], order_[next_rand() % static_cast<std::uint64_t>(i + 1)]);
+        if (spatial) sort_rounds();
         const int i0 = order_[0], i1 = order_[1];
         if (pt(i0) == pt(i1)) throw_coincident(i0, i1);
         std::size_t k = 2;
@@ -146,6 +149,48 @@ public:
     }
 
 private:
+    /// BRIO's rounds: the last half of the shuffled order, the quarter before it, ... (the first
+    /// 64 points left as they are), each sorted by Hilbert index on a 2^16 grid over the bounding box.
+    void sort_rounds() {
+        double x0 = pt(0).x(), x1 = x0, y0 = pt(0).y(), y1 = y0;
+        for (int i = 1; i < n_; ++i) {
+            x0 = std::min(x0, pt(i).x()), x1 = std::max(x1, pt(i).x());
+            y0 = std::min(y0, pt(i).y()), y1 = std::max(y1, pt(i).y());
+        }
+        const double sx = x1 > x0 ? 65535.0 / (x1 - x0) : 0.0, sy = y1 > y0 ? 65535.0 / (y1 - y0) : 0.0;
+        std::vector<std::uint32_t> key(static_cast<std::size_t>(n_));
+        for (int i = 0; i < n_; ++i) {
+            // Finite differences of finite inputs may overflow to inf: clamp (only the order suffers).
+            const double fx = std::min(std::max((pt(i).x() - x0) * sx, 0.0), 65535.0);
+            const double fy = std::min(std::max((pt(i).y() - y0) * sy, 0.0), 65535.0);
+            key[static_cast<std::size_t>(i)] = hilbert(static_cast<std::uint32_t>(fx == fx ? fx : 0.0),
+                                                       static_cast<std::uint32_t>(fy == fy ? fy : 0.0));
+        }
+        const auto by_key = [&](int a, int b) { return key[static_cast<std::size_t>(a)] < key[static_cast<std::size_t>(b)]; };
+        for (std::size_t hi = order_.size(); hi > 64;) {
+            const std::size_t lo = hi / 2;
+            std::sort(order_.begin() + static_cast<std::ptrdiff_t>(lo), order_.begin() + static_cast<std::ptrdiff_t>(hi), by_key);
+            hi = lo;
+        }
+    }
+
+    /// The index of (x, y) along the Hilbert curve through the 2^16 x 2^16 grid.
+    static std::uint32_t hilbert(std::uint32_t x, std::uint32_t y) {
+        std::uint32_t d = 0;
+        for (std::uint32_t s = 1u << 15; s > 0; s >>= 1) {
+            const std::uint32_t rx = (x & s) ? 1u : 0u, ry = (y & s) ? 1u : 0u;
+            d += s * s * ((3u * rx) ^ ry);
+            if (ry == 0) {  // rotate the quadrant
+                if (rx == 1) {
+                    x = 65535u - x;
+                    y = 65535u - y;
+                }
+                std::swap(x, y);
+            }
+        }
+        return d;
+    }
+
     // ---- predicates on vertex ids (never the ghost): floating-point filter, exact fallback ----
 
     const Vec2& pt(int i) const { return (*P_)[static_cast<std::size_t>(i)]; }

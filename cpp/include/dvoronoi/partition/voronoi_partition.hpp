@@ -102,8 +102,11 @@ struct VoronoiPartition {
 /// \throws InputError for non-finite coordinates; CoincidentError for coinciding agents.
 /// \note With the Boundary Scan inner step, each agent first tries one certified clipping at a
 ///       radius R of 1.5 mean spacings (cells/certified_exact_cell.hpp), from one grid query (about
-///       28 agents within 2R in a uniform swarm); that certifies ~97% of a uniform swarm's cells. Every other
-///       agent (and every agent with inner = Evt) runs the radius schedule of cells/asr.hpp; from step
+///       28 agents within 2R in a uniform swarm); that certifies ~97% of a uniform swarm's cells. The
+///       others (a vertex beyond R, near the swarm's edge, on its hull, ties) are finished together:
+///       their neighbours beyond 2R are their neighbours in a Delaunay triangulation of just them
+///       (the comment at that step says why), so the loaded agents and those give the exact cell.
+///       With inner = Evt every agent runs the radius schedule of cells/asr.hpp; from step
 ///       EmptyCircleCertificate::kFromStep on, a cell that the radius does not certify is certified
 ///       by empty vertex circles and the global convex hull (partition/empty_circle_certificate.hpp),
 ///       so agents near the hull do not sweep most agents. Uniform agents cost O(1) each in
@@ -144,16 +147,21 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     // loop writes sequentially), then one gather into input order.
     struct Result {
         double area, cx, cy;
-        Index used, count, first;  // first: offset of the neighbours in the block's buffer
-        int steps;
+        Index used, count, first;  // first: offset of the neighbours in buffer `buf`
+        std::int32_t buf;
+        std::int16_t steps;
         char hull;
     };
     std::vector<Result> by_pos(static_cast<std::size_t>(n));
     std::vector<std::vector<Index>> block_nbrs(static_cast<std::size_t>(nblocks));
     detail::ProgressTracker tracker(progress, n);
+    // With the Boundary Scan inner step, the agents the one-shot clip does not certify are deferred
+    // and finished together after the first pass (see below).
+    const bool deferring = inner == AsrInner::Scan && n > 3;
+    std::vector<Index> deferred;  // their grid positions
 
-#pragma omp parallel num_threads(team)
-    {
+    // Per thread: scratch, and the last steps of an agent's result.
+    struct Scratch {
         std::vector<detail::Candidate> cand;
         detail::CellWorkspace ws;
         detail::DelaunayWorkspace dws;
@@ -163,51 +171,98 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         detail::ExactClip exact;
         std::vector<Vec2> local;
         std::vector<Index> mine;
+    };
+    // The result of a cell certified by clipping (`exact` over the loaded candidates, which hold
+    // every agent strictly within 2 one_shot): ASR's numbers, neighbours and measures.
+    const auto from_clip = [&](Scratch& sc, std::size_t spos, const Vec2& c, Result& r) {
+        detail::ClipWorkspace& clip_ws = sc.clip_ws;
+        const double d1 = std::sqrt(clip_ws.lo);  // the nearest neighbour is loaded
+        const auto [k, certified] = schedule.stop(
+            c, d1, detail::farthest_vertex(sc.exact),
+            [&](double radius) { return detail::vertices_inside(sc.exact, clip_ws, radius); });
+        r.steps = static_cast<std::int16_t>(k);
+        // Agents strictly within 2 R_k: among the loaded ones when R_k <= R.
+        const double rk = std::ldexp(d1, k - 1);
+        if (certified && rk <= one_shot) {
+            r.used = detail::count_within_2r(
+                0, clip_ws.m, rk, [&](std::size_t t) { return clip_ws.n2[t]; },
+                [&](std::size_t t) { return pred::within_2r(c, Vec2(clip_ws.px[t], clip_ws.py[t]), rk) > 0; });
+        } else {
+            r.used = schedule.used(spos, rk, certified);
+        }
+        sc.local.clear();
+        for (std::size_t t = 0; t < sc.exact.side.size(); ++t) {
+            sc.mine.push_back(clip_ws.id[static_cast<std::size_t>(sc.exact.side[t])]);
+            sc.local.emplace_back(sc.exact.vertex[t].x, sc.exact.vertex[t].y);
+        }
+        ClippedCell m;
+        detail::polygon_measures(sc.local, c, m);
+        r.area = m.area;
+        r.cx = m.centroid.x();
+        r.cy = m.centroid.y();
+    };
+    // The same for a cell in sc.cell (from the radius schedule or all candidates; first: the
+    // nearest-neighbour distance).
+    const auto from_cell = [&](Scratch& sc, std::size_t spos, const Vec2& c, double first, Result& r) {
+        r.hull = sc.cell.on_hull ? 1 : 0;
+        if (n > 1) {  // the schedule's numbers from the exact cell
+            const auto [k, certified] = schedule.stop(c, first, sc.cell);
+            r.steps = static_cast<std::int16_t>(k);
+            r.used = schedule.used(spos, std::ldexp(first, k - 1), certified);
+        }
+        for (const VoronoiEdge& e : sc.cell.edges) sc.mine.push_back(e.neighbor);
+        sc.cell.is_clipped = false;
+        const ClippedCell m = sc.cell.measures();
+        r.area = m.area;
+        r.cx = m.centroid.x();
+        r.cy = m.centroid.y();
+    };
+    // Neighbours ascending into the buffer, the clipped measures when bounds are given.
+    const auto finish = [&](Scratch& sc, const Vec2& c, std::int32_t buf_id, Result& r) {
+        auto& buf = block_nbrs[static_cast<std::size_t>(buf_id)];
+        std::vector<Index>& mine = sc.mine;
+        detail::sort_small(mine.data(), mine.data() + mine.size());
+        mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+        if (!bounds.empty()) {
+            sc.cand.clear();
+            for (Index j : mine) sc.cand.push_back({out.points.row(j).transpose(), j});
+            const ClippedCell m = detail::clip_to(c, sc.cand, bounds);
+            r.area = m.area;
+            r.cx = m.centroid.x();
+            r.cy = m.centroid.y();
+        }
+        r.buf = buf_id;
+        r.first = static_cast<Index>(buf.size());
+        r.count = static_cast<Index>(mine.size());
+        buf.insert(buf.end(), mine.begin(), mine.end());
+    };
+
+#pragma omp parallel num_threads(team)
+    {
+        Scratch sc;
+        std::vector<Index> my_deferred;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             if (tracker.cancelled()) continue;
             const Index lo = b * block, hi = std::min(n, lo + block);
-            auto& buf = block_nbrs[static_cast<std::size_t>(b)];
-            buf.reserve(static_cast<std::size_t>(hi - lo) * 7);
+            block_nbrs[static_cast<std::size_t>(b)].reserve(static_cast<std::size_t>(hi - lo) * 7);
+            Index put_off = 0;
             for (Index pos = lo; pos < hi; ++pos) {
                 const auto spos = static_cast<std::size_t>(pos);
                 const Index i = order[spos];
                 const Vec2 c = index.point_at(spos);
-                Result r{0.0, 0.0, 0.0, 0, 0, static_cast<Index>(buf.size()), 0, 0};
-                mine.clear();
-                bool done = false;
-                if (inner == AsrInner::Scan && n > 3) {
-                    clip_ws.start(c, detail::near_first_sq(one_shot, clip_ws.m));
-                    index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { clip_ws.add(p, j); });
-                    if (detail::certified_exact_cell(one_shot, exact, clip_ws)) {
-                        done = true;
-                        const double d1 = std::sqrt(clip_ws.lo);  // the nearest neighbour is in range
-                        const auto [k, certified] = schedule.stop(
-                            c, d1, detail::farthest_vertex(exact),
-                            [&](double radius) { return detail::vertices_inside(exact, clip_ws, radius); });
-                        r.steps = k;
-                        // Agents strictly within 2 R_k: among the loaded ones when R_k <= R.
-                        const double rk = std::ldexp(d1, k - 1);
-                        if (certified && rk <= one_shot) {
-                            r.used = detail::count_within_2r(
-                                0, clip_ws.m, rk, [&](std::size_t t) { return clip_ws.n2[t]; },
-                                [&](std::size_t t) { return pred::within_2r(c, Vec2(clip_ws.px[t], clip_ws.py[t]), rk) > 0; });
-                        } else {
-                            r.used = schedule.used(spos, rk, certified);
-                        }
-                        local.clear();
-                        for (std::size_t t = 0; t < exact.side.size(); ++t) {
-                            mine.push_back(clip_ws.id[static_cast<std::size_t>(exact.side[t])]);
-                            local.emplace_back(exact.vertex[t].x, exact.vertex[t].y);
-                        }
-                        ClippedCell m;
-                        detail::polygon_measures(local, c, m);
-                        r.area = m.area;
-                        r.cx = m.centroid.x();
-                        r.cy = m.centroid.y();
+                Result r{0.0, 0.0, 0.0, 0, 0, 0, -1, 0, 0};
+                sc.mine.clear();
+                if (deferring) {
+                    sc.clip_ws.start(c, detail::near_first_sq(one_shot, sc.clip_ws.m));
+                    index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { sc.clip_ws.add(p, j); });
+                    if (!detail::certified_exact_cell(one_shot, sc.exact, sc.clip_ws)) {
+                        my_deferred.push_back(pos);
+                        ++put_off;
+                        continue;
                     }
-                }
-                if (!done) {
+                    from_clip(sc, spos, c, r);
+                } else {
                     const auto query = [&](double radius, std::vector<detail::Candidate>& cs) {
                         index.within_at(spos, radius, cs);
                     };
@@ -215,51 +270,107 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     double first = 0.0;
                     if (n > 1) {
                         double rr = 0.5 * range;
-                        for (index.within_at(spos, rr, cand); cand.empty(); index.within_at(spos, rr, cand)) rr *= 2.0;
+                        for (index.within_at(spos, rr, sc.cand); sc.cand.empty(); index.within_at(spos, rr, sc.cand))
+                            rr *= 2.0;
                         double best = std::numeric_limits<double>::infinity();
-                        for (const detail::Candidate& q : cand) best = std::min(best, (q.p - c).squaredNorm());
+                        for (const detail::Candidate& q : sc.cand) best = std::min(best, (q.p - c).squaredNorm());
                         first = std::sqrt(best);
                     }
-                    detail::asr(c, query, n - 1, first, inner, ws, dws, cand, limited, cell, i, cert, &clip_ws);
-                    r.hull = cell.on_hull ? 1 : 0;
-                    if (n > 1) {  // the schedule's numbers from the exact cell
-                        const auto [k, certified] = schedule.stop(c, first, cell);
-                        r.steps = k;
-                        r.used = schedule.used(spos, std::ldexp(first, k - 1), certified);
-                    }
-                    for (const VoronoiEdge& e : cell.edges) mine.push_back(e.neighbor);
-                    cell.is_clipped = false;
-                    const ClippedCell m = cell.measures();
-                    r.area = m.area;
-                    r.cx = m.centroid.x();
-                    r.cy = m.centroid.y();
+                    detail::asr(c, query, n - 1, first, inner, sc.ws, sc.dws, sc.cand, sc.limited, sc.cell, i, cert,
+                                &sc.clip_ws);
+                    from_cell(sc, spos, c, first, r);
                 }
-                detail::sort_small(mine.data(), mine.data() + mine.size());
-                mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
-                if (!bounds.empty()) {
-                    cand.clear();
-                    for (Index j : mine) cand.push_back({out.points.row(j).transpose(), j});
-                    const ClippedCell m = detail::clip_to(c, cand, bounds);
-                    r.area = m.area;
-                    r.cx = m.centroid.x();
-                    r.cy = m.centroid.y();
-                }
-                r.count = static_cast<Index>(mine.size());
-                buf.insert(buf.end(), mine.begin(), mine.end());
+                finish(sc, c, static_cast<std::int32_t>(b), r);
                 by_pos[spos] = r;
             }
-            tracker.block_done(hi - lo);
+            tracker.block_done(hi - lo - put_off);
         }
+#pragma omp critical(dvoronoi_deferred)
+        deferred.insert(deferred.end(), my_deferred.begin(), my_deferred.end());
     }
     tracker.rethrow_if_failed();
+
+    if (!deferred.empty()) {
+        // The deferred agents (about 3% of a uniform swarm: a vertex beyond the one-shot radius R,
+        // near the swarm's edge, on its hull, or an uncertain clip) are finished from a Delaunay
+        // triangulation of themselves. Why that is exact: a neighbour q of such an agent c at
+        // distance >= 2R shares with it a Voronoi edge whose points lie at distance >= R from both,
+        // so q's cell too has a vertex at R or beyond (or none): q was deferred as well. And a
+        // positive-length Voronoi edge means a circle through c and q with every other agent
+        // strictly outside; the deferred agents being a subset, c and q are Delaunay neighbours
+        // among them too. So the loaded agents (strictly within 2R) and c's neighbours in that
+        // triangulation hold all of c's neighbours, and their half-planes cut out exactly its cell.
+        // Why: one triangulation of a few percent of the agents replaces, for each deferred agent,
+        // a radius schedule whose disks (and empty-circle scans) along the swarm's edge sweep
+        // thousands of agents.
+        std::sort(deferred.begin(), deferred.end());
+        const auto nd = static_cast<Index>(deferred.size());
+        std::vector<Vec2> dpts(deferred.size());
+        for (std::size_t t = 0; t < deferred.size(); ++t) dpts[t] = index.point_at(static_cast<std::size_t>(deferred[t]));
+        detail::Delaunay dt;
+        const int dim = dt.build(dpts, /*spatial=*/true);
+        std::vector<int> line, line_rank;  // collinear deferred agents: their order along the line
+        if (dim == 1) {
+            line = dt.line_order();
+            line_rank.resize(line.size());
+            for (std::size_t t = 0; t < line.size(); ++t) line_rank[static_cast<std::size_t>(line[t])] = static_cast<int>(t);
+        }
+        const Index dblocks = (nd + block - 1) / block;
+        block_nbrs.resize(static_cast<std::size_t>(nblocks + dblocks));
+        const double wide = std::ldexp(1.0, 20);  // the square the candidates' cell is clipped from, in R
+#pragma omp parallel num_threads(detail::thread_team(threads, dblocks))
+        {
+            Scratch sc;
+            std::vector<int> dnb;
+#pragma omp for schedule(dynamic, 1)
+            for (Index b = 0; b < dblocks; ++b) {
+                if (tracker.cancelled()) continue;
+                const Index lo = b * block, hi = std::min(nd, lo + block);
+                for (Index t = lo; t < hi; ++t) {
+                    const auto spos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(t)]);
+                    const Vec2 c = index.point_at(spos);
+                    Result r{0.0, 0.0, 0.0, 0, 0, 0, -1, 0, 0};
+                    sc.mine.clear();
+                    // Candidates: the agents strictly within 2R, then the triangulation's neighbours beyond.
+                    sc.clip_ws.start(c, detail::near_first_sq(one_shot, sc.clip_ws.m));
+                    index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { sc.clip_ws.add(p, j); });
+                    dnb.clear();
+                    if (dim == 2) {
+                        dt.star(static_cast<int>(t), dnb);
+                    } else if (dim == 1) {
+                        const int k = line_rank[static_cast<std::size_t>(t)];
+                        if (k > 0) dnb.push_back(line[static_cast<std::size_t>(k - 1)]);
+                        if (k + 1 < static_cast<int>(line.size())) dnb.push_back(line[static_cast<std::size_t>(k + 1)]);
+                    }
+                    for (int v : dnb) {
+                        const auto qpos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(v)]);
+                        const Vec2 q = index.point_at(qpos);
+                        if (!(pred::within_2r(c, q, one_shot) > 0)) sc.clip_ws.add(q, order[qpos]);
+                    }
+                    if (detail::certified_candidate_cell(wide * one_shot, sc.exact, sc.clip_ws)) {
+                        from_clip(sc, spos, c, r);
+                    } else {
+                        // Unbounded, huge or degenerate: the exact cell of the same candidates.
+                        sc.clip_ws.candidates(sc.cand);
+                        detail::candidate_cell(c, sc.cand, inner, sc.ws, sc.dws, sc.cell);
+                        from_cell(sc, spos, c, std::sqrt(sc.clip_ws.lo), r);
+                    }
+                    finish(sc, c, static_cast<std::int32_t>(nblocks + b), r);
+                    by_pos[spos] = r;
+                }
+                tracker.block_done(hi - lo);
+            }
+        }
+        tracker.rethrow_if_failed();
+    }
 
     // Lay out the results and the neighbour CSR in input order (scattered reads, prefetched).
     const std::vector<Index> pos_of = detail::positions_of(order);
     // Where each agent's neighbours are, in input order (the copy then reads only those at random).
     std::vector<const Index*> nbr_src(static_cast<std::size_t>(n));
-    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, std::size_t pos, const Result& r) {
+    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, std::size_t, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
-        nbr_src[ii] = block_nbrs[pos / static_cast<std::size_t>(block)].data() + r.first;
+        nbr_src[ii] = block_nbrs[static_cast<std::size_t>(r.buf)].data() + r.first;
         out.areas[ii] = r.area;
         out.centroids(i, 0) = r.cx;
         out.centroids(i, 1) = r.cy;
