@@ -126,6 +126,18 @@ inline NamedCase far_vertices(int kind, std::size_t n, std::uint64_t seed) {
             const double a = 6.283185307179586 * u(), rr = 124.0 * std::sqrt(u());
             c.points.push_back({std::round(rr * std::cos(a) * 64.0) / 64.0 + 0x1p-10, std::round(rr * std::sin(a) * 64.0) / 64.0});
         }
+    } else if (kind == 4) {
+        // Dense clusters far apart and sparse agents between: neighbours across wide gaps, far
+        // beyond a radius chosen from the mean spacing.
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::size_t cl = k % 5;
+            if (cl == 4) {
+                c.points.push_back({1000.0 * u(), 1000.0 * u()});
+                continue;
+            }
+            const double cx = cl % 2 ? 900.0 : 100.0, cy = cl / 2 ? 900.0 : 100.0;
+            c.points.push_back({cx + 3.0 * (u() - 0.5), cy + 3.0 * (u() - 0.5)});
+        }
     } else {
         for (std::size_t k = 0; k < n; ++k) {
             const double a = 6.283185307179586 * (static_cast<double>(k) + 0.25 * u()) / static_cast<double>(n);

@@ -27,12 +27,11 @@ namespace detail {
 template <class D2, class Exact>
 Index count_within_2r(std::size_t lo, std::size_t hi, double radius, D2&& d2, Exact&& exact) {
     const double r2 = 4.0 * radius * radius, r2lo = r2 * (1.0 - 1e-9), r2hi = r2 * (1.0 + 1e-9);
-    Index inside = 0;
-    bool near_circle = false;
+    Index inside = 0, near_circle = 0;  // integers of one width: the loop vectorises
     for (std::size_t k = lo; k < hi; ++k) {
         const double d = d2(k);
-        inside += d < r2lo;
-        near_circle |= (d >= r2lo) & (d <= r2hi);
+        inside += static_cast<Index>(d < r2lo);
+        near_circle |= static_cast<Index>((d >= r2lo) & (d <= r2hi));
     }
     for (std::size_t k = lo; near_circle && k < hi; ++k) {
         const double d = d2(k);
@@ -166,23 +165,29 @@ public:
     }
 
     /// The number of agents j != i strictly within 2*radius of the agent at position `pos` of
-    /// grid_order() (exact; the same count as within_at). Runs of cells that lie certainly inside
-    /// the disk are counted whole, so a wide disk costs O(columns + agents near the circle) instead
-    /// of O(agents inside): ASR's agents-in-range count for cells with far vertices needs that.
+    /// grid_order() (exact; the same count as within_at). See count_around.
     Index count_within_at(std::size_t pos, double radius) const {
+        if (!(radius > 0.0)) return 0;
+        return count_around(Vec2(xs_[pos], ys_[pos]), radius) - 1;  // the agent itself is at distance 0
+    }
+
+    /// The number of agents strictly within 2*radius of the point c (exact; an agent at c counts).
+    /// Runs of cells that lie certainly inside the disk are counted whole, so a wide disk costs
+    /// O(columns + agents near the circle) instead of O(agents inside): ASR's agents-in-range count
+    /// for cells with far vertices needs that.
+    Index count_around(const Vec2& c, double radius) const {
         const auto n = static_cast<Index>(order_.size());
-        const double x = xs_[pos], y = ys_[pos];
-        const Vec2 c(x, y);
-        const Index i = order_[pos];
-        if (!(radius < std::numeric_limits<double>::infinity())) return n - 1;
+        const double x = c.x(), y = c.y();
+        if (n == 0 || !(radius > 0.0)) return 0;
+        if (!(radius < std::numeric_limits<double>::infinity())) return n;
         const double rr = 2.0 * radius;
         // The disk holds the agents' bounding box: every agent is in range.
         const double fx = std::max(x - x0_, x1_ - x), fy = std::max(y - y0_, y1_ - y);
-        if (std::sqrt(fx * fx + fy * fy) * (1.0 + 1e-12) < rr * (1.0 - 1e-12)) return n - 1;
+        if (std::sqrt(fx * fx + fy * fy) * (1.0 + 1e-12) < rr * (1.0 - 1e-12)) return n;
         const double span = rr / cell_;
         if (!dense_ || !(span < static_cast<double>(n))) {
             Index count = 0;
-            visit_within(x, y, key_at(x, y), i, radius, [&](const Vec2&, Index) { ++count; });
+            visit_within(x, y, key_at(x, y), -1, radius, [&](const Vec2&, Index) { ++count; });
             return count;
         }
         constexpr double u = 1.1102230246251565e-16;
@@ -193,36 +198,59 @@ public:
             return dx * dx + dy * dy;
         };
         const auto exact = [&](std::size_t s) { return pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0; };
+        // A disk inside the 3 x 3 cells around c's (the usual case: a radius step just beyond the
+        // indexed range): count those cells' agents only, three column runs (no whole-cell bookkeeping).
+        const Key k = key_at(x, y);
+        if (k.cx >= 0 && k.cx < nx_ && k.cy >= 0 && k.cy < ny_) {
+            const double rrm = rr * (1.0 + 1e-9);
+            const auto fits = [&](double v, double v0, std::int64_t kv, std::int64_t nv) {
+                // Agents keyed outside cells kv-1..kv+1 lie beyond [lo, hi] up to `slack` (none beyond the grid).
+                const double lo = v0 + static_cast<double>(kv - 1) * cell_, hi = lo + 3.0 * cell_;
+                const double slack = 8.0 * u * (std::fabs(v0) + std::fabs(v) + std::fabs(lo) + std::fabs(hi)) + 1e-9 * cell_;
+                return (kv == 0 || v - rrm > lo + slack) && (kv + 1 >= nv || v + rrm < hi - slack);
+            };
+            if (fits(x, x0_, k.cx, nx_) && fits(y, y0_, k.cy, ny_)) {
+                const std::int64_t cy0 = std::max<std::int64_t>(0, k.cy - 1), cy1 = std::min(ny_ - 1, k.cy + 1);
+                for (std::int64_t cx = std::max<std::int64_t>(0, k.cx - 1); cx <= std::min(nx_ - 1, k.cx + 1); ++cx) {
+                    std::size_t lo, hi;
+                    column_run(cx, cy0, cy1, lo, hi);
+                    count += detail::count_within_2r(lo, hi, radius, d2, exact);
+                }
+                return count;
+            }
+        }
         const auto scan = [&](std::int64_t cx, std::int64_t cy0, std::int64_t cy1) {
             if (cy0 > cy1) return;
             std::size_t lo, hi;
             column_run(cx, cy0, cy1, lo, hi);
-            // The agent itself counts there (distance 0) and is taken off.
-            count += detail::count_within_2r(lo, hi, radius, d2, exact) - (pos >= lo && pos < hi ? 1 : 0);
+            count += detail::count_within_2r(lo, hi, radius, d2, exact);
         };
-        const auto row_of = [&](double v) {  // row key of v, clamped (a double: no overflow)
-            return std::min(std::max(std::floor((v - y0_) / cell_), -1.0), static_cast<double>(ny_));
-        };
+        // Per column, the rows the disk reaches (bounds on the agents' keys, as in visit_within): the
+        // rows whose agents lie certainly strictly inside are counted whole, the others scanned.
         const double rrm = rr * (1.0 + 1e-9);
-        const auto cx0 = static_cast<std::int64_t>(std::max(0.0, std::floor((x - rrm - x0_) / cell_) - 1.0));
-        const auto cx1 = static_cast<std::int64_t>(std::min(static_cast<double>(nx_ - 1), std::floor((x + rrm - x0_) / cell_) + 1.0));
-        for (std::int64_t cx = cx0; cx <= cx1; ++cx) {
+        const double sy = 8.0 * u * (std::fabs(y0_) + std::fabs(y) + rr) + 1e-9 * cell_;
+        const double rows_max = static_cast<double>(ny_ - 1);
+        for (std::int64_t cx = key_lo(x, x0_, rrm, nx_), cx1 = key_hi(x, x0_, rrm, nx_); cx <= cx1; ++cx) {
             // Agents keyed in column cx lie in [xa, xb] up to the rounding of their keys (slack).
             const double xa = x0_ + static_cast<double>(cx) * cell_, xb = xa + cell_;
             const double slack = 8.0 * u * (std::fabs(x0_) + std::fabs(x) + std::fabs(xb)) + 1e-9 * cell_;
-            const double near = std::max({0.0, xa - slack - x, x - xb - slack});
-            if (near >= rrm) continue;
-            const double outer = std::sqrt(std::max(0.0, rrm * rrm - near * near)) * (1.0 + 1e-12) + slack;
-            const auto ra = static_cast<std::int64_t>(std::max(0.0, row_of(y - outer) - 1.0));
-            const auto rb = static_cast<std::int64_t>(std::min(static_cast<double>(ny_ - 1), row_of(y + outer) + 1.0));
-            // Rows whose agents lie certainly strictly inside: a whole cell of margin at each end.
+            const double dx = std::max({0.0, xa - x, x - xb}) - slack;
+            if (dx >= rrm) continue;
+            const double half = dx <= 0.0 ? rrm : std::sqrt(std::max(0.0, rrm * rrm - dx * dx)) * (1.0 + 1e-12);
+            const std::int64_t ra = key_lo(y, y0_, half, ny_), rb = key_hi(y, y0_, half, ny_);
+            // Rows [ia, ib]: their agents' y lie within [y - inner, y + inner] (up to sy), x within far.
             const double far = (std::max(std::fabs(xa - slack - x), std::fabs(xb + slack - x))) * (1.0 + 1e-12);
             std::int64_t ia = rb + 1, ib = rb;
             if (far < rr) {
-                const double inner = std::sqrt(r2 - far * far) * (1.0 - 1e-9) - slack;
-                if (inner > 2.0 * cell_) {
-                    ia = std::max(ra, static_cast<std::int64_t>(row_of(y - inner)) + 2);
-                    ib = std::min(rb, static_cast<std::int64_t>(row_of(y + inner)) - 2);
+                const double inner = std::sqrt(r2 - far * far) * (1.0 - 1e-9);
+                const double lo = y - inner + sy, hi = y + inner - sy;  // rows must lie within [lo, hi]
+                if (hi - lo > cell_) {
+                    ia = static_cast<std::int64_t>(std::min(std::max(std::ceil((lo - y0_) / cell_), 0.0), rows_max + 1.0));
+                    ib = static_cast<std::int64_t>(std::min(std::max(std::floor((hi - y0_) / cell_) - 1.0, -1.0), rows_max));
+                    while (ia <= ib && y0_ + static_cast<double>(ia) * cell_ < lo) ++ia;
+                    while (ib >= ia && y0_ + static_cast<double>(ib + 1) * cell_ > hi) --ib;
+                    ia = std::max(ia, ra);
+                    ib = std::min(ib, rb);
                 }
             }
             if (ia > ib) {
@@ -231,7 +259,7 @@ public:
             }
             std::size_t lo, hi;
             column_run(cx, ia, ib, lo, hi);
-            count += static_cast<Index>(hi - lo) - (pos >= lo && pos < hi ? 1 : 0);
+            count += static_cast<Index>(hi - lo);
             scan(cx, ra, ia - 1);
             scan(cx, ib + 1, rb);
         }
@@ -284,6 +312,19 @@ public:
     }
 
 private:
+    /// The key of v - d (key_lo) or v + d (key_hi) on an axis from v0 with nmax cells, rounded
+    /// outwards and clamped to the grid: a bound on the keys of agents within d of v.
+    std::int64_t key_lo(double v, double v0, double d, std::int64_t nmax) const {
+        const double m = d + 8.0 * 1.1102230246251565e-16 * (std::fabs(v) + d);
+        const double f = std::floor((v - m - v0) / cell_);
+        return static_cast<std::int64_t>(std::min(std::max(f, 0.0), static_cast<double>(nmax - 1)));
+    }
+    std::int64_t key_hi(double v, double v0, double d, std::int64_t nmax) const {
+        const double m = d + 8.0 * 1.1102230246251565e-16 * (std::fabs(v) + d);
+        const double f = std::floor((v + m - v0) / cell_);
+        return static_cast<std::int64_t>(std::min(std::max(f, 0.0), static_cast<double>(nmax - 1)));
+    }
+
     /// Positions [lo, hi) of grid_order() in cells (cx, cy0..cy1).
     void column_run(std::int64_t cx, std::int64_t cy0, std::int64_t cy1, std::size_t& lo, std::size_t& hi) const {
         if (dense_) {
@@ -373,16 +414,6 @@ private:
         // coordinates, itself rounded outwards, bounds their keys: no margin of whole cells.
         constexpr double u = 1.1102230246251565e-16;
         const double rr = 2.0 * radius * (1.0 + 1e-9);
-        const auto key_lo = [&](double v, double v0, double d, std::int64_t nmax) {  // key of v - d, rounded down
-            const double m = d + 8.0 * u * (std::fabs(v) + d);
-            const double f = std::floor((v - m - v0) / cell_);
-            return static_cast<std::int64_t>(std::min(std::max(f, 0.0), static_cast<double>(nmax - 1)));
-        };
-        const auto key_hi = [&](double v, double v0, double d, std::int64_t nmax) {  // key of v + d, rounded up
-            const double m = d + 8.0 * u * (std::fabs(v) + d);
-            const double f = std::floor((v + m - v0) / cell_);
-            return static_cast<std::int64_t>(std::min(std::max(f, 0.0), static_cast<double>(nmax - 1)));
-        };
         const std::int64_t cx0 = key_lo(x, x0_, rr, nx_), cx1 = key_hi(x, x0_, rr, nx_);
         for (std::int64_t cx = cx0; cx <= cx1; ++cx) {
             // Agents keyed in column cx lie in [xa, xb] up to the rounding of their keys (slack).

@@ -26,7 +26,7 @@ namespace dvoronoi::detail {
 
 class AsrSchedule {
 public:
-    /// `hull` of the same points as `index` (whose query positions are grid positions).
+    /// `hull` and `index` (which counts the agents in range) of the same points.
     AsrSchedule(const Points& pts, const GridIndex& index, const ConvexHull& hull)
         : pts_(pts), index_(index), hull_(hull) {
         const Index n = pts.rows();
@@ -92,10 +92,10 @@ public:
         });
     }
 
-    /// The agents strictly within 2R of the agent at grid position `pos` (all others when the
-    /// radius did not certify the cell).
-    Index used(std::size_t pos, double radius, bool certified) const {
-        return certified ? index_.count_within_at(pos, radius) : static_cast<Index>(pts_.rows()) - 1;
+    /// The agents strictly within 2R of the agent at c (all others when the radius did not certify
+    /// the cell).
+    Index used(const Vec2& c, double radius, bool certified) const {
+        return certified ? index_.count_around(c, radius) - 1 : static_cast<Index>(pts_.rows()) - 1;
     }
 
 private:

@@ -174,7 +174,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     };
     // The result of a cell certified by clipping (`exact` over the loaded candidates, which hold
     // every agent strictly within 2 one_shot): ASR's numbers, neighbours and measures.
-    const auto from_clip = [&](Scratch& sc, std::size_t spos, const Vec2& c, Result& r) {
+    const auto from_clip = [&](Scratch& sc, const Vec2& c, Result& r) {
         detail::ClipWorkspace& clip_ws = sc.clip_ws;
         const double d1 = std::sqrt(clip_ws.lo);  // the nearest neighbour is loaded
         const auto [k, certified] = schedule.stop(
@@ -188,7 +188,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                 0, clip_ws.m, rk, [&](std::size_t t) { return clip_ws.n2[t]; },
                 [&](std::size_t t) { return pred::within_2r(c, Vec2(clip_ws.px[t], clip_ws.py[t]), rk) > 0; });
         } else {
-            r.used = schedule.used(spos, rk, certified);
+            r.used = schedule.used(c, rk, certified);
         }
         sc.local.clear();
         for (std::size_t t = 0; t < sc.exact.side.size(); ++t) {
@@ -203,12 +203,12 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     };
     // The same for a cell in sc.cell (from the radius schedule or all candidates; first: the
     // nearest-neighbour distance).
-    const auto from_cell = [&](Scratch& sc, std::size_t spos, const Vec2& c, double first, Result& r) {
+    const auto from_cell = [&](Scratch& sc, const Vec2& c, double first, Result& r) {
         r.hull = sc.cell.on_hull ? 1 : 0;
         if (n > 1) {  // the schedule's numbers from the exact cell
             const auto [k, certified] = schedule.stop(c, first, sc.cell);
             r.steps = static_cast<std::int16_t>(k);
-            r.used = schedule.used(spos, std::ldexp(first, k - 1), certified);
+            r.used = schedule.used(c, std::ldexp(first, k - 1), certified);
         }
         for (const VoronoiEdge& e : sc.cell.edges) sc.mine.push_back(e.neighbor);
         sc.cell.is_clipped = false;
@@ -261,7 +261,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                         ++put_off;
                         continue;
                     }
-                    from_clip(sc, spos, c, r);
+                    from_clip(sc, c, r);
                 } else {
                     const auto query = [&](double radius, std::vector<detail::Candidate>& cs) {
                         index.within_at(spos, radius, cs);
@@ -278,7 +278,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     }
                     detail::asr(c, query, n - 1, first, inner, sc.ws, sc.dws, sc.cand, sc.limited, sc.cell, i, cert,
                                 &sc.clip_ws);
-                    from_cell(sc, spos, c, first, r);
+                    from_cell(sc, c, first, r);
                 }
                 finish(sc, c, static_cast<std::int32_t>(b), r);
                 by_pos[spos] = r;
@@ -348,12 +348,12 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                         if (!(pred::within_2r(c, q, one_shot) > 0)) sc.clip_ws.add(q, order[qpos]);
                     }
                     if (detail::certified_candidate_cell(wide * one_shot, sc.exact, sc.clip_ws)) {
-                        from_clip(sc, spos, c, r);
+                        from_clip(sc, c, r);
                     } else {
                         // Unbounded, huge or degenerate: the exact cell of the same candidates.
                         sc.clip_ws.candidates(sc.cand);
                         detail::candidate_cell(c, sc.cand, inner, sc.ws, sc.dws, sc.cell);
-                        from_cell(sc, spos, c, std::sqrt(sc.clip_ws.lo), r);
+                        from_cell(sc, c, std::sqrt(sc.clip_ws.lo), r);
                     }
                     finish(sc, c, static_cast<std::int32_t>(nblocks + b), r);
                     by_pos[spos] = r;
