@@ -120,12 +120,14 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     VoronoiPartition out;
     out.points = points;
     out.bounds = bounds;
-    out.areas.assign(static_cast<std::size_t>(n), 0.0);
+    // Large outputs on pages mapped up front (one call instead of a fault per page).
+    detail::assign_prefaulted(out.areas, static_cast<std::size_t>(n), 0.0);
     out.centroids.resize(n, 2);
-    out.on_hull.assign(static_cast<std::size_t>(n), 0);
-    out.radius_steps.assign(static_cast<std::size_t>(n), 0);
-    out.agents_used.assign(static_cast<std::size_t>(n), 0);
-    out.indptr.assign(static_cast<std::size_t>(n) + 1, 0);
+    detail::prefault(out.centroids.data(), static_cast<std::size_t>(out.centroids.size()) * sizeof(double));
+    detail::assign_prefaulted(out.on_hull, static_cast<std::size_t>(n), char{0});
+    detail::assign_prefaulted(out.radius_steps, static_cast<std::size_t>(n), 0);
+    detail::assign_prefaulted(out.agents_used, static_cast<std::size_t>(n), Index{0});
+    detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1, Index{0});
     if (n == 0) return out;
     // The mean spacing over the bounding box sets the one-shot radius (and the grid's cells).
     const double w = out.points.col(0).maxCoeff() - out.points.col(0).minCoeff();
@@ -152,7 +154,8 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         std::int16_t steps;
         char hull;
     };
-    std::vector<Result> by_pos(static_cast<std::size_t>(n));
+    std::vector<Result> by_pos;
+    detail::assign_prefaulted(by_pos, static_cast<std::size_t>(n), Result{});
     std::vector<std::vector<Index>> block_nbrs(static_cast<std::size_t>(nblocks));
     detail::ProgressTracker tracker(progress, n);
     // With the Boundary Scan inner step, the agents the one-shot clip does not certify are deferred
@@ -367,7 +370,8 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     // Lay out the results and the neighbour CSR in input order (scattered reads, prefetched).
     const std::vector<Index> pos_of = detail::positions_of(order);
     // Where each agent's neighbours are, in input order (the copy then reads only those at random).
-    std::vector<const Index*> nbr_src(static_cast<std::size_t>(n));
+    std::vector<const Index*> nbr_src;
+    detail::assign_prefaulted(nbr_src, static_cast<std::size_t>(n), static_cast<const Index*>(nullptr));
     detail::gather_in_input_order(pos_of, by_pos, [&](Index i, std::size_t, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
         nbr_src[ii] = block_nbrs[static_cast<std::size_t>(r.buf)].data() + r.first;
@@ -379,7 +383,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         out.agents_used[ii] = r.used;
         out.indptr[ii + 1] = out.indptr[ii] + r.count;
     });
-    out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
+    detail::assign_prefaulted(out.indices, static_cast<std::size_t>(out.indptr.back()), Index{0});
 #pragma omp parallel for num_threads(team) schedule(static)
     for (Index i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
