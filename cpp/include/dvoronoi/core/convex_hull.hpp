@@ -161,7 +161,10 @@ private:
             for (std::size_t t = 0; inside && t < q.size(); ++t) {
                 const Vec2& a = q[t];
                 const Vec2& b = q[(t + 1) % q.size()];
-                inside = a == b || pred::orient(a, b, p) > 0;
+                // Clearly left (the orient2d filter's error bound, generously widened), else exact:
+                // the full predicate per agent and edge would cost more than the rest of the hull.
+                const double l = (a.x() - p.x()) * (b.y() - p.y()), r = (a.y() - p.y()) * (b.x() - p.x());
+                inside = a == b || l - r > 1e-15 * (std::fabs(l) + std::fabs(r)) || pred::orient(a, b, p) > 0;
             }
             if (!inside) out.push_back(i);
         }

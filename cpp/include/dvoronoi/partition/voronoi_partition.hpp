@@ -350,7 +350,10 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                         const Vec2 q = index.point_at(qpos);
                         if (!(pred::within_2r(c, q, one_shot) > 0)) sc.clip_ws.add(q, order[qpos]);
                     }
-                    if (detail::certified_candidate_cell(wide * one_shot, sc.exact, sc.clip_ws)) {
+                    // A square of 4R first (most of these cells: a vertex a little beyond R), whose
+                    // corners the clip screens candidates against; then a huge one.
+                    if (detail::certified_candidate_cell(4.0 * one_shot, sc.exact, sc.clip_ws) ||
+                        detail::certified_candidate_cell(wide * one_shot, sc.exact, sc.clip_ws)) {
                         from_clip(sc, c, r);
                     } else {
                         // Unbounded, huge or degenerate: the exact cell of the same candidates.
