@@ -175,6 +175,11 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         std::vector<Vec2> local;
         std::vector<Index> mine;
     };
+    // Loads the clip with the agents strictly within 2 one_shot of the agent at grid position spos.
+    const auto load_in_range = [&](Scratch& sc, std::size_t spos, const Vec2& c) {
+        sc.clip_ws.start(c, detail::near_first_sq(one_shot, sc.clip_ws.m));
+        index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { sc.clip_ws.add(p, j); });
+    };
     // The result of a cell certified by clipping (`exact` over the loaded candidates, which hold
     // every agent strictly within 2 one_shot): ASR's numbers, neighbours and measures.
     const auto from_clip = [&](Scratch& sc, const Vec2& c, Result& r) {
@@ -257,8 +262,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                 Result r{0.0, 0.0, 0.0, 0, 0, 0, -1, 0, 0};
                 sc.mine.clear();
                 if (deferring) {
-                    sc.clip_ws.start(c, detail::near_first_sq(one_shot, sc.clip_ws.m));
-                    index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { sc.clip_ws.add(p, j); });
+                    load_in_range(sc, spos, c);
                     if (!detail::certified_exact_cell(one_shot, sc.exact, sc.clip_ws)) {
                         my_deferred.push_back(pos);
                         ++put_off;
@@ -335,8 +339,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                     Result r{0.0, 0.0, 0.0, 0, 0, 0, -1, 0, 0};
                     sc.mine.clear();
                     // Candidates: the agents strictly within 2R, then the triangulation's neighbours beyond.
-                    sc.clip_ws.start(c, detail::near_first_sq(one_shot, sc.clip_ws.m));
-                    index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { sc.clip_ws.add(p, j); });
+                    load_in_range(sc, spos, c);
                     dnb.clear();
                     if (dim == 2) {
                         dt.star(static_cast<int>(t), dnb);
