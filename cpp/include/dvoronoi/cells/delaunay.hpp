@@ -66,8 +66,10 @@ struct DTri {
     int nb[3];
 };
 
-/// Bowyer-Watson Delaunay triangulation on exact predicates, for a few dozen points. Buffers are
-/// reused across build() calls (one object per thread; not safe to share between threads).
+/// Bowyer-Watson Delaunay triangulation on exact predicates: a few dozen points per call for the
+/// EVT step, or (build with `spatial`) the thousands of agents the all-agents exact-cell driver
+/// leaves to it. Buffers are reused across build() calls (one object per thread; not safe to share
+/// between threads; star() is const and may be called from several threads at once).
 class Delaunay {
 public:
     /// Triangulates `pts` (distinct; the caller's order is kept as vertex ids 0..n-1). Returns the

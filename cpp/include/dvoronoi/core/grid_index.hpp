@@ -27,11 +27,12 @@ namespace detail {
 template <class D2, class Exact>
 Index count_within_2r(std::size_t lo, std::size_t hi, double radius, D2&& d2, Exact&& exact) {
     const double r2 = 4.0 * radius * radius, r2lo = r2 * (1.0 - 1e-9), r2hi = r2 * (1.0 + 1e-9);
-    Index inside = 0, near_circle = 0;  // integers of one width: the loop vectorises
+    Index inside = 0;
+    bool near_circle = false;
     for (std::size_t k = lo; k < hi; ++k) {
         const double d = d2(k);
-        inside += static_cast<Index>(d < r2lo);
-        near_circle |= static_cast<Index>((d >= r2lo) & (d <= r2hi));
+        inside += d < r2lo;
+        near_circle |= (d >= r2lo) & (d <= r2hi);
     }
     for (std::size_t k = lo; near_circle && k < hi; ++k) {
         const double d = d2(k);
@@ -190,7 +191,7 @@ public:
             visit_within(x, y, key_at(x, y), -1, radius, [&](const Vec2&, Index) { ++count; });
             return count;
         }
-        constexpr double u = 1.1102230246251565e-16;
+        constexpr double u = kUnitRoundoff;
         const double r2 = rr * rr;
         Index count = 0;
         const auto d2 = [&](std::size_t s) {
@@ -312,15 +313,17 @@ public:
     }
 
 private:
+    static constexpr double kUnitRoundoff = 1.1102230246251565e-16;
+
     /// The key of v - d (key_lo) or v + d (key_hi) on an axis from v0 with nmax cells, rounded
     /// outwards and clamped to the grid: a bound on the keys of agents within d of v.
     std::int64_t key_lo(double v, double v0, double d, std::int64_t nmax) const {
-        const double m = d + 8.0 * 1.1102230246251565e-16 * (std::fabs(v) + d);
+        const double m = d + 8.0 * kUnitRoundoff * (std::fabs(v) + d);
         const double f = std::floor((v - m - v0) / cell_);
         return static_cast<std::int64_t>(std::min(std::max(f, 0.0), static_cast<double>(nmax - 1)));
     }
     std::int64_t key_hi(double v, double v0, double d, std::int64_t nmax) const {
-        const double m = d + 8.0 * 1.1102230246251565e-16 * (std::fabs(v) + d);
+        const double m = d + 8.0 * kUnitRoundoff * (std::fabs(v) + d);
         const double f = std::floor((v + m - v0) / cell_);
         return static_cast<std::int64_t>(std::min(std::max(f, 0.0), static_cast<double>(nmax - 1)));
     }
@@ -412,7 +415,7 @@ private:
         // Cells finer than 2R: per column, only the rows the disk can reach. Keys are a monotone
         // function of the coordinate (floor of rounded (v - v0) / cell), so a bound on the agents'
         // coordinates, itself rounded outwards, bounds their keys: no margin of whole cells.
-        constexpr double u = 1.1102230246251565e-16;
+        constexpr double u = kUnitRoundoff;
         const double rr = 2.0 * radius * (1.0 + 1e-9);
         const std::int64_t cx0 = key_lo(x, x0_, rr, nx_), cx1 = key_hi(x, x0_, rr, nx_);
         for (std::int64_t cx = cx0; cx <= cx1; ++cx) {

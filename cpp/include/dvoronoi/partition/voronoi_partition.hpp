@@ -163,7 +163,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     const bool deferring = inner == AsrInner::Scan && n > 3;
     std::vector<Index> deferred;  // their grid positions
 
-    // Per thread: scratch, and the last steps of an agent's result.
+    // Per-thread scratch; the lambdas below are the steps every agent's result ends with.
     struct Scratch {
         std::vector<detail::Candidate> cand;
         detail::CellWorkspace ws;
