@@ -62,30 +62,31 @@ public:
         nx_ = static_cast<std::int64_t>(std::floor(xspan / cell_)) + 1;
         ny_ = static_cast<std::int64_t>(std::floor(yspan / cell_)) + 1;
 
-        keys_.resize(static_cast<std::size_t>(n));
-        for (Index i = 0; i < n; ++i) keys_[static_cast<std::size_t>(i)] = key_of(i);
         order_.resize(static_cast<std::size_t>(n));
-        std::iota(order_.begin(), order_.end(), Index{0});
         dense_ = static_cast<double>(nx_) * static_cast<double>(ny_) <= 4.0 * static_cast<double>(n) + 1024.0;
         if (dense_) {
-            // Counting sort into a dense cell array (CSR).
+            // Counting sort into a dense cell array (CSR); within a cell, input order (deterministic
+            // candidate order). The cells are recomputed in the second pass rather than stored.
+            const auto cell_of = [&](Index i) {
+                const Key k = key_of(i);
+                return static_cast<std::size_t>(k.cx * ny_ + k.cy);
+            };
             start_.assign(static_cast<std::size_t>(nx_ * ny_ + 1), 0);
-            for (const Key& k : keys_) ++start_[static_cast<std::size_t>(k.cx * ny_ + k.cy + 1)];
+            for (Index i = 0; i < n; ++i) ++start_[cell_of(i) + 1];
             std::partial_sum(start_.begin(), start_.end(), start_.begin());
             std::vector<Index> fill(start_.begin(), start_.end() - 1);
-            for (Index i = 0; i < n; ++i) {
-                const Key& k = keys_[static_cast<std::size_t>(i)];
-                order_[static_cast<std::size_t>(fill[static_cast<std::size_t>(k.cx * ny_ + k.cy)]++)] = i;
-            }
-            // Within a cell keep input order (deterministic candidate order).
+            for (Index i = 0; i < n; ++i) order_[static_cast<std::size_t>(fill[cell_of(i)]++)] = i;
         } else {
+            std::vector<Key> keys(static_cast<std::size_t>(n));
+            for (Index i = 0; i < n; ++i) keys[static_cast<std::size_t>(i)] = key_of(i);
+            std::iota(order_.begin(), order_.end(), Index{0});
             std::sort(order_.begin(), order_.end(), [&](Index a, Index b) {
-                const Key& ka = keys_[static_cast<std::size_t>(a)];
-                const Key& kb = keys_[static_cast<std::size_t>(b)];
+                const Key& ka = keys[static_cast<std::size_t>(a)];
+                const Key& kb = keys[static_cast<std::size_t>(b)];
                 return ka.cx != kb.cx ? ka.cx < kb.cx : (ka.cy != kb.cy ? ka.cy < kb.cy : a < b);
             });
             sorted_keys_.reserve(static_cast<std::size_t>(n));
-            for (Index i : order_) sorted_keys_.push_back(keys_[static_cast<std::size_t>(i)]);
+            for (Index i : order_) sorted_keys_.push_back(keys[static_cast<std::size_t>(i)]);
         }
         // Positions copied in grid order: a query reads a few contiguous runs, not scattered rows.
         xs_.resize(static_cast<std::size_t>(n));
@@ -107,14 +108,16 @@ public:
         };
         std::vector<std::size_t> run;
         const std::size_t n = order_.size();
-        std::size_t lo = 0;
+        std::size_t lo = 0, cell = 0;
         while (lo < n) {
+            // [lo, hi): the agents of one cell.
             std::size_t hi = lo + 1;
-            const Key k0 = keys_[static_cast<std::size_t>(order_[lo])];
-            while (hi < n) {
-                const Key& k = keys_[static_cast<std::size_t>(order_[hi])];
-                if (k.cx != k0.cx || k.cy != k0.cy) break;
-                ++hi;
+            if (dense_) {
+                while (static_cast<std::size_t>(start_[cell + 1]) <= lo) ++cell;
+                hi = static_cast<std::size_t>(start_[cell + 1]);
+            } else {
+                const Key& k0 = sorted_keys_[lo];
+                while (hi < n && sorted_keys_[hi].cx == k0.cx && sorted_keys_[hi].cy == k0.cy) ++hi;
             }
             if (hi - lo <= 32) {
                 for (std::size_t a = lo; a < hi; ++a)
@@ -148,7 +151,7 @@ public:
     /// Agents j != i with |p_j - p_i| < 2*radius (exact), appended to `out` (cleared first) in the
     /// index's deterministic traversal order.
     void within(Index i, double radius, std::vector<detail::Candidate>& out) const {
-        within_impl(pts_(i, 0), pts_(i, 1), keys_[static_cast<std::size_t>(i)], i, radius, out);
+        within_impl(pts_(i, 0), pts_(i, 1), key_of(i), i, radius, out);
     }
 
     /// The same for the agent at position `pos` of grid_order(): reads only the index's own
@@ -434,7 +437,6 @@ private:
     double x0_ = 0.0, y0_ = 0.0, x1_ = 0.0, y1_ = 0.0, cell_ = 1.0;
     std::int64_t nx_ = 0, ny_ = 0;
     bool dense_ = true;
-    std::vector<Key> keys_;
     std::vector<Index> order_;
     std::vector<Index> start_;
     std::vector<Key> sorted_keys_;

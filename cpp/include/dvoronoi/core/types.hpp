@@ -92,5 +92,14 @@ inline void prefetch(const void* p) {
 #endif
 }
 
+/// A hint to fetch the cache line at p for writing (no effect on results).
+inline void prefetch_for_write(const void* p) {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p, 1);
+#else
+    (void)p;
+#endif
+}
+
 }  // namespace detail
 }  // namespace dvoronoi

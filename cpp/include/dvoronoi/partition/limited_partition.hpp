@@ -8,6 +8,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <cstdio>
 #include <exception>
 #include <functional>
@@ -131,15 +134,92 @@ void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
     v.assign(n, value);
 }
 
+/// How many agents ahead the gathers prefetch.
+inline constexpr Index kAhead = 16;
+
+/// Pieces as four columns, the layout of LimitedPartition's piece arrays; a thread appends its
+/// cells' pieces here in the order it computes them.
+struct PieceColumns {
+    std::vector<double> x, y, span;
+    std::vector<Index> neighbor;
+    std::size_t mapped_ = 0;  // values up to here are on mapped pages
+
+    Index size() const noexcept { return static_cast<Index>(x.size()); }
+    void reserve(std::size_t pieces) {
+        x.reserve(pieces);
+        y.reserve(pieces);
+        span.reserve(pieces);
+        neighbor.reserve(pieces);
+    }
+    void append(const std::vector<Piece>& pieces) {
+        if (x.size() + pieces.size() > mapped_) map_ahead();
+        for (const Piece& p : pieces) {
+            x.push_back(p.start.x());
+            y.push_back(p.start.y());
+            span.push_back(p.arc_span);
+            neighbor.push_back(p.neighbor);
+        }
+    }
+    /// Maps the next pages of the reserved room in one call per column (see prefault).
+    void map_ahead() {
+        constexpr std::size_t kStep = std::size_t{1} << 17;  // values: 1 MB per column
+        const std::size_t to = std::min(x.capacity(), std::max(mapped_, x.size()) + kStep);
+        if (to <= mapped_) return;
+        const std::size_t at = std::max(mapped_, x.size());
+        prefault(x.data() + at, (to - at) * sizeof(double));
+        prefault(y.data() + at, (to - at) * sizeof(double));
+        prefault(span.data() + at, (to - at) * sizeof(double));
+        prefault(neighbor.data() + at, (to - at) * sizeof(Index));
+        mapped_ = to;
+    }
+    /// parts[0] followed by parts[1], ... (each freed once appended).
+    static PieceColumns concatenate(std::vector<PieceColumns>& parts) {
+        PieceColumns all = std::move(parts.front());
+        for (std::size_t t = 1; t < parts.size(); ++t) {
+            PieceColumns part = std::move(parts[t]);
+            all.x.insert(all.x.end(), part.x.begin(), part.x.end());
+            all.y.insert(all.y.end(), part.y.begin(), part.y.end());
+            all.span.insert(all.span.end(), part.span.begin(), part.span.end());
+            all.neighbor.insert(all.neighbor.end(), part.neighbor.begin(), part.neighbor.end());
+        }
+        return all;
+    }
+};
+
+/// Puts a column in CSR order, in place: the run of agent i moves from [from(i), from(i) + len) to
+/// [ptr[i], ptr[i + 1]), len = ptr[i + 1] - ptr[i]. `staged` (reused across columns) holds the old
+/// column; its reads are scattered, so a few agents ahead are prefetched. Then moved(i, run, len)
+/// sees the run in its new place.
+template <class T, class From, class Moved>
+void reorder_column(std::vector<T>& column, std::vector<std::uint64_t>& staged, const std::vector<Index>& ptr,
+                    From&& from, int team, Moved&& moved) {
+    static_assert(sizeof(T) == sizeof(std::uint64_t) && std::is_trivially_copyable<T>::value,
+                  "columns of 8-byte values");
+    if (staged.size() < column.size()) {
+        staged = std::vector<std::uint64_t>();
+        assign_prefaulted(staged, column.size());
+    }
+    std::memcpy(staged.data(), column.data(), column.size() * sizeof(T));
+    const auto n = static_cast<Index>(ptr.size()) - 1;
+    const std::uint64_t* old = staged.data();
+    T* dst = column.data();
+#pragma omp parallel for num_threads(team) schedule(static)
+    for (Index i = 0; i < n; ++i) {
+        if (i + kAhead < n) prefetch(old + from(i + kAhead));
+        const std::uint64_t* src = old + from(i);
+        const auto at = static_cast<std::size_t>(ptr[static_cast<std::size_t>(i)]);
+        const auto len = static_cast<std::size_t>(ptr[static_cast<std::size_t>(i) + 1]) - at;
+        std::memcpy(dst + at, src, len * sizeof(T));
+        moved(i, dst + at, len);
+    }
+}
+
 /// Where each agent sits in `order` (the grid order the drivers compute in): pos_of[i].
 inline std::vector<Index> positions_of(const std::vector<Index>& order) {
     std::vector<Index> pos_of(order.size());
     for (std::size_t pos = 0; pos < order.size(); ++pos) pos_of[static_cast<std::size_t>(order[pos])] = static_cast<Index>(pos);
     return pos_of;
 }
-
-/// How many agents ahead the gathers prefetch.
-inline constexpr Index kAhead = 16;
 
 /// Reads per-agent results stored by grid position in input order: fn(i, pos, by_pos[pos]) with
 /// pos = pos_of[i]. The reads are scattered, so a few agents ahead are prefetched and the misses
@@ -252,27 +332,36 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     const GridIndex index(out.points, 2.0 * radius);
     detail::require_distinct(index, out.points);
     const std::vector<Index>& order = index.grid_order();
-    // Agents are processed in grid order, in blocks; each block appends its cells to its own buffers,
-    // and every per-agent result is stored by grid position, so the hot loop writes sequentially.
-    // One gather pass then lays the results out in input order (sequential writes, independent
-    // reads): scattered writes from the hot loop cost a cache miss each at 1e6 agents.
-    struct Block {
-        std::vector<Piece> pieces;
-    };
+    // Agents are processed in grid order (queries then read memory that is already cached), in
+    // blocks. Each agent's scalars and counts go straight to their places in input order (the lines
+    // are prefetched for writing a few agents ahead); its pieces are appended to its thread's piece
+    // columns, which become the output columns, put into input order one column at a time.
+    // Why this layout: a fresh page costs a fault and a zeroing (and on a VM that hands freed memory
+    // back to the host, a host fault), so every byte of scratch is paid for; this keeps the scratch
+    // to one column of pieces, against three times the pieces' size when they were staged whole.
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
     const int team = detail::thread_team(threads, nblocks);
-    std::vector<Block> blocks(static_cast<std::size_t>(nblocks));
-    struct Result {  // one agent's scalars, by grid position
-        double area, perimeter, cx, cy;
-        Index candidates, pieces, edges, first;  // first: offset of its pieces in its block's buffer
-    };
-    std::vector<Result> by_pos;
-    detail::assign_prefaulted(by_pos, static_cast<std::size_t>(n), Result{});
+    std::vector<detail::PieceColumns> columns(static_cast<std::size_t>(team));
+    detail::assign_prefaulted(out.piece_ptr, static_cast<std::size_t>(n) + 1);  // counts, summed below
+    detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1);
+    // Where each agent's pieces start: (offset in its thread's columns) * team + thread during the
+    // loop, the offset in the concatenated columns after it.
+    std::vector<Index> source;
+    detail::assign_prefaulted(source, static_cast<std::size_t>(n));
     detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)
     {
+#ifdef _OPENMP
+        const int me = omp_get_thread_num();
+#else
+        const int me = 0;
+#endif
+        detail::PieceColumns& mine = columns[static_cast<std::size_t>(me)];
+        // About six pieces per cell in a swarm: room for seven per agent. Room that is never written
+        // costs address space only; the first thread's columns take the others' in the end.
+        mine.reserve(static_cast<std::size_t>(me == 0 ? n : n / team + block) * 7);
         std::vector<detail::Candidate> cand;
         LimitedCell cell;
         detail::CellWorkspace ws;
@@ -280,14 +369,19 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             if (tracker.cancelled()) continue;
-            Block& blk = blocks[static_cast<std::size_t>(b)];
             const Index lo = b * block, hi = std::min(n, lo + block);
-            // About six pieces per cell in a swarm: room for seven, so the buffer rarely regrows
-            // (each regrowth copies it and faults in fresh pages).
-            blk.pieces.reserve(static_cast<std::size_t>(hi - lo) * 7);
-            detail::prefault(blk.pieces.data(), blk.pieces.capacity() * sizeof(Piece));
             for (Index pos = lo; pos < hi; ++pos) {
                 const auto pp = static_cast<std::size_t>(pos);
+                if (pos + detail::kAhead < n) {
+                    const auto a = static_cast<std::size_t>(order[pp + detail::kAhead]);
+                    detail::prefetch_for_write(&out.areas[a]);
+                    detail::prefetch_for_write(&out.perimeters[a]);
+                    detail::prefetch_for_write(out.centroids.data() + 2 * a);
+                    detail::prefetch_for_write(&out.candidates[a]);
+                    detail::prefetch_for_write(&out.piece_ptr[a + 1]);
+                    detail::prefetch_for_write(&out.indptr[a + 1]);
+                    detail::prefetch_for_write(&source[a]);
+                }
                 const Vec2 c = index.point_at(pp);
                 if (method == Method::Scan) {
                     // Boundary Scan's cell: the certified clipping filter on the candidates as the
@@ -304,61 +398,57 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
                     detail::rcvc(c, cand, radius, cell, ws);
                 }
                 const CellMeasures m = cell.measures();
+                const auto i = static_cast<std::size_t>(order[pp]);
+                out.areas[i] = m.area;
+                out.perimeters[i] = m.perimeter;
+                out.centroids(static_cast<Index>(i), 0) = m.centroid.x();
+                out.centroids(static_cast<Index>(i), 1) = m.centroid.y();
+                out.candidates[i] = cell.candidates;
                 Index edges = 0;
                 for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
-                by_pos[pp] = {m.area, m.perimeter, m.centroid.x(), m.centroid.y(), cell.candidates,
-                              static_cast<Index>(cell.pieces.size()), edges, static_cast<Index>(blk.pieces.size())};
-                blk.pieces.insert(blk.pieces.end(), cell.pieces.begin(), cell.pieces.end());
+                out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
+                out.indptr[i + 1] = edges;
+                source[i] = mine.size() * team + me;
+                mine.append(cell.pieces);
             }
             tracker.block_done(hi - lo);
         }
     }
     tracker.rethrow_if_failed();
 
-    // Lay out the results, the pieces and the neighbour CSR in input order.
-    const std::vector<Index> pos_of = detail::positions_of(order);
-    detail::assign_prefaulted(out.piece_ptr, static_cast<std::size_t>(n) + 1);
-    detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1);
-    // Where each agent's pieces are, in input order: the piece pass then reads only the pieces at
-    // random, not the records again.
-    std::vector<const Piece*> piece_src(static_cast<std::size_t>(n));
-    detail::gather_in_input_order(pos_of, by_pos, [&](Index i, std::size_t pos, const Result& r) {
-        const auto ii = static_cast<std::size_t>(i);
-        piece_src[ii] = blocks[pos / static_cast<std::size_t>(block)].pieces.data() + r.first;
-        out.areas[ii] = r.area;
-        out.perimeters[ii] = r.perimeter;
-        out.centroids(i, 0) = r.cx;
-        out.centroids(i, 1) = r.cy;
-        out.candidates[ii] = r.candidates;
-        out.piece_ptr[ii + 1] = out.piece_ptr[ii] + r.pieces;
-        out.indptr[ii + 1] = out.indptr[ii] + r.edges;
-    });
-    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
-    detail::assign_prefaulted(out.piece_neighbor, total);
-    detail::assign_prefaulted(out.piece_x, total);
-    detail::assign_prefaulted(out.piece_y, total);
-    detail::assign_prefaulted(out.piece_span, total);
-    detail::assign_prefaulted(out.indices, static_cast<std::size_t>(out.indptr.back()));
-#pragma omp parallel for num_threads(team) schedule(static)
+    // Counts to offsets; the threads' columns one after another (where each thread's pieces start).
     for (Index i = 0; i < n; ++i) {
-        const auto ii = static_cast<std::size_t>(i);
-        if (i + detail::kAhead < n) {
-            const Piece* ahead = piece_src[ii + detail::kAhead];
-            for (int line = 0; line < 4; ++line) detail::prefetch(ahead + 2 * line);
-        }
-        const Piece* src = piece_src[ii];
-        auto dst = static_cast<std::size_t>(out.piece_ptr[ii]);
-        auto nb = static_cast<std::size_t>(out.indptr[ii]);
-        const Index cnt = out.piece_ptr[ii + 1] - out.piece_ptr[ii];
-        for (Index k = 0; k < cnt; ++k, ++dst) {
-            out.piece_neighbor[dst] = src[k].neighbor;
-            out.piece_x[dst] = src[k].start.x();
-            out.piece_y[dst] = src[k].start.y();
-            out.piece_span[dst] = src[k].arc_span;
-            if (!src[k].is_arc()) out.indices[nb++] = src[k].neighbor;
-        }
-        detail::sort_small(out.indices.data() + out.indptr[ii], out.indices.data() + out.indptr[ii + 1]);
+        out.piece_ptr[static_cast<std::size_t>(i) + 1] += out.piece_ptr[static_cast<std::size_t>(i)];
+        out.indptr[static_cast<std::size_t>(i) + 1] += out.indptr[static_cast<std::size_t>(i)];
     }
+    if (team > 1) {
+        std::vector<Index> base(static_cast<std::size_t>(team), 0);
+        for (std::size_t t = 1; t < base.size(); ++t) base[t] = base[t - 1] + columns[t - 1].size();
+        for (Index& at : source) at = base[static_cast<std::size_t>(at % team)] + at / team;
+    }
+    detail::PieceColumns all = detail::PieceColumns::concatenate(columns);
+    // Each column into input order: agent i's pieces move from source[i] to piece_ptr[i].
+    const auto from = [&](Index i) { return static_cast<std::size_t>(source[static_cast<std::size_t>(i)]); };
+    std::vector<std::uint64_t> staged;
+    const auto nothing = [](Index, const void*, std::size_t) {};
+    detail::reorder_column(all.x, staged, out.piece_ptr, from, team, nothing);
+    detail::reorder_column(all.y, staged, out.piece_ptr, from, team, nothing);
+    detail::reorder_column(all.span, staged, out.piece_ptr, from, team, nothing);
+    // Limited neighbours: the edges' neighbours, ascending.
+    detail::assign_prefaulted(out.indices, static_cast<std::size_t>(out.indptr.back()));
+    detail::reorder_column(all.neighbor, staged, out.piece_ptr, from, team,
+                           [&](Index i, const Index* run, std::size_t len) {
+                               Index* first = out.indices.data() + out.indptr[static_cast<std::size_t>(i)];
+                               Index* last = first;
+                               for (std::size_t k = 0; k < len; ++k)
+                                   if (run[k] >= 0) *last++ = run[k];
+                               detail::sort_small(first, last);
+                           });
+    staged = std::vector<std::uint64_t>();
+    out.piece_x = std::move(all.x);
+    out.piece_y = std::move(all.y);
+    out.piece_span = std::move(all.span);
+    out.piece_neighbor = std::move(all.neighbor);
     tracker.report_all();
     return out;
 }
