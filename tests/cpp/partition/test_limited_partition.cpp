@@ -4,7 +4,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <numeric>
 #include <random>
+#include <vector>
 #include <stdexcept>
 
 using namespace dvoronoi;
@@ -29,8 +32,35 @@ TEST_CASE("thread count does not change the result") {
         CHECK(a.piece_ptr == b.piece_ptr);
         CHECK(a.piece_neighbor == b.piece_neighbor);
         CHECK(a.piece_x == b.piece_x);
+        CHECK(a.piece_y == b.piece_y);
+        CHECK(a.piece_span == b.piece_span);
         CHECK(a.areas == b.areas);
+        CHECK(a.perimeters == b.perimeters);
+        CHECK(a.centroids == b.centroids);
+        CHECK(a.candidates == b.candidates);
         CHECK(a.method == m);
+    }
+}
+
+TEST_CASE("sort_small sorts every order of up to eight values, ties, and longer runs") {
+    for (int n = 0; n <= 8; ++n) {
+        std::vector<Index> perm(static_cast<std::size_t>(n));
+        std::iota(perm.begin(), perm.end(), Index{-3});
+        do {
+            std::vector<Index> v = perm;
+            detail::sort_small(v.data(), v.data() + v.size());
+            REQUIRE(std::is_sorted(v.begin(), v.end()));
+            REQUIRE(std::is_permutation(v.begin(), v.end(), perm.begin()));
+        } while (std::next_permutation(perm.begin(), perm.end()));
+    }
+    std::mt19937 rng(4);
+    for (int trial = 0; trial < 2000; ++trial) {
+        std::vector<Index> v(static_cast<std::size_t>(rng() % 20));
+        for (Index& x : v) x = static_cast<Index>(rng() % 5);  // many ties
+        std::vector<Index> want = v;
+        std::sort(want.begin(), want.end());
+        detail::sort_small(v.data(), v.data() + v.size());
+        REQUIRE(v == want);
     }
 }
 
