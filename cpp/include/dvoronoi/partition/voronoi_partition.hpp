@@ -145,18 +145,19 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
     const int team = detail::thread_team(threads, nblocks);
-    // As in limited_cells: results by grid position and neighbour lists in per-block buffers (the hot
-    // loop writes sequentially), then one gather into input order.
+    // Results by grid position and neighbour lists in per-thread columns (the hot loop writes
+    // sequentially), then one gather into input order. (Writing the results straight to input order,
+    // as limited_cells does, measured slower here.)
     struct Result {
         double area, cx, cy;
-        Index used, count, first;  // first: offset of the neighbours in buffer `buf`
-        std::int32_t buf;
+        Index used, count;
+        Index first;  // where the neighbours start: offset in the thread's column * team + thread
         std::int16_t steps;
         char hull;
     };
     std::vector<Result> by_pos;
     detail::assign_prefaulted(by_pos, static_cast<std::size_t>(n), Result{});
-    std::vector<std::vector<Index>> block_nbrs(static_cast<std::size_t>(nblocks));
+    std::vector<std::vector<Index>> columns(static_cast<std::size_t>(team));
     detail::ProgressTracker tracker(progress, n);
     // With the Boundary Scan inner step, the agents the one-shot clip does not certify are deferred
     // and finished together after the first pass (see below).
@@ -226,8 +227,8 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         r.cy = m.centroid.y();
     };
     // Neighbours ascending into the buffer, the clipped measures when bounds are given.
-    const auto finish = [&](Scratch& sc, const Vec2& c, std::int32_t buf_id, Result& r) {
-        auto& buf = block_nbrs[static_cast<std::size_t>(buf_id)];
+    const auto finish = [&](Scratch& sc, const Vec2& c, int thread, Result& r) {
+        auto& column = columns[static_cast<std::size_t>(thread)];
         std::vector<Index>& mine = sc.mine;
         detail::sort_small(mine.data(), mine.data() + mine.size());
         mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
@@ -239,27 +240,33 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
             r.cx = m.centroid.x();
             r.cy = m.centroid.y();
         }
-        r.buf = buf_id;
-        r.first = static_cast<Index>(buf.size());
+        r.first = static_cast<Index>(column.size()) * team + thread;
         r.count = static_cast<Index>(mine.size());
-        buf.insert(buf.end(), mine.begin(), mine.end());
+        column.insert(column.end(), mine.begin(), mine.end());
     };
 
 #pragma omp parallel num_threads(team)
     {
+#ifdef _OPENMP
+        const int me = omp_get_thread_num();
+#else
+        const int me = 0;
+#endif
+        // About six neighbours per cell: room for seven per agent (untouched room costs address
+        // space only; the first thread's column takes the others' in the end).
+        columns[static_cast<std::size_t>(me)].reserve(static_cast<std::size_t>(me == 0 ? n : n / team + block) * 7);
         Scratch sc;
         std::vector<Index> my_deferred;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             if (tracker.cancelled()) continue;
             const Index lo = b * block, hi = std::min(n, lo + block);
-            block_nbrs[static_cast<std::size_t>(b)].reserve(static_cast<std::size_t>(hi - lo) * 7);
             Index put_off = 0;
             for (Index pos = lo; pos < hi; ++pos) {
                 const auto spos = static_cast<std::size_t>(pos);
                 const Index i = order[spos];
                 const Vec2 c = index.point_at(spos);
-                Result r{0.0, 0.0, 0.0, 0, 0, 0, -1, 0, 0};
+                Result r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
                 sc.mine.clear();
                 if (deferring) {
                     load_in_range(sc, spos, c);
@@ -287,7 +294,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                                 &sc.clip_ws);
                     from_cell(sc, c, first, r);
                 }
-                finish(sc, c, static_cast<std::int32_t>(b), r);
+                finish(sc, c, me, r);
                 by_pos[spos] = r;
             }
             tracker.block_done(hi - lo - put_off);
@@ -323,10 +330,14 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
             for (std::size_t t = 0; t < line.size(); ++t) line_rank[static_cast<std::size_t>(line[t])] = static_cast<int>(t);
         }
         const Index dblocks = (nd + block - 1) / block;
-        block_nbrs.resize(static_cast<std::size_t>(nblocks + dblocks));
         const double wide = std::ldexp(1.0, 20);  // the square the candidates' cell is clipped from, in R
 #pragma omp parallel num_threads(detail::thread_team(threads, dblocks))
         {
+#ifdef _OPENMP
+            const int me = omp_get_thread_num();
+#else
+            const int me = 0;
+#endif
             Scratch sc;
             std::vector<int> dnb;
 #pragma omp for schedule(dynamic, 1)
@@ -336,7 +347,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                 for (Index t = lo; t < hi; ++t) {
                     const auto spos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(t)]);
                     const Vec2 c = index.point_at(spos);
-                    Result r{0.0, 0.0, 0.0, 0, 0, 0, -1, 0, 0};
+                    Result r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
                     sc.mine.clear();
                     // Candidates: the agents strictly within 2R, then the triangulation's neighbours beyond.
                     load_in_range(sc, spos, c);
@@ -364,7 +375,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                         detail::candidate_cell(c, sc.cand, inner, sc.ws, sc.dws, sc.cell);
                         from_cell(sc, c, std::sqrt(sc.clip_ws.lo), r);
                     }
-                    finish(sc, c, static_cast<std::int32_t>(nblocks + b), r);
+                    finish(sc, c, me, r);
                     by_pos[spos] = r;
                 }
                 tracker.block_done(hi - lo);
@@ -375,12 +386,11 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
 
     // Lay out the results and the neighbour CSR in input order (scattered reads, prefetched).
     const std::vector<Index> pos_of = detail::positions_of(order);
-    // Where each agent's neighbours are, in input order (the copy then reads only those at random).
-    std::vector<const Index*> nbr_src;
-    detail::assign_prefaulted(nbr_src, static_cast<std::size_t>(n), static_cast<const Index*>(nullptr));
+    std::vector<Index> source;  // where agent i's neighbours start in its thread's column (encoded as above)
+    detail::assign_prefaulted(source, static_cast<std::size_t>(n), Index{0});
     detail::gather_in_input_order(pos_of, by_pos, [&](Index i, std::size_t, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
-        nbr_src[ii] = block_nbrs[static_cast<std::size_t>(r.buf)].data() + r.first;
+        source[ii] = r.first;
         out.areas[ii] = r.area;
         out.centroids(i, 0) = r.cx;
         out.centroids(i, 1) = r.cy;
@@ -389,13 +399,21 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         out.agents_used[ii] = r.used;
         out.indptr[ii + 1] = out.indptr[ii] + r.count;
     });
-    detail::assign_prefaulted(out.indices, static_cast<std::size_t>(out.indptr.back()), Index{0});
-#pragma omp parallel for num_threads(team) schedule(static)
-    for (Index i = 0; i < n; ++i) {
-        const auto ii = static_cast<std::size_t>(i);
-        if (i + detail::kAhead < n) detail::prefetch(nbr_src[ii + detail::kAhead]);
-        std::copy(nbr_src[ii], nbr_src[ii] + (out.indptr[ii + 1] - out.indptr[ii]), out.indices.begin() + out.indptr[ii]);
+    // The threads' columns one after another, then each agent's run into its place.
+    std::vector<Index> base(static_cast<std::size_t>(team), 0);
+    for (std::size_t t = 1; t < base.size(); ++t) base[t] = base[t - 1] + static_cast<Index>(columns[t - 1].size());
+    for (std::size_t t = 1; t < columns.size(); ++t) {
+        const std::vector<Index> part = std::move(columns[t]);  // freed once appended
+        columns[0].insert(columns[0].end(), part.begin(), part.end());
     }
+    detail::assign_prefaulted(out.indices, static_cast<std::size_t>(out.indptr.back()), Index{0});
+    detail::move_runs(
+        out.indices.data(), columns[0].data(), out.indptr,
+        [&](Index i) {
+            const Index at = source[static_cast<std::size_t>(i)];
+            return static_cast<std::size_t>(base[static_cast<std::size_t>(at % team)] + at / team);
+        },
+        team, [](Index, const Index*, std::size_t) {});
     tracker.report_all();
     return out;
 }
