@@ -119,8 +119,8 @@ inline void sort_small(Index* first, Index* last) {
 
 /// Maps the pages of [p, p + bytes) by one system call (MADV_POPULATE_WRITE, Linux 5.14+) instead
 /// of one page fault each; elsewhere, on older kernels or for small buffers it does nothing and the
-/// pages fault in as before. Measured: page faults are about a sixth of limited_cells at 1e6 agents
-/// (700 MB of results and scratch), and mapping the pages up front takes about a quarter off that.
+/// pages fault in as before. Measured when limited_cells touched 700 MB at 1e6 agents: page faults
+/// were about a sixth of the run, and mapping the pages up front took about a quarter off that.
 inline void prefault(const void* p, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
     constexpr std::uintptr_t kPage = 4096;
@@ -155,7 +155,7 @@ inline constexpr Index kWriteAhead = 4;
 struct PieceColumns {
     std::vector<double> x, y, span;
     std::vector<Index> neighbor;
-    std::size_t mapped_ = 0;  // values up to here are on mapped pages
+    std::size_t mapped = 0;  // values up to here are on mapped pages
 
     Index size() const noexcept { return static_cast<Index>(x.size()); }
     void reserve(std::size_t pieces) {
@@ -165,7 +165,7 @@ struct PieceColumns {
         neighbor.reserve(pieces);
     }
     void append(const std::vector<Piece>& pieces) {
-        if (x.size() + pieces.size() > mapped_) map_ahead();
+        if (x.size() + pieces.size() > mapped) map_ahead();
         for (const Piece& p : pieces) {
             x.push_back(p.start.x());
             y.push_back(p.start.y());
@@ -176,17 +176,17 @@ struct PieceColumns {
     /// Maps the next pages of the reserved room in one call per column (see prefault).
     void map_ahead() {
         constexpr std::size_t kStep = std::size_t{1} << 17;  // values: 1 MB per column
-        const std::size_t to = std::min(x.capacity(), std::max(mapped_, x.size()) + kStep);
-        if (to <= mapped_) return;
-        const std::size_t at = std::max(mapped_, x.size());
+        const std::size_t to = std::min(x.capacity(), std::max(mapped, x.size()) + kStep);
+        if (to <= mapped) return;
+        const std::size_t at = std::max(mapped, x.size());
         prefault(x.data() + at, (to - at) * sizeof(double));
         prefault(y.data() + at, (to - at) * sizeof(double));
         prefault(span.data() + at, (to - at) * sizeof(double));
         prefault(neighbor.data() + at, (to - at) * sizeof(Index));
-        mapped_ = to;
+        mapped = to;
     }
-    /// parts[0] followed by parts[1], ... (each freed once appended).
-    /// The columns are copied by up to `team` threads.
+    /// parts[0] followed by parts[1], ... (each freed once appended); up to `team` threads copy
+    /// the four columns.
     static PieceColumns concatenate(std::vector<PieceColumns>& parts, int team) {
         PieceColumns all = std::move(parts.front());
         const auto join = [&](auto column) {
