@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -40,6 +41,41 @@ TEST_CASE("thread count does not change the result") {
         CHECK(a.candidates == b.candidates);
         CHECK(a.method == m);
     }
+}
+
+TEST_CASE("more pieces than the columns reserve: a lattice whose cells are four edges and four arcs") {
+    // Unit square lattice, R = 0.6: every inner cell is the unit square around the agent with its
+    // corners cut off by the circle, 8 pieces, above the 7 per agent the per-thread columns reserve,
+    // so they regrow; every thread count must still give the same arrays and the exact cells.
+    const int side = 160;
+    Points P(side * side, 2);
+    for (int a = 0; a < side; ++a)
+        for (int b = 0; b < side; ++b) P.row(a * side + b) << a, b;
+    const double R = 0.6;
+    const double segment = R * R * std::acos(0.5 / R) - 0.5 * std::sqrt(R * R - 0.25);
+    const double inner_area = M_PI * R * R - 4.0 * segment;
+    const LimitedPartition one = limited_cells(P, R, Method::Scan, 1);
+    const LimitedPartition two = limited_cells(P, R, Method::Scan, 2);
+    CHECK(one.piece_ptr == two.piece_ptr);
+    CHECK(one.piece_neighbor == two.piece_neighbor);
+    CHECK(one.piece_x == two.piece_x);
+    CHECK(one.piece_y == two.piece_y);
+    CHECK(one.piece_span == two.piece_span);
+    CHECK(one.indices == two.indices);
+    CHECK(one.areas == two.areas);
+    Index inner = 0;
+    for (int a = 1; a + 1 < side; ++a)
+        for (int b = 1; b + 1 < side; ++b) {
+            const Index i = a * side + b;
+            REQUIRE(one.piece_ptr[static_cast<std::size_t>(i) + 1] - one.piece_ptr[static_cast<std::size_t>(i)] == 8);
+            const auto [nb, ne] = one.neighbors(i);
+            const std::vector<Index> want{i - side, i - 1, i + 1, i + side};
+            CHECK(std::vector<Index>(nb, ne) == want);
+            CHECK(one.areas[static_cast<std::size_t>(i)] == doctest::Approx(inner_area).epsilon(1e-12));
+            ++inner;
+        }
+    CHECK(one.piece_ptr.back() > 7 * static_cast<Index>(P.rows()));  // the reserve was exceeded
+    CHECK(inner == (side - 2) * (side - 2));
 }
 
 TEST_CASE("sort_small sorts every order of up to eight values, ties, and longer runs") {
