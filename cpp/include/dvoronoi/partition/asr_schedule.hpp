@@ -20,9 +20,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace dvoronoi::detail {
+
+/// R_k = d1 * 2^(k-1), the schedule's radius: the same value as std::ldexp(d1, k - 1) (scaling by
+/// a power of two is exact, and overflows to infinity alike), without its library call for the
+/// usual small k (measured: ldexp was 0.6% of voronoi_cells at 1e6 agents).
+inline double schedule_radius(double d1, int k) {
+    if (k >= 1 && k <= 64) return d1 * static_cast<double>(std::uint64_t{1} << (k - 1));
+    return std::ldexp(d1, k - 1);
+}
 
 class AsrSchedule {
 public:
@@ -48,10 +57,10 @@ public:
     std::pair<int, bool> stop(const Vec2& c, double d1, double reach, Inside&& inside) const {
         const double far = far_lower(c);
         const auto all_in = [&](int k) {
-            const double r = std::ldexp(d1, k - 1);
+            const double r = schedule_radius(d1, k);
             return !std::isfinite(4.0 * r) || all_within(c, r, far);
         };
-        const auto done = [&](int k) { return all_in(k) || inside(std::ldexp(d1, k - 1)); };
+        const auto done = [&](int k) { return all_in(k) || inside(schedule_radius(d1, k)); };
         // Estimates: R_k just beyond the farthest vertex, 2 R_k just beyond the farthest agent.
         const auto step_beyond = [&](double dist) {
             int e = 0;
@@ -68,7 +77,7 @@ public:
             do ++k;
             while (!done(k));
         }
-        const double r = std::ldexp(d1, k - 1);
+        const double r = schedule_radius(d1, k);
         return {k, std::isfinite(4.0 * r) && inside(r)};
     }
 

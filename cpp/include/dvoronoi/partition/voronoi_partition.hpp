@@ -191,7 +191,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
             [&](double radius) { return detail::vertices_inside(sc.exact, clip_ws, radius); });
         r.steps = static_cast<std::int16_t>(k);
         // Agents strictly within 2 R_k: among the loaded ones when R_k <= R.
-        const double rk = std::ldexp(d1, k - 1);
+        const double rk = detail::schedule_radius(d1, k);
         if (certified && rk <= one_shot) {
             r.used = detail::count_within_2r(
                 0, clip_ws.m, rk, [&](std::size_t t) { return clip_ws.n2[t]; },
@@ -217,7 +217,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         if (n > 1) {  // the schedule's numbers from the exact cell
             const auto [k, certified] = schedule.stop(c, first, sc.cell);
             r.steps = static_cast<std::int16_t>(k);
-            r.used = schedule.used(c, std::ldexp(first, k - 1), certified);
+            r.used = schedule.used(c, detail::schedule_radius(first, k), certified);
         }
         for (const VoronoiEdge& e : sc.cell.edges) sc.mine.push_back(e.neighbor);
         sc.cell.is_clipped = false;
