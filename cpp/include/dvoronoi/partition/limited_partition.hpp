@@ -9,14 +9,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <cstring>
-#include <type_traits>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <functional>
 #include <limits>
 #include <numeric>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #ifdef _OPENMP
@@ -247,6 +247,15 @@ void gather_in_input_order(const std::vector<Index>& pos_of, const std::vector<R
     }
 }
 
+/// This thread's number in its OpenMP team (0 without OpenMP).
+inline int thread_id() {
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
+}
+
 /// Progress of a parallel loop over blocks: counts finished agents, calls the callback from the
 /// calling thread (OpenMP thread 0), and turns an exception thrown by the callback (e.g. a Python
 /// KeyboardInterrupt) into a cancellation that is rethrown after the parallel region.
@@ -256,12 +265,7 @@ public:
     bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
     void block_done(Index agents) {
         const Index now = done_.fetch_add(agents) + agents;
-#ifdef _OPENMP
-        const bool caller = omp_get_thread_num() == 0;
-#else
-        const bool caller = true;
-#endif
-        if (!progress_ || !caller) return;
+        if (!progress_ || thread_id() != 0) return;  // only the calling thread reports
         try {
             progress_(now, total_);
         } catch (...) {
@@ -299,6 +303,20 @@ inline int thread_team(int threads, Index blocks) {
     (void)threads;
 #endif
     return static_cast<int>(std::min<Index>(wanted, std::max<Index>(blocks, 1)));
+}
+
+/// Where an agent's run starts while each thread appends runs to its own column: offset * team +
+/// thread. Once the columns are joined in thread order (sizes: their lengths before), to_joined
+/// turns these places into offsets in the joined column.
+inline Index column_place(std::size_t offset, int team, int thread) {
+    return static_cast<Index>(offset) * team + thread;
+}
+inline void to_joined(std::vector<Index>& places, const std::vector<Index>& sizes) {
+    const auto team = static_cast<Index>(sizes.size());
+    if (team <= 1) return;  // offset * 1 + 0: already the offset
+    std::vector<Index> base(sizes.size(), 0);
+    for (std::size_t t = 1; t < base.size(); ++t) base[t] = base[t - 1] + sizes[t - 1];
+    for (Index& at : places) at = base[static_cast<std::size_t>(at % team)] + at / team;
 }
 
 /// Throws CoincidentError naming the lowest pair (i, j), i < j, of coinciding agents.
@@ -358,19 +376,15 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     std::vector<detail::PieceColumns> columns(static_cast<std::size_t>(team));
     detail::assign_prefaulted(out.piece_ptr, static_cast<std::size_t>(n) + 1);  // counts, summed below
     detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1);
-    // Where each agent's pieces start: (offset in its thread's columns) * team + thread during the
-    // loop, the offset in the concatenated columns after it.
+    // Where each agent's pieces start: its place in its thread's columns during the loop (see
+    // column_place), the offset in the joined columns after it.
     std::vector<Index> source;
     detail::assign_prefaulted(source, static_cast<std::size_t>(n));
     detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)
     {
-#ifdef _OPENMP
-        const int me = omp_get_thread_num();
-#else
-        const int me = 0;
-#endif
+        const int me = detail::thread_id();
         detail::PieceColumns& mine = columns[static_cast<std::size_t>(me)];
         // About six pieces per cell in a swarm: room for seven per agent. Room that is never written
         // costs address space only; the first thread's columns take the others' in the end.
@@ -421,7 +435,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
                 for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
                 out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
                 out.indptr[i + 1] = edges;
-                source[i] = mine.size() * team + me;
+                source[i] = detail::column_place(mine.x.size(), team, me);
                 mine.append(cell.pieces);
             }
             tracker.block_done(hi - lo);
@@ -434,11 +448,9 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         out.piece_ptr[static_cast<std::size_t>(i) + 1] += out.piece_ptr[static_cast<std::size_t>(i)];
         out.indptr[static_cast<std::size_t>(i) + 1] += out.indptr[static_cast<std::size_t>(i)];
     }
-    if (team > 1) {
-        std::vector<Index> base(static_cast<std::size_t>(team), 0);
-        for (std::size_t t = 1; t < base.size(); ++t) base[t] = base[t - 1] + columns[t - 1].size();
-        for (Index& at : source) at = base[static_cast<std::size_t>(at % team)] + at / team;
-    }
+    std::vector<Index> sizes;
+    for (const detail::PieceColumns& part : columns) sizes.push_back(part.size());
+    detail::to_joined(source, sizes);
     detail::PieceColumns all = detail::PieceColumns::concatenate(columns, team);
     // Each column into input order: agent i's pieces move from source[i] to piece_ptr[i]. Each
     // column goes into the storage the previous one left (the first into a fresh one), so one

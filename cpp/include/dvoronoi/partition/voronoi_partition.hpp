@@ -151,7 +151,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     struct Result {
         double area, cx, cy;
         Index used, count;
-        Index first;  // where the neighbours start: offset in the thread's column * team + thread
+        Index first;  // where the neighbours start in the thread's column (detail::column_place)
         std::int16_t steps;
         char hull;
     };
@@ -240,18 +240,14 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
             r.cx = m.centroid.x();
             r.cy = m.centroid.y();
         }
-        r.first = static_cast<Index>(column.size()) * team + thread;
+        r.first = detail::column_place(column.size(), team, thread);
         r.count = static_cast<Index>(mine.size());
         column.insert(column.end(), mine.begin(), mine.end());
     };
 
 #pragma omp parallel num_threads(team)
     {
-#ifdef _OPENMP
-        const int me = omp_get_thread_num();
-#else
-        const int me = 0;
-#endif
+        const int me = detail::thread_id();
         // About six neighbours per cell: room for seven per agent (untouched room costs address
         // space only; the first thread's column takes the others' in the end).
         columns[static_cast<std::size_t>(me)].reserve(static_cast<std::size_t>(me == 0 ? n : n / team + block) * 7);
@@ -333,11 +329,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         const double wide = std::ldexp(1.0, 20);  // the square the candidates' cell is clipped from, in R
 #pragma omp parallel num_threads(detail::thread_team(threads, dblocks))
         {
-#ifdef _OPENMP
-            const int me = omp_get_thread_num();
-#else
-            const int me = 0;
-#endif
+            const int me = detail::thread_id();
             Scratch sc;
             std::vector<int> dnb;
 #pragma omp for schedule(dynamic, 1)
@@ -386,7 +378,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
 
     // Lay out the results and the neighbour CSR in input order (scattered reads, prefetched).
     const std::vector<Index> pos_of = detail::positions_of(order);
-    std::vector<Index> source;  // where agent i's neighbours start in its thread's column (encoded as above)
+    std::vector<Index> source;  // where agent i's neighbours start (column_place, then joined offsets)
     detail::assign_prefaulted(source, static_cast<std::size_t>(n), Index{0});
     detail::gather_in_input_order(pos_of, by_pos, [&](Index i, std::size_t, const Result& r) {
         const auto ii = static_cast<std::size_t>(i);
@@ -400,8 +392,9 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         out.indptr[ii + 1] = out.indptr[ii] + r.count;
     });
     // The threads' columns one after another, then each agent's run into its place.
-    std::vector<Index> base(static_cast<std::size_t>(team), 0);
-    for (std::size_t t = 1; t < base.size(); ++t) base[t] = base[t - 1] + static_cast<Index>(columns[t - 1].size());
+    std::vector<Index> sizes;
+    for (const std::vector<Index>& column : columns) sizes.push_back(static_cast<Index>(column.size()));
+    detail::to_joined(source, sizes);
     for (std::size_t t = 1; t < columns.size(); ++t) {
         const std::vector<Index> part = std::move(columns[t]);  // freed once appended
         columns[0].insert(columns[0].end(), part.begin(), part.end());
@@ -409,11 +402,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     detail::assign_prefaulted(out.indices, static_cast<std::size_t>(out.indptr.back()), Index{0});
     detail::move_runs(
         out.indices.data(), columns[0].data(), out.indptr,
-        [&](Index i) {
-            const Index at = source[static_cast<std::size_t>(i)];
-            return static_cast<std::size_t>(base[static_cast<std::size_t>(at % team)] + at / team);
-        },
-        team, [](Index, const Index*, std::size_t) {});
+        [&](Index i) { return static_cast<std::size_t>(source[static_cast<std::size_t>(i)]); }, team, [](Index, const Index*, std::size_t) {});
     tracker.report_all();
     return out;
 }
