@@ -134,35 +134,48 @@ struct ClipWorkspace {
         nn = 0;
         m = near = nfar = 0;
     }
-    /// Adds a candidate (strictly within 2R of c, distinct from c and the others). Free of
-    /// unpredictable branches: they cost more than the arithmetic here.
-#if defined(__GNUC__) || defined(__clang__)
-    __attribute__((always_inline))  // called per agent in the query's inner loop
-#endif
+    /// Adds a candidate (strictly within 2R of c, distinct from c and the others).
     void add(const Vec2& p, Index j) {
-        // Locals and raw pointers throughout: a store through id (Index) may alias the size_t
-        // counters and the vectors' internals, which would make the compiler reload them after it.
-        const std::size_t k = m, nr = near, nf = nfar;
-        if (k == cap_) grow();
-        const double x = p.x() - c.x(), y = p.y() - c.y();
-        const double d = x * x + y * y;
-        pxp_[k] = p.x();
-        pyp_[k] = p.y();
-        axp_[k] = x;
-        ayp_[k] = y;
-        n2p_[k] = d;
-        idp_[k] = j;
-        const double l = lo;
-        lo2 = std::min(lo2, std::max(l, d));
-        nn = d < l ? static_cast<int>(k) : nn;
-        lo = std::min(l, d);
-        hi = std::max(hi, d);
-        const bool is_near = d <= near2;
-        orderp_[nr] = static_cast<int>(k);
-        farp_[nf] = static_cast<int>(k);
-        near = nr + is_near;
-        nfar = nf + !is_near;
-        m = k + 1;
+        if (m == cap_) grow();
+        put(m, p.x(), p.y(), j);
+        ++m;
+    }
+    /// Adds a batch of candidates as a spatial query hands them over (core/grid_index.hpp:
+    /// for_each_batch_within_at): candidate t < count at (xs[sel[t]], ys[sel[t]]) with index
+    /// ids[sel[t]]. The count stays in a register through the batch (see summarize()).
+    void add_batch(const double* xs, const double* ys, const Index* ids, const std::uint32_t* sel, std::size_t count) {
+        while (m + count > cap_) grow();
+        std::size_t k = m;
+        for (std::size_t t = 0; t < count; ++t, ++k) put(k, xs[sel[t]], ys[sel[t]], ids[sel[t]]);
+        m = k;
+    }
+    /// After the last add: the nearest candidate (nn, lo), the second distance (lo2), the farthest
+    /// (hi), and the near/far lists. Why a pass of its own, on locals: kept up to date in add(),
+    /// these running values went through memory at every candidate (a store through px may alias
+    /// them), a chain of store-to-load latencies.
+    void summarize() {
+        double l = clip::kInf, l2 = clip::kInf, h = 0.0;
+        int best = 0;
+        std::size_t nr = 0, nf = 0;
+        const double cut = near2;
+        for (std::size_t k = 0; k < m; ++k) {
+            const double d = n2p_[k];
+            l2 = std::min(l2, std::max(l, d));
+            best = d < l ? static_cast<int>(k) : best;
+            l = std::min(l, d);
+            h = std::max(h, d);
+            const bool is_near = d <= cut;
+            orderp_[nr] = static_cast<int>(k);
+            farp_[nf] = static_cast<int>(k);
+            nr += is_near;
+            nf += !is_near;
+        }
+        lo = l;
+        lo2 = l2;
+        hi = h;
+        nn = best;
+        near = nr;
+        nfar = nf;
     }
     /// Appends, after the m candidates (not counted in m), four phantom agents at c + (+-2R, 0),
     /// (0, +-2R): their bisectors bound the square of half-side R around c, the start of an
@@ -187,6 +200,15 @@ struct ClipWorkspace {
     }
 
 private:
+    void put(std::size_t k, double x, double y, Index j) {
+        const double dx = x - c.x(), dy = y - c.y();
+        pxp_[k] = x;
+        pyp_[k] = y;
+        axp_[k] = dx;
+        ayp_[k] = dy;
+        n2p_[k] = dx * dx + dy * dy;
+        idp_[k] = j;
+    }
     void grow() {
         cap_ = std::max<std::size_t>(64, 2 * px.size());
         for (auto* v : {&px, &py, &ax, &ay, &n2}) v->resize(cap_);
@@ -430,6 +452,7 @@ private:
 /// comment); false when it gave up (then `out` is unspecified and Boundary Scan must run).
 inline bool certified_clip_loaded(double radius, LimitedCell& out, ClipWorkspace& w) {
     using namespace clip;
+    w.summarize();
     const std::size_t m = w.m;
     if (m == 0) return false;  // Boundary Scan's full disk costs nothing
     const int nn = w.nn;

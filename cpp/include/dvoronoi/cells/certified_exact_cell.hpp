@@ -37,6 +37,7 @@ struct ExactClip {
 /// (`out` unspecified).
 inline bool certified_candidate_cell(double half, ExactClip& out, ClipWorkspace& w) {
     using namespace clip;
+    w.summarize();
     const std::size_t m = w.m;
     if (m < 3) return false;
     // Products of up to three squared lengths must neither underflow nor overflow.

@@ -162,10 +162,13 @@ public:
         within_impl(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, out);
     }
 
-    /// The same as within_at, handing each agent to fn(p, j) instead of collecting them.
-    template <class Fn>
-    void for_each_within_at(std::size_t pos, double radius, Fn&& fn) const {
-        visit_within(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, fn);
+    /// The same as within_at, handing the agents over in batches instead of collecting them:
+    /// batch(xs, ys, ids, sel, count), agent t < count at (xs[sel[t]], ys[sel[t]]) with index
+    /// ids[sel[t]]. Why batches: a loader's running state then stays in registers through a batch
+    /// (stored per agent, it went through memory at every agent: the stores alias it).
+    template <class Batch>
+    void for_each_batch_within_at(std::size_t pos, double radius, Batch&& batch) const {
+        visit_within(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, batch);
     }
 
     /// The number of agents j != i strictly within 2*radius of the agent at position `pos` of
@@ -191,7 +194,10 @@ public:
         const double span = rr / cell_;
         if (!dense_ || !(span < static_cast<double>(n))) {
             Index count = 0;
-            visit_within(x, y, key_at(x, y), -1, radius, [&](const Vec2&, Index) { ++count; });
+            visit_within(x, y, key_at(x, y), -1, radius,
+                         [&](const double*, const double*, const Index*, const std::uint32_t*, std::size_t m) {
+                             count += static_cast<Index>(m);
+                         });
             return count;
         }
         constexpr double u = kUnitRoundoff;
@@ -355,18 +361,33 @@ private:
     void within_impl(double x, double y, Key k, Index i, double radius,
                      std::vector<detail::Candidate>& out) const {
         out.clear();
-        visit_within(x, y, k, i, radius, [&](const Vec2& p, Index j) { out.push_back({p, j}); });
+        visit_within(x, y, k, i, radius,
+                     [&](const double* xs, const double* ys, const Index* ids, const std::uint32_t* sel, std::size_t count) {
+                         for (std::size_t t = 0; t < count; ++t)
+                             out.push_back({Vec2(xs[sel[t]], ys[sel[t]]), ids[sel[t]]});
+                     });
     }
 
-    /// Calls fn(p, j) for every agent j != i strictly within 2*radius of (x, y) (exact), in the
-    /// index's deterministic traversal order.
-    template <class Fn>
-    void visit_within(double x, double y, Key k, Index i, double radius, Fn&& fn) const {
+    /// Hands every agent j != i strictly within 2*radius of (x, y) (exact) to batch(xs, ys, ids, sel,
+    /// count) (see for_each_batch_within_at), in the index's deterministic traversal order.
+    template <class Batch>
+    void visit_within(double x, double y, Key k, Index i, double radius, Batch&& batch) const {
         if (pts_.rows() == 0) return;
         const Vec2 c(x, y);
+        constexpr std::size_t kChunk = 64;
+        std::uint32_t keep[kChunk];
+        // Every agent of [lo, hi) that `take` accepts, in batches of up to kChunk.
+        const auto every = [&](std::size_t lo, std::size_t hi, auto&& take) {
+            for (std::size_t s0 = lo; s0 < hi; s0 += kChunk) {
+                const std::size_t s1 = std::min(hi, s0 + kChunk);
+                std::size_t kept = 0;
+                for (std::size_t s = s0; s < s1; ++s)
+                    if (take(s)) keep[kept++] = static_cast<std::uint32_t>(s - s0);
+                if (kept > 0) batch(xs_.data() + s0, ys_.data() + s0, order_.data() + s0, keep, kept);
+            }
+        };
         if (!(radius < std::numeric_limits<double>::infinity())) {
-            for (std::size_t s = 0; s < order_.size(); ++s)
-                if (order_[s] != i) fn(Vec2(xs_[s], ys_[s]), order_[s]);
+            every(0, order_.size(), [&](std::size_t s) { return order_[s] != i; });
             return;
         }
         // Cells to scan on each side: one within the indexed range (its margin covers the rounding
@@ -378,10 +399,9 @@ private:
                             static_cast<double>(std::min(2 * reach + 1, ny_));
         if (reach > 1 && wide > static_cast<double>(order_.size())) {
             // More cells than agents to visit: test every agent instead.
-            for (std::size_t s = 0; s < order_.size(); ++s) {
-                const Vec2 p(xs_[s], ys_[s]);
-                if (order_[s] != i && pred::within_2r(c, p, radius) > 0) fn(p, order_[s]);
-            }
+            every(0, order_.size(), [&](std::size_t s) {
+                return order_[s] != i && pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0;
+            });
             return;
         }
         // The agents of a column run: a branch-free pass keeps, in chunks, those not clearly
@@ -390,8 +410,6 @@ private:
         const auto scan = [&](std::int64_t cx, std::int64_t cy0, std::int64_t cy1) {
             std::size_t lo, hi;
             column_run(cx, cy0, cy1, lo, hi);
-            constexpr std::size_t kChunk = 64;
-            std::uint32_t keep[kChunk];
             for (std::size_t s0 = lo; s0 < hi; s0 += kChunk) {
                 const std::size_t s1 = std::min(hi, s0 + kChunk);
                 std::size_t kept = 0;
@@ -400,14 +418,15 @@ private:
                     keep[kept] = static_cast<std::uint32_t>(s - s0);
                     kept += dx * dx + dy * dy <= r2hi;
                 }
+                std::size_t taken = 0;  // compacted in place
                 for (std::size_t t = 0; t < kept; ++t) {
                     const std::size_t s = s0 + keep[t];
-                    const Index j = order_[s];
-                    if (j == i) continue;
-                    const Vec2 p(xs_[s], ys_[s]);
-                    const double dx = p.x() - c.x(), dy = p.y() - c.y();
-                    if (dx * dx + dy * dy < r2lo || pred::within_2r(c, p, radius) > 0) fn(p, j);
+                    if (order_[s] == i) continue;
+                    const double dx = xs_[s] - c.x(), dy = ys_[s] - c.y();
+                    if (dx * dx + dy * dy < r2lo || pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0)
+                        keep[taken++] = keep[t];
                 }
+                if (taken > 0) batch(xs_.data() + s0, ys_.data() + s0, order_.data() + s0, keep, taken);
             }
         };
         if (reach == 1) {  // 3 x 3 cells

@@ -415,7 +415,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
                     // query finds them (agents are distinct: checked above), Boundary Scan itself
                     // when the filter gives up. The previous agent's count sets the near radius.
                     clip_ws.start(c, detail::near_first_sq(radius, clip_ws.m));
-                    index.for_each_within_at(pp, radius, [&](const Vec2& p, Index j) { clip_ws.add(p, j); });
+                    index.for_each_batch_within_at(pp, radius, [&](auto... batch) { clip_ws.add_batch(batch...); });
                     if (!detail::certified_clip_loaded(radius, cell, clip_ws)) {
                         clip_ws.candidates(cand);
                         detail::boundary_scan(c, cand, radius, cell, ws);

@@ -179,7 +179,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     // Loads the clip with the agents strictly within 2 one_shot of the agent at grid position spos.
     const auto load_in_range = [&](Scratch& sc, std::size_t spos, const Vec2& c) {
         sc.clip_ws.start(c, detail::near_first_sq(one_shot, sc.clip_ws.m));
-        index.for_each_within_at(spos, one_shot, [&](const Vec2& p, Index j) { sc.clip_ws.add(p, j); });
+        index.for_each_batch_within_at(spos, one_shot, [&](auto... batch) { sc.clip_ws.add_batch(batch...); });
     };
     // The result of a cell certified by clipping (`exact` over the loaded candidates, which hold
     // every agent strictly within 2 one_shot): ASR's numbers, neighbours and measures.
