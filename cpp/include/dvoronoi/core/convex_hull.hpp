@@ -149,22 +149,33 @@ private:
         // harmless: an agent strictly left of every (non-degenerate) edge of any closed polygon of
         // agents has the polygon winding around it with only left turns, so it lies strictly inside
         // the polygon's hull, hence strictly inside the agents' hull.
-        std::vector<Vec2> q;
-        for (int d = 0; d < 8; ++d) q.push_back(P(ext[d]));
-        bool any_edge = false;
-        for (std::size_t t = 0; t < q.size(); ++t) any_edge = any_edge || q[t] != q[(t + 1) % q.size()];
+        Vec2 q[8];
+        for (int d = 0; d < 8; ++d) q[d] = P(ext[d]);
+        bool any_edge = false, same[8];
+        for (int t = 0; t < 8; ++t) {
+            same[t] = q[t] == q[(t + 1) & 7];
+            any_edge = any_edge || !same[t];
+        }
         std::vector<Index> out;
         out.reserve(static_cast<std::size_t>(n));
         for (Index i = 0; i < n; ++i) {
             const Vec2 p = P(i);
-            bool inside = any_edge;
-            for (std::size_t t = 0; inside && t < q.size(); ++t) {
+            // Clearly left of every edge (the orient2d filter's error bound, generously widened),
+            // tested for all eight edges without branches (most agents are: the branchy test and its
+            // modulo were most of the hull's time); else edge by edge, exactly where unclear.
+            bool clear = any_edge;
+            for (int t = 0; t < 8; ++t) {
                 const Vec2& a = q[t];
-                const Vec2& b = q[(t + 1) % q.size()];
-                // Clearly left (the orient2d filter's error bound, generously widened), else exact:
-                // the full predicate per agent and edge would cost more than the rest of the hull.
+                const Vec2& b = q[(t + 1) & 7];
                 const double l = (a.x() - p.x()) * (b.y() - p.y()), r = (a.y() - p.y()) * (b.x() - p.x());
-                inside = a == b || l - r > 1e-15 * (std::fabs(l) + std::fabs(r)) || pred::orient(a, b, p) > 0;
+                clear &= same[t] | (l - r > 1e-15 * (std::fabs(l) + std::fabs(r)));
+            }
+            bool inside = any_edge;
+            for (int t = 0; !clear && inside && t < 8; ++t) {
+                const Vec2& a = q[t];
+                const Vec2& b = q[(t + 1) & 7];
+                const double l = (a.x() - p.x()) * (b.y() - p.y()), r = (a.y() - p.y()) * (b.x() - p.x());
+                inside = same[t] || l - r > 1e-15 * (std::fabs(l) + std::fabs(r)) || pred::orient(a, b, p) > 0;
             }
             if (!inside) out.push_back(i);
         }
