@@ -151,7 +151,11 @@ public:
     /// Agents j != i with |p_j - p_i| < 2*radius (exact), appended to `out` (cleared first) in the
     /// index's deterministic traversal order.
     void within(Index i, double radius, std::vector<detail::Candidate>& out) const {
-        within_impl(pts_(i, 0), pts_(i, 1), key_of(i), i, radius, out);
+        const Key k = key_of(i);
+        std::size_t lo, hi;  // i is in its cell's run
+        column_run(k.cx, k.cy, k.cy, lo, hi);
+        while (lo < hi && order_[lo] != i) ++lo;
+        within_impl(pts_(i, 0), pts_(i, 1), k, lo, radius, out);
     }
 
     /// The same for the agent at position `pos` of grid_order(): reads only the index's own
@@ -159,7 +163,7 @@ public:
     /// Any radius works: beyond the indexed range more cells are scanned; an infinite radius
     /// returns every other agent.
     void within_at(std::size_t pos, double radius, std::vector<detail::Candidate>& out) const {
-        within_impl(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, out);
+        within_impl(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), pos, radius, out);
     }
 
     /// The same as within_at, handing the agents over in batches instead of collecting them:
@@ -168,7 +172,7 @@ public:
     /// (stored per agent, it went through memory at every agent: the stores alias it).
     template <class Batch>
     void for_each_batch_within_at(std::size_t pos, double radius, Batch&& batch) const {
-        visit_within(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), order_[pos], radius, batch);
+        visit_within(xs_[pos], ys_[pos], key_at(xs_[pos], ys_[pos]), pos, radius, batch);
     }
 
     /// The number of agents j != i strictly within 2*radius of the agent at position `pos` of
@@ -194,7 +198,7 @@ public:
         const double span = rr / cell_;
         if (!dense_ || !(span < static_cast<double>(n))) {
             Index count = 0;
-            visit_within(x, y, key_at(x, y), -1, radius,
+            visit_within(x, y, key_at(x, y), kNone, radius,
                          [&](const double*, const double*, const Index*, const std::uint32_t*, std::size_t m) {
                              count += static_cast<Index>(m);
                          });
@@ -358,20 +362,24 @@ private:
     }
     Key key_of(Index i) const { return key_at(pts_(i, 0), pts_(i, 1)); }
 
-    void within_impl(double x, double y, Key k, Index i, double radius,
+    void within_impl(double x, double y, Key k, std::size_t self, double radius,
                      std::vector<detail::Candidate>& out) const {
         out.clear();
-        visit_within(x, y, k, i, radius,
+        visit_within(x, y, k, self, radius,
                      [&](const double* xs, const double* ys, const Index* ids, const std::uint32_t* sel, std::size_t count) {
                          for (std::size_t t = 0; t < count; ++t)
                              out.push_back({Vec2(xs[sel[t]], ys[sel[t]]), ids[sel[t]]});
                      });
     }
 
-    /// Hands every agent j != i strictly within 2*radius of (x, y) (exact) to batch(xs, ys, ids, sel,
-    /// count) (see for_each_batch_within_at), in the index's deterministic traversal order.
+    /// No agent: the position to leave out of a query around a point that is not an agent.
+    static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+    /// Hands every agent strictly within 2*radius of (x, y) (exact), except the one at grid position
+    /// `self` (kNone: none), to batch(xs, ys, ids, sel, count) (see for_each_batch_within_at), in
+    /// the index's deterministic traversal order.
     template <class Batch>
-    void visit_within(double x, double y, Key k, Index i, double radius, Batch&& batch) const {
+    void visit_within(double x, double y, Key k, std::size_t self, double radius, Batch&& batch) const {
         if (pts_.rows() == 0) return;
         const Vec2 c(x, y);
         constexpr std::size_t kChunk = 64;
@@ -387,7 +395,7 @@ private:
             }
         };
         if (!(radius < std::numeric_limits<double>::infinity())) {
-            every(0, order_.size(), [&](std::size_t s) { return order_[s] != i; });
+            every(0, order_.size(), [&](std::size_t s) { return s != self; });
             return;
         }
         // Cells to scan on each side: one within the indexed range (its margin covers the rounding
@@ -400,12 +408,13 @@ private:
         if (reach > 1 && wide > static_cast<double>(order_.size())) {
             // More cells than agents to visit: test every agent instead.
             every(0, order_.size(), [&](std::size_t s) {
-                return order_[s] != i && pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0;
+                return s != self && pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0;
             });
             return;
         }
-        // The agents of a column run: a branch-free pass keeps, in chunks, those not clearly
-        // outside (a branch there mispredicts often); then the rare exact checks near the circle.
+        // The agents of a column run, in chunks: one branch-free pass keeps those clearly inside (a
+        // branch there mispredicts often) and notes any within rounding of the circle; only a
+        // chunk with such an agent (rare) is redone with the exact test for those.
         const double r2 = 4.0 * radius * radius, r2hi = r2 * (1.0 + 1e-9), r2lo = r2 * (1.0 - 1e-9);
         const auto scan = [&](std::int64_t cx, std::int64_t cy0, std::int64_t cy1) {
             std::size_t lo, hi;
@@ -413,20 +422,22 @@ private:
             for (std::size_t s0 = lo; s0 < hi; s0 += kChunk) {
                 const std::size_t s1 = std::min(hi, s0 + kChunk);
                 std::size_t kept = 0;
+                bool unclear = false;
                 for (std::size_t s = s0; s < s1; ++s) {
-                    const double dx = xs_[s] - c.x(), dy = ys_[s] - c.y();
+                    const double dx = xs_[s] - c.x(), dy = ys_[s] - c.y(), d2 = dx * dx + dy * dy;
                     keep[kept] = static_cast<std::uint32_t>(s - s0);
-                    kept += dx * dx + dy * dy <= r2hi;
+                    kept += (d2 < r2lo) & (s != self);
+                    unclear |= (d2 >= r2lo) & (d2 <= r2hi);
                 }
-                std::size_t taken = 0;  // compacted in place
-                for (std::size_t t = 0; t < kept; ++t) {
-                    const std::size_t s = s0 + keep[t];
-                    if (order_[s] == i) continue;
-                    const double dx = xs_[s] - c.x(), dy = ys_[s] - c.y();
-                    if (dx * dx + dy * dy < r2lo || pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0)
-                        keep[taken++] = keep[t];
+                if (unclear) {
+                    kept = 0;
+                    for (std::size_t s = s0; s < s1; ++s) {
+                        const double dx = xs_[s] - c.x(), dy = ys_[s] - c.y(), d2 = dx * dx + dy * dy;
+                        if (s != self && d2 <= r2hi && (d2 < r2lo || pred::within_2r(c, Vec2(xs_[s], ys_[s]), radius) > 0))
+                            keep[kept++] = static_cast<std::uint32_t>(s - s0);
+                    }
                 }
-                if (taken > 0) batch(xs_.data() + s0, ys_.data() + s0, order_.data() + s0, keep, taken);
+                if (kept > 0) batch(xs_.data() + s0, ys_.data() + s0, order_.data() + s0, keep, kept);
             }
         };
         if (reach == 1) {  // 3 x 3 cells
