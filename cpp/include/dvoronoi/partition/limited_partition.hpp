@@ -134,6 +134,32 @@ inline void prefault(const void* p, std::size_t bytes) {
 #endif
 }
 
+/// Asks for huge pages under [p, p + bytes) (its whole 2 MB pages). For arrays accessed in scattered
+/// order: with 4 KB pages such an access misses the TLB at nearly every agent once the arrays
+/// outgrow it, and under a hypervisor each miss is a two-level page walk (measured: 2% of
+/// limited_cells at 1e6 agents). Not for arrays filled in order: fresh huge pages map slower here.
+inline void advise_huge_pages(const void* p, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t lo = (at + kHuge - 1) & ~(kHuge - 1), hi = (at + bytes) & ~(kHuge - 1);
+    if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // a hint, as above
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+
+/// v.assign(n, value) on prefaulted huge pages, for an array accessed in scattered order.
+template <class T>
+void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
+    v.clear();
+    v.reserve(n);
+    advise_huge_pages(v.data(), n * sizeof(T));
+    prefault(v.data(), n * sizeof(T));
+    v.assign(n, value);
+}
+
 /// v.assign(n, value) on prefaulted pages.
 template <class T>
 void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
@@ -353,11 +379,12 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     out.radius = radius;
     out.method = method;
     out.points = points;
-    detail::assign_prefaulted(out.areas, static_cast<std::size_t>(n));
-    detail::assign_prefaulted(out.perimeters, static_cast<std::size_t>(n));
+    detail::assign_scattered(out.areas, static_cast<std::size_t>(n));
+    detail::assign_scattered(out.perimeters, static_cast<std::size_t>(n));
     out.centroids.resize(n, 2);
+    detail::advise_huge_pages(out.centroids.data(), static_cast<std::size_t>(out.centroids.size()) * sizeof(double));
     detail::prefault(out.centroids.data(), static_cast<std::size_t>(out.centroids.size()) * sizeof(double));
-    detail::assign_prefaulted(out.candidates, static_cast<std::size_t>(n));
+    detail::assign_scattered(out.candidates, static_cast<std::size_t>(n));
     if (n == 0) return out;
 
     const GridIndex index(out.points, 2.0 * radius);
@@ -374,12 +401,12 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     const Index nblocks = (n + block - 1) / block;
     const int team = detail::thread_team(threads, nblocks);
     std::vector<detail::PieceColumns> columns(static_cast<std::size_t>(team));
-    detail::assign_prefaulted(out.piece_ptr, static_cast<std::size_t>(n) + 1);  // counts, summed below
-    detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1);
+    detail::assign_scattered(out.piece_ptr, static_cast<std::size_t>(n) + 1);  // counts, summed below
+    detail::assign_scattered(out.indptr, static_cast<std::size_t>(n) + 1);
     // Where each agent's pieces start: its place in its thread's columns during the loop (see
     // column_place), the offset in the joined columns after it.
     std::vector<Index> source;
-    detail::assign_prefaulted(source, static_cast<std::size_t>(n));
+    detail::assign_scattered(source, static_cast<std::size_t>(n));
     detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)

@@ -156,7 +156,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         char hull;
     };
     std::vector<Result> by_pos;
-    detail::assign_prefaulted(by_pos, static_cast<std::size_t>(n), Result{});
+    detail::assign_scattered(by_pos, static_cast<std::size_t>(n), Result{});
     std::vector<std::vector<Index>> columns(static_cast<std::size_t>(team));
     detail::ProgressTracker tracker(progress, n);
     // With the Boundary Scan inner step, the agents the one-shot clip does not certify are deferred
