@@ -79,8 +79,23 @@ TEST_CASE("within / within_at equal the exact brute force for radii below, at an
                 INFO("offset ", offset, " radius ", radius, " agent ", i);
                 CHECK(ids.size() == got.size());
                 CHECK(ids == brute_within(p, i, radius));
+                // The batches of for_each_batch_within_at hand over the same agents in the same order.
+                std::vector<Index> batched;
+                index.for_each_batch_within_at(pos, radius, [&](const double* xs, const double* ys, const Index* js,
+                                                                const std::uint32_t* sel, std::size_t count) {
+                    CHECK(count > 0);
+                    for (std::size_t t = 0; t < count; ++t) {
+                        CHECK(Vec2(xs[sel[t]], ys[sel[t]]) == Vec2(p.row(js[sel[t]]).transpose()));
+                        batched.push_back(js[sel[t]]);
+                    }
+                });
+                REQUIRE(batched.size() == got.size());
+                for (std::size_t t = 0; t < got.size(); ++t) CHECK(batched[t] == got[t].id);
                 index.within(i, radius, got);
+                std::set<Index> by_index;
+                for (const auto& q : got) by_index.insert(q.id);
                 CHECK(got.size() == ids.size());
+                CHECK(by_index == ids);
                 CHECK(index.count_within_at(pos, radius) == static_cast<Index>(ids.size()));
             }
         }
@@ -97,6 +112,17 @@ TEST_CASE("count_within_at on a sparse grid (two far clusters) and for disks hol
         for (std::size_t pos = 0; pos < 400; pos += 7) {
             const Index i = index.grid_order()[pos];
             INFO("radius ", radius, " agent ", i);
-            CHECK(index.count_within_at(pos, radius) == static_cast<Index>(brute_within(p, i, radius).size()));
+            const std::set<Index> want = brute_within(p, i, radius);
+            CHECK(index.count_within_at(pos, radius) == static_cast<Index>(want.size()));
+            // The sparse grid's queries (its cells are found by binary search) give the same agents.
+            std::vector<detail::Candidate> got;
+            for (bool at_pos : {true, false}) {
+                if (at_pos) index.within_at(pos, radius, got);
+                else index.within(i, radius, got);
+                std::set<Index> ids;
+                for (const auto& q : got) ids.insert(q.id);
+                CHECK(ids.size() == got.size());
+                CHECK(ids == want);
+            }
         }
 }
