@@ -1,13 +1,11 @@
 // Shared by the C++ benchmarks: CGAL's Delaunay triangulation + neighbour walk (the reference a
-// user would otherwise pick), timing, the uniform inputs, and what machine the numbers come from.
+// user would otherwise pick; bench_cgal.hpp), timing, the uniform inputs, and what machine the
+// numbers come from.
 #pragma once
 
-#include <dvoronoi/core/types.hpp>
+#include "bench_cgal.hpp"
 
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-#include <CGAL/version.h>
+#include <dvoronoi/core/types.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -27,51 +25,8 @@
 namespace bench {
 
 using dvoronoi::Index;
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, K>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb>;
-using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
 
 constexpr double kPi = 3.14159265358979323846;
-
-struct Csr {
-    std::vector<Index> indptr, indices;
-};
-
-/// CGAL's answer: the triangulation (kept alive so its destruction is not timed) and the CSR graph.
-struct CgalResult {
-    std::unique_ptr<Delaunay> dt;
-    Csr graph;
-};
-
-inline CgalResult cgal_delaunay_neighbors(const dvoronoi::Points& pts) {
-    const Index n = pts.rows();
-    CgalResult r;
-    std::vector<std::pair<K::Point_2, Index>> input;
-    input.reserve(static_cast<std::size_t>(n));
-    for (Index i = 0; i < n; ++i) input.emplace_back(K::Point_2(pts(i, 0), pts(i, 1)), i);
-    r.dt = std::make_unique<Delaunay>();
-    r.dt->insert(input.begin(), input.end());  // spatial sort + insertion
-
-    std::vector<Delaunay::Vertex_handle> handle(static_cast<std::size_t>(n));
-    for (auto v : r.dt->finite_vertex_handles()) handle[static_cast<std::size_t>(v->info())] = v;
-    Csr& g = r.graph;
-    g.indptr.assign(static_cast<std::size_t>(n) + 1, 0);
-    g.indices.reserve(static_cast<std::size_t>(n) * 6 + 16);
-    for (Index i = 0; i < n; ++i) {
-        const std::size_t begin = g.indices.size();
-        auto c = r.dt->incident_vertices(handle[static_cast<std::size_t>(i)]);
-        const auto done = c;
-        if (c != nullptr) {
-            do {
-                if (!r.dt->is_infinite(c)) g.indices.push_back(c->info());
-            } while (++c != done);
-        }
-        std::sort(g.indices.begin() + static_cast<std::ptrdiff_t>(begin), g.indices.end());
-        g.indptr[static_cast<std::size_t>(i) + 1] = static_cast<Index>(g.indices.size());
-    }
-    return r;
-}
 
 inline double now_seconds() {
     using clock = std::chrono::steady_clock;

@@ -150,7 +150,7 @@ void usage() {
 void print_json(const std::vector<Timing>& rows, double k, int reps) {
     std::printf("{\"cgal_version\": \"%s\", \"cpu\": \"%s\", \"hardware_threads\": %d, \"openmp\": %s, "
                 "\"native\": %s, \"k\": %g, \"reps\": %d, \"rows\": [",
-                CGAL_VERSION_STR, cpu_model().c_str(), hardware_threads(),
+                cgal_version(), cpu_model().c_str(), hardware_threads(),
 #ifdef _OPENMP
                 "true",
 #else
@@ -177,7 +177,7 @@ void print_json(const std::vector<Timing>& rows, double k, int reps) {
 
 void print_header(double k, int reps) {
     std::printf("dvoronoi limited_cells vs CGAL %s Delaunay_triangulation_2 (Epick) + neighbour walk\n",
-                CGAL_VERSION_STR);
+                cgal_version());
     std::printf("CPU: %s, %d hardware threads, OpenMP: %s, -march=native: %s; best of %d runs\n",
                 cpu_model().c_str(), hardware_threads(),
 #ifdef _OPENMP

@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
     }
     std::vector<Index> ns = sizes.empty() ? std::vector<Index>{n} : parse_sizes(sizes);
     std::printf("dvoronoi voronoi_cells (ASR, exact cells) vs CGAL %s Delaunay_triangulation_2 (Epick) + neighbour walk\n",
-                CGAL_VERSION_STR);
+                cgal_version());
     std::printf("CPU: %s, %d hardware threads; uniform points in [0,1)^2, seed %llu, best of %d\n\n",
                 cpu_model().c_str(), hardware_threads(), static_cast<unsigned long long>(seed), reps);
     std::printf("| %9s | %8s | %8s | %8s | %8s | %11s | %11s | %12s | %6s | %5s |\n", "n", "CGAL s", "BS 1t s",
