@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <memory>
 #include <random>
 #include <string>
 #include <thread>

@@ -221,7 +221,7 @@ private:
         pxp_ = px.data(), pyp_ = py.data(), axp_ = ax.data(), ayp_ = ay.data(), n2p_ = n2.data();
         idp_ = id.data(), orderp_ = order.data(), farp_ = far.data();
     }
-    // The vectors' storage, for add().
+    // The vectors' storage, for put() and summarize().
     std::size_t cap_ = 0;
     double *pxp_ = nullptr, *pyp_ = nullptr, *axp_ = nullptr, *ayp_ = nullptr, *n2p_ = nullptr;
     Index* idp_ = nullptr;

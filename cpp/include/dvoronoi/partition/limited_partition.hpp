@@ -150,16 +150,6 @@ inline void advise_huge_pages(const void* p, std::size_t bytes) {
 #endif
 }
 
-/// v.assign(n, value) on prefaulted huge pages, for an array accessed in scattered order.
-template <class T>
-void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
-    v.clear();
-    v.reserve(n);
-    advise_huge_pages(v.data(), n * sizeof(T));
-    prefault(v.data(), n * sizeof(T));
-    v.assign(n, value);
-}
-
 /// v.assign(n, value) on prefaulted pages.
 template <class T>
 void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
@@ -167,6 +157,15 @@ void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
     v.reserve(n);
     prefault(v.data(), n * sizeof(T));
     v.assign(n, value);
+}
+
+/// The same on huge pages, for an array accessed in scattered order (see advise_huge_pages).
+template <class T>
+void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
+    v.clear();
+    v.reserve(n);
+    advise_huge_pages(v.data(), n * sizeof(T));
+    assign_prefaulted(v, n, value);  // keeps the storage reserved above
 }
 
 /// How many agents ahead the gathers prefetch.

@@ -226,7 +226,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         r.cx = m.centroid.x();
         r.cy = m.centroid.y();
     };
-    // Neighbours ascending into the buffer, the clipped measures when bounds are given.
+    // Neighbours ascending into the thread's column, the clipped measures when bounds are given.
     const auto finish = [&](Scratch& sc, const Vec2& c, int thread, Result& r) {
         auto& column = columns[static_cast<std::size_t>(thread)];
         std::vector<Index>& mine = sc.mine;
