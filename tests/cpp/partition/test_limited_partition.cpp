@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -94,10 +95,33 @@ TEST_CASE("sort_small sorts every order of up to eight values, ties, and longer 
     }
 }
 
+TEST_CASE("sorted_edge_neighbors keeps the edges' neighbours, ascending, and writes nothing past them") {
+    std::mt19937 rng(9);
+    const Index big = std::numeric_limits<Index>::max() - 1;  // the largest index below the padding
+    for (int trial = 0; trial < 20000; ++trial) {
+        const std::size_t len = rng() % 13;  // up to 8 take the network, more std::sort
+        std::vector<Index> run(len);
+        for (Index& x : run) {
+            const unsigned kind = rng() % 8;
+            x = kind == 0 ? kArc : kind == 1 ? big - static_cast<Index>(rng() % 3) : static_cast<Index>(rng() % 50);
+        }
+        std::vector<Index> want;
+        for (Index x : run)
+            if (x >= 0) want.push_back(x);
+        std::sort(want.begin(), want.end());
+        std::vector<Index> out(len + 8, -7);  // -7: never written
+        const std::size_t count = detail::sorted_edge_neighbors(run.data(), len, out.data());
+        REQUIRE(count == want.size());
+        REQUIRE(std::equal(want.begin(), want.end(), out.begin()));
+        REQUIRE(std::all_of(out.begin() + static_cast<std::ptrdiff_t>(count), out.end(), [](Index x) { return x == -7; }));
+    }
+}
+
 TEST_CASE("the partition's cells equal the per-agent call") {
     const Points P = random_points(600, 5, 10.0);
     const double R = 0.45;
     const LimitedPartition part = limited_cells(P, R);
+    Index arcs = 0;  // spans travel apart from the other piece columns: they must land on their arcs
     for (Index i = 0; i < P.rows(); i += 7) {
         Points others(P.rows() - 1, 2);
         for (Index j = 0, k = 0; j < P.rows(); ++j)
@@ -109,10 +133,13 @@ TEST_CASE("the partition's cells equal the per-agent call") {
             const Index nb = one.pieces[k].neighbor;
             CHECK(mine.pieces[k].neighbor == (nb < 0 ? nb : (nb < i ? nb : nb + 1)));
             CHECK((mine.pieces[k].start - one.pieces[k].start).norm() <= 1e-12);
+            CHECK(mine.pieces[k].arc_span == doctest::Approx(one.pieces[k].arc_span).epsilon(1e-12));
+            arcs += one.pieces[k].is_arc() ? 1 : 0;
         }
         CHECK(mine.measures().area == doctest::Approx(one.measures().area).epsilon(1e-13));
         CHECK(part.candidates[static_cast<std::size_t>(i)] == one.candidates);
     }
+    CHECK(arcs > 20);
 }
 
 TEST_CASE("progress is reported to the end, and a throwing callback stops the run") {
