@@ -62,20 +62,31 @@ public:
         nx_ = static_cast<std::int64_t>(std::floor(xspan / cell_)) + 1;
         ny_ = static_cast<std::int64_t>(std::floor(yspan / cell_)) + 1;
 
+        // Positions are kept in grid order too: a query reads a few contiguous runs, not scattered rows.
         order_.resize(static_cast<std::size_t>(n));
+        xs_.resize(static_cast<std::size_t>(n));
+        ys_.resize(static_cast<std::size_t>(n));
         dense_ = static_cast<double>(nx_) * static_cast<double>(ny_) <= 4.0 * static_cast<double>(n) + 1024.0;
         if (dense_) {
             // Counting sort into a dense cell array (CSR); within a cell, input order (deterministic
-            // candidate order). The cells are recomputed in the second pass rather than stored.
-            const auto cell_of = [&](Index i) {
-                const Key k = key_of(i);
+            // candidate order). The cells are recomputed in the second pass rather than stored, and
+            // that pass places the positions too (its reads are in input order; a gather after it
+            // would read the points in scattered order).
+            const auto cell_of = [&](double x, double y) {
+                const Key k = key_inside(x, y);
                 return static_cast<std::size_t>(k.cx * ny_ + k.cy);
             };
             start_.assign(static_cast<std::size_t>(nx_ * ny_ + 1), 0);
-            for (Index i = 0; i < n; ++i) ++start_[cell_of(i) + 1];
+            for (Index i = 0; i < n; ++i) ++start_[cell_of(pts(i, 0), pts(i, 1)) + 1];
             std::partial_sum(start_.begin(), start_.end(), start_.begin());
             std::vector<Index> fill(start_.begin(), start_.end() - 1);
-            for (Index i = 0; i < n; ++i) order_[static_cast<std::size_t>(fill[cell_of(i)]++)] = i;
+            for (Index i = 0; i < n; ++i) {
+                const double x = pts(i, 0), y = pts(i, 1);
+                const auto s = static_cast<std::size_t>(fill[cell_of(x, y)]++);
+                order_[s] = i;
+                xs_[s] = x;
+                ys_[s] = y;
+            }
         } else {
             std::vector<Key> keys(static_cast<std::size_t>(n));
             for (Index i = 0; i < n; ++i) keys[static_cast<std::size_t>(i)] = key_of(i);
@@ -87,13 +98,10 @@ public:
             });
             sorted_keys_.reserve(static_cast<std::size_t>(n));
             for (Index i : order_) sorted_keys_.push_back(keys[static_cast<std::size_t>(i)]);
-        }
-        // Positions copied in grid order: a query reads a few contiguous runs, not scattered rows.
-        xs_.resize(static_cast<std::size_t>(n));
-        ys_.resize(static_cast<std::size_t>(n));
-        for (std::size_t s = 0; s < order_.size(); ++s) {
-            xs_[s] = pts(order_[s], 0);
-            ys_[s] = pts(order_[s], 1);
+            for (std::size_t s = 0; s < order_.size(); ++s) {
+                xs_[s] = pts(order_[s], 0);
+                ys_[s] = pts(order_[s], 1);
+            }
         }
     }
 
@@ -360,7 +368,11 @@ private:
         return {static_cast<std::int64_t>(std::floor((x - x0_) / cell_)),
                 static_cast<std::int64_t>(std::floor((y - y0_) / cell_))};
     }
-    Key key_of(Index i) const { return key_at(pts_(i, 0), pts_(i, 1)); }
+    Key key_of(Index i) const { return key_inside(pts_(i, 0), pts_(i, 1)); }
+    /// key_at for a point inside the grid's box: the quotients are not negative, so truncation is floor.
+    Key key_inside(double x, double y) const {
+        return {static_cast<std::int64_t>((x - x0_) / cell_), static_cast<std::int64_t>((y - y0_) / cell_)};
+    }
 
     void within_impl(double x, double y, Key k, std::size_t self, double radius,
                      std::vector<detail::Candidate>& out) const {
