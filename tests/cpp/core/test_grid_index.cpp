@@ -5,8 +5,11 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
+#include <vector>
 
 using namespace dvoronoi;
 
@@ -125,4 +128,52 @@ TEST_CASE("count_within_at on a sparse grid (two far clusters) and for disks hol
                 CHECK(ids == want);
             }
         }
+}
+
+TEST_CASE("the grid's order and queries do not depend on the threads that build it") {
+    // Enough agents for three threads to share the counting sort (2^15 each), with a crowded cell
+    // whose agents come from every thread's range: within a cell, input order must survive.
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const Index n = 3 * (Index{1} << 15) + 17;
+    Points p(n, 2);
+    for (Index i = 0; i < n; ++i) {
+        if (i % 97 == 0) p.row(i) << 0.5 + 1e-4 * u(rng), 0.5 + 1e-4 * u(rng);  // one cell, all ranges
+        else p.row(i) << u(rng), u(rng);
+    }
+    const double radius = 0.004;
+    const GridIndex one(p, 2.0 * radius, 1);
+    for (int threads : {2, 3, 8}) {
+        const GridIndex many(p, 2.0 * radius, threads);
+        REQUIRE(many.grid_order() == one.grid_order());
+        std::vector<detail::Candidate> a, b;
+        for (std::size_t pos = 0; pos < static_cast<std::size_t>(n); pos += 101) {
+            one.within_at(pos, radius, a);
+            many.within_at(pos, radius, b);
+            REQUIRE(a.size() == b.size());
+            for (std::size_t k = 0; k < a.size(); ++k) CHECK(a[k].id == b[k].id);
+        }
+    }
+    // Within a cell, agents in input order.
+    const std::vector<Index>& order = one.grid_order();
+    std::vector<Index> crowded;
+    for (Index id : order)
+        if (id % 97 == 0 && std::abs(p(id, 0) - 0.5) < 1e-3) crowded.push_back(id);
+    CHECK(crowded.size() == static_cast<std::size_t>((n + 96) / 97));
+    CHECK(std::is_sorted(crowded.begin(), crowded.end()));
+}
+
+TEST_CASE("bounding_box equals the coordinates' extremes, for odd and even counts") {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(-5.0, 5.0);
+    for (Index n : {1, 2, 3, 4, 5, 8, 9, 1001}) {
+        Points p(n, 2);
+        for (Index i = 0; i < n; ++i) p.row(i) << u(rng), u(rng);
+        double x0, y0, x1, y1;
+        detail::bounding_box(p, x0, y0, x1, y1);
+        CHECK(x0 == p.col(0).minCoeff());
+        CHECK(y0 == p.col(1).minCoeff());
+        CHECK(x1 == p.col(0).maxCoeff());
+        CHECK(y1 == p.col(1).maxCoeff());
+    }
 }

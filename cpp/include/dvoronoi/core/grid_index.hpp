@@ -40,18 +40,37 @@ Index count_within_2r(std::size_t lo, std::size_t hi, double radius, D2&& d2, Ex
     }
     return inside;
 }
+
+/// The bounding box of n >= 1 points in one pass. Two rows per step, each bound with its own
+/// accumulator: a single running min or max is a chain of dependent instructions (Eigen's
+/// colwise minCoeff/maxCoeff on this row-major layout were four such chains, a fifth of a grid build).
+inline void bounding_box(const Points& pts, double& x0, double& y0, double& x1, double& y1) {
+    const Index n = pts.rows();
+    double lo[4] = {pts(0, 0), pts(0, 1), pts(0, 0), pts(0, 1)}, hi[4] = {lo[0], lo[1], lo[2], lo[3]};
+    const double* p = pts.data();  // row-major: x, y, x, y, ...
+    const std::size_t values = 2 * static_cast<std::size_t>(n);
+    for (std::size_t k = 0; k + 4 <= values; k += 4)
+        for (int j = 0; j < 4; ++j) {
+            lo[j] = std::min(lo[j], p[k + static_cast<std::size_t>(j)]);
+            hi[j] = std::max(hi[j], p[k + static_cast<std::size_t>(j)]);
+        }
+    if (n % 2 == 1) {  // the last row
+        lo[0] = std::min(lo[0], p[values - 2]), lo[1] = std::min(lo[1], p[values - 1]);
+        hi[0] = std::max(hi[0], p[values - 2]), hi[1] = std::max(hi[1], p[values - 1]);
+    }
+    x0 = std::min(lo[0], lo[2]), y0 = std::min(lo[1], lo[3]);
+    x1 = std::max(hi[0], hi[2]), y1 = std::max(hi[1], hi[3]);
+}
 }  // namespace detail
 
 class GridIndex {
 public:
     /// Index `pts` (kept by reference: it must outlive the index) for queries of range `range` (2R).
-    GridIndex(const Points& pts, double range) : pts_(pts) {
+    /// Up to `threads` OpenMP threads sort the points into cells (the result does not depend on it).
+    GridIndex(const Points& pts, double range, int threads = 1) : pts_(pts) {
         const Index n = pts.rows();
         if (n == 0) return;
-        x0_ = pts.col(0).minCoeff();
-        y0_ = pts.col(1).minCoeff();
-        x1_ = pts.col(0).maxCoeff();
-        y1_ = pts.col(1).maxCoeff();
+        detail::bounding_box(pts, x0_, y0_, x1_, y1_);
         const double xspan = x1_ - x0_;
         const double yspan = y1_ - y0_;
         // A margin of 2^-16 covers the relative rounding of (x - x0) / cell for up to 2^32 cells per
@@ -69,23 +88,45 @@ public:
         dense_ = static_cast<double>(nx_) * static_cast<double>(ny_) <= 4.0 * static_cast<double>(n) + 1024.0;
         if (dense_) {
             // Counting sort into a dense cell array (CSR); within a cell, input order (deterministic
-            // candidate order). The cells are recomputed in the second pass rather than stored, and
-            // that pass places the positions too (its reads are in input order; a gather after it
-            // would read the points in scattered order).
+            // candidate order). Each thread counts and places a contiguous range of the input; its
+            // places in a cell come after those of the ranges before it, so the order is the same for
+            // any number of threads. The cells are recomputed in the placing pass rather than stored,
+            // and that pass places the positions too (its reads are in input order; a gather after
+            // it would read the points in scattered order).
             const auto cell_of = [&](double x, double y) {
                 const Key k = key_inside(x, y);
                 return static_cast<std::size_t>(k.cx * ny_ + k.cy);
             };
-            start_.assign(static_cast<std::size_t>(nx_ * ny_ + 1), 0);
-            for (Index i = 0; i < n; ++i) ++start_[cell_of(pts(i, 0), pts(i, 1)) + 1];
-            std::partial_sum(start_.begin(), start_.end(), start_.begin());
-            std::vector<Index> fill(start_.begin(), start_.end() - 1);
-            for (Index i = 0; i < n; ++i) {
-                const double x = pts(i, 0), y = pts(i, 1);
-                const auto s = static_cast<std::size_t>(fill[cell_of(x, y)]++);
-                order_[s] = i;
-                xs_[s] = x;
-                ys_[s] = y;
+            const auto cells = static_cast<std::size_t>(nx_ * ny_);
+            constexpr Index kPerThread = Index{1} << 15;  // below this, a thread costs more than it saves
+            const int team = static_cast<int>(std::clamp<Index>(n / kPerThread, 1, std::max(threads, 1)));
+            const auto first = [&](int t) { return n / team * t + std::min<Index>(t, n % team); };
+            // Per thread and cell: the count, then the next place.
+            std::vector<std::vector<Index>> place(static_cast<std::size_t>(team), std::vector<Index>(cells, 0));
+#pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
+            for (int t = 0; t < team; ++t) {
+                std::vector<Index>& count = place[static_cast<std::size_t>(t)];
+                const Index lo = first(t), hi = first(t + 1);  // locals: the stores below may alias n
+                for (Index i = lo; i < hi; ++i) ++count[cell_of(pts(i, 0), pts(i, 1))];
+            }
+            start_.resize(cells + 1);
+            Index at = 0;
+            for (std::size_t c = 0; c < cells; ++c) {
+                start_[c] = at;
+                for (std::vector<Index>& p : place) at += std::exchange(p[c], at);  // count -> first place
+            }
+            start_[cells] = at;
+#pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
+            for (int t = 0; t < team; ++t) {
+                std::vector<Index>& next = place[static_cast<std::size_t>(t)];
+                const Index lo = first(t), hi = first(t + 1);
+                for (Index i = lo; i < hi; ++i) {
+                    const double x = pts(i, 0), y = pts(i, 1);
+                    const auto s = static_cast<std::size_t>(next[cell_of(x, y)]++);
+                    order_[s] = i;
+                    xs_[s] = x;
+                    ys_[s] = y;
+                }
             }
         } else {
             std::vector<Key> keys(static_cast<std::size_t>(n));

@@ -430,7 +430,10 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     detail::assign_scattered(out.candidates, static_cast<std::size_t>(n));
     if (n == 0) return out;
 
-    const GridIndex index(out.points, 2.0 * radius);
+    const Index block = detail::kBlock;
+    const Index nblocks = (n + block - 1) / block;
+    const int team = detail::thread_team(threads, nblocks);
+    const GridIndex index(out.points, 2.0 * radius, team);
     detail::require_distinct(index, out.points);
     const std::vector<Index>& order = index.grid_order();
     // Agents are processed in grid order (queries then read memory that is already cached), in
@@ -440,9 +443,6 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     // Why this layout: a fresh page costs a fault and a zeroing (and on a VM that hands freed memory
     // back to the host, a host fault), so every byte of scratch is paid for; this keeps the scratch
     // to one column of pieces, against three times the pieces' size when they were staged whole.
-    const Index block = detail::kBlock;
-    const Index nblocks = (n + block - 1) / block;
-    const int team = detail::thread_team(threads, nblocks);
     std::vector<detail::PieceColumns> columns(static_cast<std::size_t>(team));
     detail::assign_scattered(out.piece_ptr, static_cast<std::size_t>(n) + 1);  // counts, summed below
     detail::assign_scattered(out.indptr, static_cast<std::size_t>(n) + 1);

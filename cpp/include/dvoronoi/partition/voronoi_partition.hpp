@@ -136,15 +136,15 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     if (!(spacing > 0.0) || !std::isfinite(spacing)) spacing = 1.0;
     const double one_shot = 1.5 * spacing;  // certifies ~97% of a uniform swarm's cells
     const double range = 2.0 * one_shot;
-    const GridIndex index(out.points, range);
+    const Index block = detail::kBlock;
+    const Index nblocks = (n + block - 1) / block;
+    const int team = detail::thread_team(threads, nblocks);
+    const GridIndex index(out.points, range, team);
     detail::require_distinct(index, out.points);
     const ConvexHull hull(out.points);
     const detail::EmptyCircleCertificate cert(out.points, index, hull);
     const detail::AsrSchedule schedule(out.points, index, hull);
     const std::vector<Index>& order = index.grid_order();
-    const Index block = detail::kBlock;
-    const Index nblocks = (n + block - 1) / block;
-    const int team = detail::thread_team(threads, nblocks);
     // Results by grid position and neighbour lists in per-thread columns (the hot loop writes
     // sequentially), then one gather into input order. (Writing the results straight to input order,
     // as limited_cells does, measured slower here.)
