@@ -260,6 +260,10 @@ struct PieceColumns {
         PieceColumns all = std::move(parts.front());
         const auto join = [&](auto column) {
             auto& into = all.*column;
+            std::size_t more = 0;
+            for (std::size_t t = 1; t < parts.size(); ++t) more += (parts[t].*column).size();
+            if (into.size() + more <= into.capacity())  // the pages the copies land on, in one call
+                prefault(into.data() + into.size(), more * sizeof(into[0]));
             for (std::size_t t = 1; t < parts.size(); ++t) {
                 const auto part = std::move(parts[t].*column);  // freed once appended
                 into.insert(into.end(), part.begin(), part.end());
