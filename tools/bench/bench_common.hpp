@@ -32,20 +32,35 @@ inline double now_seconds() {
     return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
 }
 
-/// Best of `reps` runs of f(), which returns a result; the result of the last run is kept in `keep`
-/// and every other result is destroyed outside the timed region.
+/// Best of `reps` rounds of `calls` consecutive calls of f(), which returns a result: the mean time
+/// per call of the best round. The clock stops while a result is destroyed; the last call's result is
+/// kept in `keep`; `best_call`, if given, receives the fastest single call. Rounds of many calls for
+/// small inputs (Google Benchmark's "minimum time" rule): every timing then spans about as much work
+/// and wall time whatever n is, so a 10 ms call cannot win by landing in the machine's quiet
+/// moments, where a 1 s call always takes the machine's interruptions in.
 template <class F, class R>
-double best_of(int reps, F&& f, R& keep) {
-    double best = 1e300;
+double best_of(int reps, F&& f, R& keep, int calls = 1, double* best_call = nullptr) {
+    double best = 1e300, single = 1e300;
     for (int r = 0; r < reps; ++r) {
-        R tmp;
-        const double t0 = now_seconds();
-        tmp = f();
-        const double t1 = now_seconds();
-        best = std::min(best, t1 - t0);
-        if (r + 1 == reps) keep = std::move(tmp);
+        double total = 0.0;
+        for (int c = 0; c < calls; ++c) {
+            R tmp;
+            const double t0 = now_seconds();
+            tmp = f();
+            const double t1 = now_seconds();
+            total += t1 - t0;
+            single = std::min(single, t1 - t0);
+            if (r + 1 == reps && c + 1 == calls) keep = std::move(tmp);
+        }
+        best = std::min(best, total / calls);
     }
+    if (best_call) *best_call = single;
     return best;
+}
+
+/// Calls per timing round so that a round covers at least `window` agents.
+inline int calls_for(Index n, double window) {
+    return static_cast<int>(std::max(1.0, std::ceil(window / static_cast<double>(std::max<Index>(n, 1)))));
 }
 
 inline dvoronoi::Points uniform_points(Index n, std::uint64_t seed) {

@@ -1,7 +1,9 @@
 // bench_limited_cgal: dvoronoi's range-limited cells against CGAL's Delaunay triangulation, on the same
 // uniform random points, in one process.
 //
-// What is timed (best of --reps runs each, destruction of the result excluded):
+// What is timed (best of --reps rounds each; a round is ceil(--window / n) consecutive calls, so it
+// covers at least --window agents (default 1e6) at every size, and its mean per call is the timing;
+// destruction of the results excluded):
 //   (a) CGAL: Delaunay_triangulation_2 with Exact_predicates_inexact_constructions_kernel, built by a
 //       range insert of (point, index) pairs (CGAL spatially sorts them), then a neighbour walk: for
 //       every agent, circulate its incident vertices and write the neighbour indices into CSR arrays
@@ -22,7 +24,7 @@
 // limited neighbour is a Delaunay neighbour. A mismatch is printed and the exit code is 2.
 //
 // Usage:
-//   bench_limited_cgal [--n 1e6] [--k 30] [--reps 3] [--threads 2] [--seed 1] [--json]
+//   bench_limited_cgal [--n 1e6] [--k 30] [--reps 3] [--threads 2] [--seed 1] [--window 1e6] [--json]
 //   bench_limited_cgal --sizes 1e4,1e5,1e6      time per agent for each size (flatness check)
 
 #include "bench_common.hpp"
@@ -63,14 +65,17 @@ struct Timing {
     double mean_limited = 0.0;         // limited neighbours
     double mean_delaunay = 0.0;        // Delaunay neighbours (CGAL)
     double cgal = 0.0, scan1 = 0.0, scant = 0.0, chords1 = 0.0;
+    double scan1_call = 0.0;  // the fastest single call of (b)
+    int calls = 1;            // calls per timing round
     int threads = 2;
     bool ok = true;
     std::string problem;
 };
 
-Timing run(Index n, double k, int reps, int threads, std::uint64_t seed, bool verbose) {
+Timing run(Index n, double k, int reps, double window, int threads, std::uint64_t seed, bool verbose) {
     Timing t;
     t.n = n;
+    t.calls = calls_for(n, window);
     t.threads = threads;
     t.radius = std::sqrt(k / (4.0 * kPi * static_cast<double>(n)));
     const dvoronoi::Points pts = uniform_points(n, seed);
@@ -80,7 +85,7 @@ Timing run(Index n, double k, int reps, int threads, std::uint64_t seed, bool ve
 
     CgalResult cg;
     note("CGAL Delaunay_triangulation_2 + neighbour walk");
-    t.cgal = best_of(reps, [&] { return cgal_delaunay_neighbors(pts); }, cg);
+    t.cgal = best_of(reps, [&] { return cgal_delaunay_neighbors(pts); }, cg, t.calls);
     cg.dt.reset();  // untimed; only the neighbour CSR is needed from here on
 
     // Only the neighbour CSR (and the candidate counts) are kept for the checks: four partitions of
@@ -96,13 +101,14 @@ Timing run(Index n, double k, int reps, int threads, std::uint64_t seed, bool ve
         k.candidates = std::move(p.candidates);
         return k;
     };
-    auto dv_run = [&](dvoronoi::Method m, int nthreads, double& seconds) {
+    auto dv_run = [&](dvoronoi::Method m, int nthreads, double& seconds, double* best_call = nullptr) {
         dvoronoi::LimitedPartition p;
-        seconds = best_of(reps, [&] { return dvoronoi::limited_cells(pts, t.radius, m, nthreads); }, p);
+        seconds = best_of(reps, [&] { return dvoronoi::limited_cells(pts, t.radius, m, nthreads); }, p, t.calls,
+                          best_call);
         return keep(std::move(p));
     };
     note("dvoronoi Scan, 1 thread");
-    const Kept scan1 = dv_run(dvoronoi::Method::Scan, 1, t.scan1);
+    const Kept scan1 = dv_run(dvoronoi::Method::Scan, 1, t.scan1, &t.scan1_call);
     note("dvoronoi Scan, T threads");
     const Kept scant = dv_run(dvoronoi::Method::Scan, threads, t.scant);
     note("dvoronoi Chords, 1 thread");
@@ -137,19 +143,20 @@ Timing run(Index n, double k, int reps, int threads, std::uint64_t seed, bool ve
 
 void usage() {
     std::puts(
-        "usage: bench_limited_cgal [--n N] [--k K] [--reps R] [--threads T] [--seed S] [--json]\n"
-        "       bench_limited_cgal --sizes N1,N2,... [--k K] [--reps R] [--threads T] [--seed S] [--json]\n"
+        "usage: bench_limited_cgal [--n N] [--k K] [--reps R] [--threads T] [--seed S] [--window W] [--json]\n"
+        "       bench_limited_cgal --sizes N1,N2,... [--k K] [--reps R] [--threads T] [--seed S] [--window W] [--json]\n"
         "  --n        agents (default 1e6)\n"
         "  --k        expected agents within 2R; R = sqrt(k / (4 pi n)) on the unit square (default 30)\n"
-        "  --reps     runs per method, the best is reported (default 3)\n"
+        "  --reps     timing rounds per method, the best is reported (default 3)\n"
+        "  --window   agents per round: a round is ceil(W / n) consecutive calls, timed by its mean (default 1e6)\n"
         "  --threads  threads of the multi-threaded dvoronoi run (default 2)\n"
         "  --sizes    one row per size: time per agent (flatness check)\n"
         "  --json     print one JSON object instead of the tables");
 }
 
-void print_json(const std::vector<Timing>& rows, double k, int reps) {
+void print_json(const std::vector<Timing>& rows, double k, int reps, double window) {
     std::printf("{\"cgal_version\": \"%s\", \"cpu\": \"%s\", \"hardware_threads\": %d, \"openmp\": %s, "
-                "\"native\": %s, \"k\": %g, \"reps\": %d, \"rows\": [",
+                "\"native\": %s, \"k\": %g, \"reps\": %d, \"window\": %g, \"rows\": [",
                 cgal_version(), cpu_model().c_str(), hardware_threads(),
 #ifdef _OPENMP
                 "true",
@@ -161,24 +168,25 @@ void print_json(const std::vector<Timing>& rows, double k, int reps) {
 #else
                 "false",
 #endif
-                k, reps);
+                k, reps, window);
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const Timing& t = rows[r];
         std::printf("%s{\"n\": %lld, \"radius\": %.17g, \"threads\": %d, \"mean_candidates\": %.6g, "
                     "\"mean_limited_neighbors\": %.6g, \"mean_delaunay_neighbors\": %.6g, "
-                    "\"cgal_s\": %.6g, \"scan1_s\": %.6g, \"scanT_s\": %.6g, \"chords1_s\": %.6g, "
-                    "\"ok\": %s, \"problem\": \"%s\"}",
+                    "\"calls_per_round\": %d, \"cgal_s\": %.6g, \"scan1_s\": %.6g, \"scan1_best_call_s\": %.6g, "
+                    "\"scanT_s\": %.6g, \"chords1_s\": %.6g, \"ok\": %s, \"problem\": \"%s\"}",
                     r ? ", " : "", static_cast<long long>(t.n), t.radius, t.threads, t.mean_candidates,
-                    t.mean_limited, t.mean_delaunay, t.cgal, t.scan1, t.scant, t.chords1,
+                    t.mean_limited, t.mean_delaunay, t.calls, t.cgal, t.scan1, t.scan1_call, t.scant, t.chords1,
                     t.ok ? "true" : "false", t.problem.c_str());
     }
     std::printf("]}\n");
 }
 
-void print_header(double k, int reps) {
+void print_header(double k, int reps, double window) {
     std::printf("dvoronoi limited_cells vs CGAL %s Delaunay_triangulation_2 (Epick) + neighbour walk\n",
                 cgal_version());
-    std::printf("CPU: %s, %d hardware threads, OpenMP: %s, -march=native: %s; best of %d runs\n",
+    std::printf("CPU: %s, %d hardware threads, OpenMP: %s, -march=native: %s; best of %d rounds of\n"
+                "ceil(%g / n) calls each (the mean call of a round)\n",
                 cpu_model().c_str(), hardware_threads(),
 #ifdef _OPENMP
                 "yes",
@@ -190,7 +198,7 @@ void print_header(double k, int reps) {
 #else
                 "no",
 #endif
-                reps);
+                reps, window);
     std::printf("points: uniform in [0,1)^2, R = sqrt(%g / (4 pi n)) (about %g agents within 2R)\n", k, k);
 }
 
@@ -200,6 +208,7 @@ int main(int argc, char** argv) {
     Index n = 1000000;
     double k = 30.0;
     int reps = 3, threads = 2;
+    double window = 1e6;
     std::uint64_t seed = 1;
     bool json = false;
     std::string sizes;
@@ -219,6 +228,7 @@ int main(int argc, char** argv) {
             else if (arg == "--threads") threads = std::stoi(value());
             else if (arg == "--seed") seed = static_cast<std::uint64_t>(std::stoull(value()));
             else if (arg == "--sizes") sizes = value();
+            else if (arg == "--window") window = std::stod(value());
             else if (arg == "--json") json = true;
             else if (arg == "-h" || arg == "--help") { usage(); return 0; }
             else {
@@ -231,8 +241,8 @@ int main(int argc, char** argv) {
             return 1;
         }
     }
-    if (n < 1 || reps < 1 || threads < 1 || !(k > 0.0)) {
-        std::fprintf(stderr, "bench_limited_cgal: --n, --reps, --threads and --k must be positive\n");
+    if (n < 1 || reps < 1 || threads < 1 || !(k > 0.0) || !(window >= 0.0)) {
+        std::fprintf(stderr, "bench_limited_cgal: --n, --reps, --threads and --k must be positive, --window not negative\n");
         return 1;
     }
 #ifndef _OPENMP
@@ -242,9 +252,9 @@ int main(int argc, char** argv) {
     std::vector<Timing> rows;
     try {
         if (!sizes.empty()) {
-            for (Index s : parse_sizes(sizes)) rows.push_back(run(s, k, reps, threads, seed, !json));
+            for (Index s : parse_sizes(sizes)) rows.push_back(run(s, k, reps, window, threads, seed, !json));
         } else {
-            rows.push_back(run(n, k, reps, threads, seed, !json));
+            rows.push_back(run(n, k, reps, window, threads, seed, !json));
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_limited_cgal: %s\n", e.what());
@@ -254,10 +264,10 @@ int main(int argc, char** argv) {
     for (const Timing& t : rows) ok = ok && t.ok;
 
     if (json) {
-        print_json(rows, k, reps);
+        print_json(rows, k, reps, window);
         return ok ? 0 : 2;
     }
-    print_header(k, reps);
+    print_header(k, reps, window);
     if (sizes.empty()) {
         const Timing& t = rows[0];
         std::printf("n = %lld, seed %llu, R = %.6g; per agent: %.2f agents within 2R, %.2f limited neighbours, "
@@ -299,6 +309,18 @@ int main(int argc, char** argv) {
                         t.scan1 / t.cgal);
         std::printf("\nT = %d threads. Checks: %s\n", rows.empty() ? threads : rows[0].threads,
                     ok ? "ok" : "FAILED (see --json)");
+        if (rows.size() >= 2) {
+            // Flatness of (b): the largest size against the smallest, per agent; also by the fastest
+            // single call, the timing before rounds of equal work (it favours small, short calls).
+            const Timing& a = rows.front();
+            const Timing& b = rows.back();
+            const auto per = [](double s, Index m) { return s / static_cast<double>(m); };
+            std::printf("Scan 1 thread, time per agent at n = %lld against n = %lld: %+.1f%% (rounds of %g agents), "
+                        "%+.1f%% (fastest single calls)\n",
+                        static_cast<long long>(b.n), static_cast<long long>(a.n),
+                        100.0 * (per(b.scan1, b.n) / per(a.scan1, a.n) - 1.0), window,
+                        100.0 * (per(b.scan1_call, b.n) / per(a.scan1_call, a.n) - 1.0));
+        }
     }
     return ok ? 0 : 2;
 }

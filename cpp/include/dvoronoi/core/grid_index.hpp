@@ -6,6 +6,7 @@
 // list of occupied cells otherwise (huge extents relative to R, e.g. two far-apart clusters).
 #pragma once
 
+#include "dvoronoi/core/pages.hpp"
 #include "dvoronoi/core/predicates.hpp"
 #include "dvoronoi/core/types.hpp"
 
@@ -81,10 +82,19 @@ public:
         nx_ = static_cast<std::int64_t>(std::floor(xspan / cell_)) + 1;
         ny_ = static_cast<std::int64_t>(std::floor(yspan / cell_)) + 1;
 
+        constexpr Index kPerThread = Index{1} << 15;  // below this, a thread costs more than it saves
+        const int team = static_cast<int>(std::clamp<Index>(n / kPerThread, 1, std::max(threads, 1)));
         // Positions are kept in grid order too: a query reads a few contiguous runs, not scattered rows.
-        order_.resize(static_cast<std::size_t>(n));
-        xs_.resize(static_cast<std::size_t>(n));
-        ys_.resize(static_cast<std::size_t>(n));
+        const auto un = static_cast<std::size_t>(n);
+        order_.reserve(un);
+        xs_.reserve(un);
+        ys_.reserve(un);
+        detail::prefault_together({{order_.data(), un * sizeof(Index)}, {xs_.data(), un * sizeof(double)},
+                                   {ys_.data(), un * sizeof(double)}},
+                                  team);
+        order_.resize(un);
+        xs_.resize(un);
+        ys_.resize(un);
         dense_ = static_cast<double>(nx_) * static_cast<double>(ny_) <= 4.0 * static_cast<double>(n) + 1024.0;
         if (dense_) {
             // Counting sort into a dense cell array (CSR); within a cell, input order (deterministic
@@ -98,8 +108,6 @@ public:
                 return static_cast<std::size_t>(k.cx * ny_ + k.cy);
             };
             const auto cells = static_cast<std::size_t>(nx_ * ny_);
-            constexpr Index kPerThread = Index{1} << 15;  // below this, a thread costs more than it saves
-            const int team = static_cast<int>(std::clamp<Index>(n / kPerThread, 1, std::max(threads, 1)));
             const auto first = [&](int t) { return n / team * t + std::min<Index>(t, n % team); };
             // Per thread and cell: the count, then the next place.
             std::vector<std::vector<Index>> place(static_cast<std::size_t>(team), std::vector<Index>(cells, 0));

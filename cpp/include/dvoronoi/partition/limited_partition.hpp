@@ -5,6 +5,7 @@
 #include "dvoronoi/cells/certified_clip.hpp"
 #include "dvoronoi/cells/limited_cell.hpp"
 #include "dvoronoi/core/grid_index.hpp"
+#include "dvoronoi/core/pages.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -21,9 +22,6 @@
 
 #ifdef _OPENMP
 #include <omp.h>
-#endif
-#if defined(__linux__)
-#include <sys/mman.h>
 #endif
 
 namespace dvoronoi {
@@ -149,57 +147,6 @@ inline std::size_t sorted_edge_neighbors(const Index* run, std::size_t len, Inde
     for (std::size_t t = 0; t < 8; ++t)
         if (t < count) out[t] = v[t];
     return count;
-}
-
-/// Maps the pages of [p, p + bytes) by one system call (MADV_POPULATE_WRITE, Linux 5.14+) instead
-/// of one page fault each; elsewhere, on older kernels or for small buffers it does nothing and the
-/// pages fault in as before. Measured when limited_cells touched 700 MB at 1e6 agents: page faults
-/// were about a sixth of the run, and mapping the pages up front took about a quarter off that.
-inline void prefault(const void* p, std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-    constexpr std::uintptr_t kPage = 4096;
-    if (bytes < (std::size_t{1} << 20)) return;
-    const auto at = reinterpret_cast<std::uintptr_t>(p);
-    const std::uintptr_t lo = (at + kPage - 1) & ~(kPage - 1), hi = (at + bytes) & ~(kPage - 1);
-    if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_POPULATE_WRITE);  // a hint: failure is harmless
-#else
-    (void)p;
-    (void)bytes;
-#endif
-}
-
-/// Asks for huge pages under [p, p + bytes) (its whole 2 MB pages). For arrays accessed in scattered
-/// order: with 4 KB pages such an access misses the TLB at nearly every agent once the arrays
-/// outgrow it, and under a hypervisor each miss is a two-level page walk (measured: 2% of
-/// limited_cells at 1e6 agents). Not for arrays filled in order: fresh huge pages map slower here.
-inline void advise_huge_pages(const void* p, std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
-    const auto at = reinterpret_cast<std::uintptr_t>(p);
-    const std::uintptr_t lo = (at + kHuge - 1) & ~(kHuge - 1), hi = (at + bytes) & ~(kHuge - 1);
-    if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // a hint, as above
-#else
-    (void)p;
-    (void)bytes;
-#endif
-}
-
-/// v.assign(n, value) on prefaulted pages.
-template <class T>
-void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
-    v.clear();
-    v.reserve(n);
-    prefault(v.data(), n * sizeof(T));
-    v.assign(n, value);
-}
-
-/// The same on huge pages, for an array accessed in scattered order (see advise_huge_pages).
-template <class T>
-void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
-    v.clear();
-    v.reserve(n);
-    advise_huge_pages(v.data(), n * sizeof(T));
-    assign_prefaulted(v, n, value);  // keeps the storage reserved above
 }
 
 /// How many agents ahead the gathers prefetch.
@@ -422,21 +369,40 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     detail::require_finite_radius(radius);
     detail::require_finite_points(points, "points");
     const Index n = points.rows();
-    LimitedPartition out;
-    out.radius = radius;
-    out.method = method;
-    out.points = points;
-    detail::assign_scattered(out.areas, static_cast<std::size_t>(n));
-    detail::assign_scattered(out.perimeters, static_cast<std::size_t>(n));
-    out.centroids.resize(n, 2);
-    detail::advise_huge_pages(out.centroids.data(), static_cast<std::size_t>(out.centroids.size()) * sizeof(double));
-    detail::prefault(out.centroids.data(), static_cast<std::size_t>(out.centroids.size()) * sizeof(double));
-    detail::assign_scattered(out.candidates, static_cast<std::size_t>(n));
-    if (n == 0) return out;
-
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
     const int team = detail::thread_team(threads, nblocks);
+    LimitedPartition out;
+    out.radius = radius;
+    out.method = method;
+    // The per-agent arrays. All but the points are written in scattered (input) order, so they get
+    // huge pages (see advise_huge_pages); the team maps all their pages together first.
+    const auto un = static_cast<std::size_t>(n);
+    out.points.resize(n, 2);
+    out.centroids.resize(n, 2);
+    // Where each agent's pieces start: its place in its thread's columns during the loop (see
+    // column_place), the offset in the joined columns after it.
+    std::vector<Index> source;
+    const auto room = [](auto& v, std::size_t size) {
+        v.reserve(size);
+        detail::advise_huge_pages(v.data(), size * sizeof(v[0]));
+        return std::pair<const void*, std::size_t>(v.data(), size * sizeof(v[0]));
+    };
+    const std::size_t xy_bytes = 2 * un * sizeof(double);
+    detail::advise_huge_pages(out.centroids.data(), xy_bytes);
+    detail::prefault_together({{out.points.data(), xy_bytes}, {out.centroids.data(), xy_bytes}, room(out.areas, un),
+                               room(out.perimeters, un), room(out.candidates, un), room(out.piece_ptr, un + 1),
+                               room(out.indptr, un + 1), room(source, un)},
+                              team);
+    out.points = points;
+    out.areas.assign(un, 0.0);
+    out.perimeters.assign(un, 0.0);
+    out.candidates.assign(un, 0);
+    out.piece_ptr.assign(un + 1, 0);  // counts, summed below
+    out.indptr.assign(un + 1, 0);
+    source.assign(un, 0);
+    if (n == 0) return out;
+
     const GridIndex index(out.points, 2.0 * radius, team);
     detail::require_distinct(index, out.points);
     const std::vector<Index>& order = index.grid_order();
@@ -448,12 +414,6 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     // back to the host, a host fault), so every byte of scratch is paid for; this keeps the scratch
     // to one column of pieces, against three times the pieces' size when they were staged whole.
     std::vector<detail::PieceColumns> columns(static_cast<std::size_t>(team));
-    detail::assign_scattered(out.piece_ptr, static_cast<std::size_t>(n) + 1);  // counts, summed below
-    detail::assign_scattered(out.indptr, static_cast<std::size_t>(n) + 1);
-    // Where each agent's pieces start: its place in its thread's columns during the loop (see
-    // column_place), the offset in the joined columns after it.
-    std::vector<Index> source;
-    detail::assign_scattered(source, static_cast<std::size_t>(n));
     detail::ProgressTracker tracker(progress, n);
 
 #pragma omp parallel num_threads(team)
@@ -533,12 +493,16 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
     const auto from = [&](Index i) { return static_cast<std::size_t>(source[static_cast<std::size_t>(i)]); };
     const auto nothing = [](Index, const void*, std::size_t) {};
     std::vector<double> free_column;
-    detail::assign_prefaulted(free_column, all.x.size());
+    const auto pieces = all.x.size(), edges = static_cast<std::size_t>(out.indptr.back());
+    free_column.reserve(pieces);
+    out.indices.reserve(edges);
+    detail::prefault_together({{free_column.data(), pieces * sizeof(double)}, {out.indices.data(), edges * sizeof(Index)}}, team);
+    free_column.assign(pieces, 0.0);
+    out.indices.assign(edges, 0);
     detail::move_runs(free_column.data(), all.x.data(), out.piece_ptr, from, team, nothing);
     std::swap(free_column, all.x);
     std::memcpy(free_column.data(), all.neighbor.data(), all.neighbor.size() * sizeof(Index));
     // Limited neighbours: the edges' neighbours, ascending.
-    detail::assign_prefaulted(out.indices, static_cast<std::size_t>(out.indptr.back()));
     detail::move_runs(all.neighbor.data(), free_column.data(), out.piece_ptr, from, team,
                       [&](Index i, const Index* run, std::size_t len) {
                           detail::sorted_edge_neighbors(run, len, out.indices.data() + out.indptr[static_cast<std::size_t>(i)]);

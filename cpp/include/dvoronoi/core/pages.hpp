@@ -1,0 +1,84 @@
+// Fresh memory, mapped in bulk: a fresh page costs a fault and a zeroing (and on a VM that hands freed
+// memory back to its host, a host fault). At 1e6 agents the drivers' results alone are 300 MB, so
+// how their pages are mapped is a measurable part of a run.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <utility>
+#include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace dvoronoi {
+namespace detail {
+
+/// Maps the pages of [p, p + bytes) by one system call (MADV_POPULATE_WRITE, Linux 5.14+) instead
+/// of one page fault each; elsewhere, on older kernels or for small buffers it does nothing and the
+/// pages fault in as before. Measured when limited_cells touched 700 MB at 1e6 agents: page faults
+/// were about a sixth of the run, and mapping the pages up front took about a quarter off that.
+inline void prefault(const void* p, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+    constexpr std::uintptr_t kPage = 4096;
+    if (bytes < (std::size_t{1} << 20)) return;
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t lo = (at + kPage - 1) & ~(kPage - 1), hi = (at + bytes) & ~(kPage - 1);
+    if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_POPULATE_WRITE);  // a hint: failure is harmless
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+
+/// Asks for huge pages under [p, p + bytes) (its whole 2 MB pages). For arrays accessed in scattered
+/// order: with 4 KB pages such an access misses the TLB at nearly every agent once the arrays
+/// outgrow it, and under a hypervisor each miss is a two-level page walk (measured: 2% of
+/// limited_cells at 1e6 agents). Not for arrays filled in order: fresh huge pages map slower here.
+inline void advise_huge_pages(const void* p, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+    const auto at = reinterpret_cast<std::uintptr_t>(p);
+    const std::uintptr_t lo = (at + kHuge - 1) & ~(kHuge - 1), hi = (at + bytes) & ~(kHuge - 1);
+    if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // a hint, as above
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+
+/// v.assign(n, value) on prefaulted pages.
+template <class T>
+void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
+    v.clear();
+    v.reserve(n);
+    prefault(v.data(), n * sizeof(T));
+    v.assign(n, value);
+}
+
+/// The same on huge pages, for an array accessed in scattered order (see advise_huge_pages).
+template <class T>
+void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
+    v.clear();
+    v.reserve(n);
+    advise_huge_pages(v.data(), n * sizeof(T));
+    assign_prefaulted(v, n, value);  // keeps the storage reserved above
+}
+
+/// prefault for several buffers at once, each split over up to `team` threads: page faults are
+/// handled by the faulting thread, and two threads map pages about 1.5-2x as fast as one (measured:
+/// 96 MB in 21-23 ms against 32-55 ms).
+inline void prefault_together(std::initializer_list<std::pair<const void*, std::size_t>> buffers, int team) {
+#pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
+    for (int t = 0; t < team; ++t)
+        for (const auto& [p, bytes] : buffers) {
+            const std::size_t lo = bytes / static_cast<std::size_t>(team) * static_cast<std::size_t>(t);
+            const std::size_t hi = t + 1 == team ? bytes : bytes / static_cast<std::size_t>(team) * static_cast<std::size_t>(t + 1);
+            prefault(static_cast<const char*>(p) + lo, hi - lo);
+        }
+}
+
+}  // namespace detail
+}  // namespace dvoronoi
