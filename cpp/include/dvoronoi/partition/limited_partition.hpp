@@ -205,12 +205,15 @@ struct PieceColumns {
     /// the three columns.
     static PieceColumns concatenate(std::vector<PieceColumns>& parts, int team) {
         PieceColumns all = std::move(parts.front());
+        std::size_t more = 0;
+        for (std::size_t t = 1; t < parts.size(); ++t) more += parts[t].x.size();
+        if (more > 0 && all.x.size() + more <= all.x.capacity())  // the pages the copies land on, by the team
+            prefault_together({{all.x.data() + all.x.size(), more * sizeof(double)},
+                               {all.y.data() + all.y.size(), more * sizeof(double)},
+                               {all.neighbor.data() + all.neighbor.size(), more * sizeof(Index)}},
+                              team);
         const auto join = [&](auto column) {
             auto& into = all.*column;
-            std::size_t more = 0;
-            for (std::size_t t = 1; t < parts.size(); ++t) more += (parts[t].*column).size();
-            if (into.size() + more <= into.capacity())  // the pages the copies land on, in one call
-                prefault(into.data() + into.size(), more * sizeof(into[0]));
             for (std::size_t t = 1; t < parts.size(); ++t) {
                 const auto part = std::move(parts[t].*column);  // freed once appended
                 into.insert(into.end(), part.begin(), part.end());
