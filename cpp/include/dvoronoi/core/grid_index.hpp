@@ -83,7 +83,7 @@ public:
         ny_ = static_cast<std::int64_t>(std::floor(yspan / cell_)) + 1;
 
         constexpr Index kPerThread = Index{1} << 15;  // below this, a thread costs more than it saves
-        const int team = static_cast<int>(std::clamp<Index>(n / kPerThread, 1, std::max(threads, 1)));
+        const int sort_team = static_cast<int>(std::clamp<Index>(n / kPerThread, 1, std::max(threads, 1)));
         // Positions are kept in grid order too: a query reads a few contiguous runs, not scattered rows.
         const auto un = static_cast<std::size_t>(n);
         order_.reserve(un);
@@ -91,7 +91,7 @@ public:
         ys_.reserve(un);
         detail::prefault_together({{order_.data(), un * sizeof(Index)}, {xs_.data(), un * sizeof(double)},
                                    {ys_.data(), un * sizeof(double)}},
-                                  team);
+                                  sort_team);
         order_.resize(un);
         xs_.resize(un);
         ys_.resize(un);
@@ -108,6 +108,9 @@ public:
                 return static_cast<std::size_t>(k.cx * ny_ + k.cy);
             };
             const auto cells = static_cast<std::size_t>(nx_ * ny_);
+            // Each thread counts in an array over all cells: at most about 2n entries in all.
+            const int team = std::max(1, std::min(sort_team, static_cast<int>(std::min<std::size_t>(
+                                                                  2 * un / std::max<std::size_t>(cells, 1), 1 << 16))));
             const auto first = [&](int t) { return n / team * t + std::min<Index>(t, n % team); };
             // Per thread and cell: the count, then the next place.
             std::vector<std::vector<Index>> place(static_cast<std::size_t>(team), std::vector<Index>(cells, 0));

@@ -139,7 +139,7 @@ inline std::size_t sorted_edge_neighbors(const Index* run, std::size_t len, Inde
     for (std::size_t k = 0; k < len; ++k) {
         // An edge is kept (count moves on); an arc leaves the padding in its slot.
         const Index r = run[k];
-        const Index arc = r >> 63;  // all ones for an arc
+        const Index arc = -static_cast<Index>(r < 0);  // all ones for an arc
         v[count] = (r & ~arc) | (kMax & arc);
         count += static_cast<std::size_t>(arc + 1);
     }
