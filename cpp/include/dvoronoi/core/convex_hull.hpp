@@ -156,27 +156,26 @@ private:
             same[t] = q[t] == q[(t + 1) & 7];
             any_edge = any_edge || !same[t];
         }
+        // p clearly left of edge t, or the edge is a point (the orient2d filter's error bound,
+        // generously widened).
+        const auto clearly_left = [&](int t, const Vec2& p) {
+            const Vec2& a = q[t];
+            const Vec2& b = q[(t + 1) & 7];
+            const double l = (a.x() - p.x()) * (b.y() - p.y()), r = (a.y() - p.y()) * (b.x() - p.x());
+            return same[t] | (l - r > 1e-15 * (std::fabs(l) + std::fabs(r)));
+        };
         std::vector<Index> out;
         out.reserve(static_cast<std::size_t>(n));
         for (Index i = 0; i < n; ++i) {
             const Vec2 p = P(i);
-            // Clearly left of every edge (the orient2d filter's error bound, generously widened),
-            // tested for all eight edges without branches (most agents are: the branchy test and its
-            // modulo were most of the hull's time); else edge by edge, exactly where unclear.
+            // All eight edges tested without branches (most agents are clearly inside: the branchy
+            // test and its modulo were most of the hull's time); else edge by edge, exactly where
+            // unclear.
             bool clear = any_edge;
-            for (int t = 0; t < 8; ++t) {
-                const Vec2& a = q[t];
-                const Vec2& b = q[(t + 1) & 7];
-                const double l = (a.x() - p.x()) * (b.y() - p.y()), r = (a.y() - p.y()) * (b.x() - p.x());
-                clear &= same[t] | (l - r > 1e-15 * (std::fabs(l) + std::fabs(r)));
-            }
+            for (int t = 0; t < 8; ++t) clear &= clearly_left(t, p);
             bool inside = any_edge;
-            for (int t = 0; !clear && inside && t < 8; ++t) {
-                const Vec2& a = q[t];
-                const Vec2& b = q[(t + 1) & 7];
-                const double l = (a.x() - p.x()) * (b.y() - p.y()), r = (a.y() - p.y()) * (b.x() - p.x());
-                inside = same[t] || l - r > 1e-15 * (std::fabs(l) + std::fabs(r)) || pred::orient(a, b, p) > 0;
-            }
+            for (int t = 0; !clear && inside && t < 8; ++t)
+                inside = clearly_left(t, p) || pred::orient(q[t], q[(t + 1) & 7], p) > 0;
             if (!inside) out.push_back(i);
         }
         return out;

@@ -130,8 +130,9 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1, Index{0});
     if (n == 0) return out;
     // The mean spacing over the bounding box sets the one-shot radius (and the grid's cells).
-    const double w = out.points.col(0).maxCoeff() - out.points.col(0).minCoeff();
-    const double h = out.points.col(1).maxCoeff() - out.points.col(1).minCoeff();
+    double x0, y0, x1, y1;
+    detail::bounding_box(out.points, x0, y0, x1, y1);
+    const double w = x1 - x0, h = y1 - y0;
     double spacing = std::sqrt(std::max(w * h, std::max(w, h) * std::max(w, h) * 1e-12) / static_cast<double>(n));
     if (!(spacing > 0.0) || !std::isfinite(spacing)) spacing = 1.0;
     const double one_shot = 1.5 * spacing;  // certifies ~97% of a uniform swarm's cells
