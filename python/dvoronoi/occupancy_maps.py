@@ -10,8 +10,8 @@ What each models:
 
 ``building(size, seed)``
     One office floor as a SLAM map shows it: outer walls on the image border, a main corridor running
-    top to bottom and cross corridors with rooms on both sides (double-loaded), rooms back to back
-    between two cross corridors. Walls are 1-3 px thick, drawn separately per wall. Every room has a
+    top to bottom (maps at least ~46 px wide) and cross corridors with rooms on both sides
+    (double-loaded), rooms back to back between two cross corridors, some with a door between them. Walls are 1-3 px thick, drawn separately per wall. Every room has a
     door (a gap) onto its corridor; some also onto the main corridor or the next room. Door widths
     vary from 1 px (a door left ajar) through 2-3 px to wide openings. One hall (two or three rooms
     merged) holds a grid of square pillars, and a few more pillars stand in rooms: islands, not
