@@ -1,0 +1,247 @@
+// The exact nearest-point transform of an occupancy grid: for every free pixel, the point of the
+// occupied set (closed squares, and everything outside the map) nearest to the pixel's centre, in
+// doubled pixel units (occupancy_grid.hpp), so squared distances are exact integers.
+//
+// Ties: among nearest points, the one with the smallest x, then the smallest y. The rule is part of
+// the medial diagram's definition (medial_diagram.hpp), and the brute-force oracle applies it too.
+//
+// Two separable passes (Meijster, Roerdink & Hesselink 2000, adapted to squares):
+//  1. per column: the signed row offset to the nearest occupied pixel of the column (ties: below).
+//  2. per row, per free run between occupied pixels: with V(c) = (2|k|-1)^2 the vertical part of
+//     column c and 0 for an occupied pixel, the nearest point of column c's square seen from pixel x
+//     != c lies on the square's left or right edge, at x = 2c or 2c+2. So each *edge* e between
+//     columns e-1 and e carries one parabola (X - 2e)^2 + min(V(e-1), V(e)), the distance from pixel
+//     x is min(V(x), min_e (2x+1-2e)^2 + O(e)), and a lower envelope of parabolas answers a whole run
+//     in linear time. Edges outside the run cannot win (the run's end edges have offset 0 and are
+//     nearer). The envelope is built with exact integer cross-multiplications (no division).
+// Rows are split over worker threads (pass 1 by columns); the result is identical for any count.
+#pragma once
+
+#include "dvoronoi/gvd/occupancy_grid.hpp"
+#include "dvoronoi/gvd/team.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <vector>
+
+namespace dvoronoi::gvd {
+
+/// Nearest points of every pixel: fx, fy in doubled pixel units (an occupied pixel's own centre).
+struct FeatureMap {
+    std::int32_t rows = 0, cols = 0;
+    std::vector<std::int16_t> vgap;  ///< signed row offset to the nearest occupied pixel of the column (0: occupied)
+    std::vector<std::int16_t> fx, fy;
+
+    std::size_t at(std::int32_t r, std::int32_t c) const {
+        return static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c);
+    }
+    /// Squared distance (doubled units, so 4x pixel units) from pixel (r, c)'s centre to its nearest point.
+    std::int64_t sq(std::int32_t r, std::int32_t c) const {
+        const std::size_t i = at(r, c);
+        const std::int64_t dx = fx[i] - (2 * c + 1), dy = fy[i] - (2 * (rows - 1 - r) + 1);
+        return dx * dx + dy * dy;
+    }
+};
+
+namespace detail {
+
+/// Lexicographic order of candidates (squared distance, x, y): the tie rule.
+struct Candidate2 {
+    std::int64_t sq;
+    std::int32_t x, y;
+    bool operator<(const Candidate2& o) const {
+        if (sq != o.sq) return sq < o.sq;
+        if (x != o.x) return x < o.x;
+        return y < o.y;
+    }
+};
+
+/// Pass 1 over columns [c0, c1): vgap of every pixel.
+inline void column_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t c0, std::int32_t c1) {
+    const std::int32_t H = g.rows;
+    const std::size_t W = static_cast<std::size_t>(g.cols);
+    const std::size_t n = static_cast<std::size_t>(c1 - c0);
+    // top to bottom: rows to the nearest occupied pixel above (the frame row -1 is occupied)
+    std::vector<std::int16_t> run(n, 0);
+    for (std::int32_t r = 0; r < H; ++r) {
+        const std::uint8_t* o = &g.occupied[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0)];
+        std::int16_t* v = &f.vgap[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0)];
+        for (std::size_t k = 0; k < n; ++k) {
+            run[k] = o[k] ? std::int16_t(0) : static_cast<std::int16_t>(run[k] + 1);
+            v[k] = run[k];
+        }
+    }
+    // bottom to top: rows to the nearest occupied pixel below; keep the nearer side (ties: below)
+    std::fill(run.begin(), run.end(), std::int16_t(0));
+    for (std::int32_t r = H - 1; r >= 0; --r) {
+        const std::uint8_t* o = &g.occupied[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0)];
+        std::int16_t* v = &f.vgap[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0)];
+        for (std::size_t k = 0; k < n; ++k) {
+            run[k] = o[k] ? std::int16_t(0) : static_cast<std::int16_t>(run[k] + 1);
+            const std::int16_t up = v[k];
+            v[k] = run[k] <= up ? run[k] : static_cast<std::int16_t>(-up);
+        }
+    }
+}
+
+/// The nearest point's y (doubled) in column c's square at vertical offset k, from pixel centre Y.
+inline std::int32_t feature_y(std::int32_t Y, std::int32_t k) {
+    return k > 0 ? Y + 1 - 2 * k : (k < 0 ? Y - 1 - 2 * k : Y);
+}
+
+/// Pass 2's lower envelope for one row over the squares of a range of columns [ca, cb] (their
+/// vertical nearest squares in this row; columns -1 and cols are the outside, distance 0 in the row).
+/// A full row's run uses the run's columns and the occupied ones around it; an update uses only the
+/// changed columns, or a window around the pixels it recomputes.
+class RowEnvelope {
+public:
+    /// Builds the envelope of row r over columns [ca, cb] (ca <= cb; -1 <= ca, cb <= cols).
+    void build(const OccupancyGrid& g, const FeatureMap& f, std::int32_t r, std::int32_t ca, std::int32_t cb) {
+        W_ = g.cols;
+        Y_ = 2 * (g.rows - 1 - r) + 1;
+        vg_ = &f.vgap[f.at(r, 0)];
+        ca_ = ca;
+        cb_ = cb;
+        // edges ca .. cb+1; edge e lies between columns e-1 and e
+        const std::size_t m = static_cast<std::size_t>(cb - ca + 2);
+        if (hA_.size() < m) { hA_.resize(m); he_.resize(m); hy_.resize(m); }
+        std::int64_t* hA = hA_.data();
+        std::int32_t* he = he_.data();
+        std::int32_t* hy = hy_.data();
+        std::size_t top = 0;
+        std::int64_t vprev = 0;
+        std::int32_t yprev = 0;
+        bool has_prev = false;
+        for (std::int32_t e = ca; e <= cb + 1; ++e) {
+            std::int64_t off;
+            std::int32_t y;
+            const bool has_cur = e <= cb;
+            std::int64_t vcur = 0;
+            std::int32_t ycur = 0;
+            if (has_cur) { vcur = V(e); ycur = yv(e); }
+            // the nearer column's square; equal: the lower nearest point
+            if (has_prev && (!has_cur || vprev < vcur || (vprev == vcur && yprev <= ycur))) { off = vprev; y = yprev; }
+            else { off = vcur; y = ycur; }
+            vprev = vcur;
+            yprev = ycur;
+            has_prev = has_cur;
+            // Lower envelope of (X - 2e)^2 + off, e ascending. Edge q is dropped when the next edge u
+            // overtakes it no later than q overtakes its predecessor p (crossings at
+            // X = (A_q - A_p) / (4 (e_q - e_p)), A = off + 4e^2): exact integer cross-multiplication.
+            const std::int64_t Au = off + 4 * std::int64_t{e} * e;
+            while (top >= 2) {
+                const std::int64_t Aq = hA[top - 1], Ap = hA[top - 2];
+                const std::int64_t eq = he[top - 1], ep = he[top - 2];
+                if ((Au - Aq) * (eq - ep) <= (Aq - Ap) * (e - eq)) --top;
+                else break;
+            }
+            hA[top] = Au;
+            he[top] = e;
+            hy[top] = y;
+            ++top;
+        }
+        top_ = top;
+        k_ = 0;
+    }
+
+    /// The nearest candidate of pixel x among the envelope's squares. Fastest when queries come in
+    /// ascending x (the minimising edge only moves right), correct in any order: along the envelope
+    /// the values at one x fall, then rise, and the first minimiser is the smallest edge (tie rule).
+    Candidate2 query(std::int32_t x) {
+        const std::int64_t X = 2 * x + 1, X4 = 4 * X;
+        std::size_t k = k_;
+        std::int64_t best = hA_[k] - X4 * he_[k];
+        while (k + 1 < top_) {
+            const std::int64_t nxt = hA_[k + 1] - X4 * he_[k + 1];
+            if (nxt < best) { best = nxt; ++k; }
+            else break;
+        }
+        while (k > 0) {
+            const std::int64_t prv = hA_[k - 1] - X4 * he_[k - 1];
+            if (prv <= best) { best = prv; --k; }
+            else break;
+        }
+        k_ = k;
+        const std::int64_t e = he_[k];
+        Candidate2 c{best + X * X, static_cast<std::int32_t>(2 * e), hy_[k]};
+        if (x >= ca_ && x <= cb_) {
+            // the pixel's own column (dx = 0) wins ties against edges to its right only
+            const std::int64_t own = V(x);
+            if (own < c.sq || (own == c.sq && 2 * e > X)) c = {own, static_cast<std::int32_t>(X), yv(x)};
+        }
+        return c;
+    }
+private:
+    std::int64_t V(std::int32_t c) const {
+        if (c < 0 || c >= W_) return 0;
+        const std::int64_t k = std::abs(static_cast<std::int32_t>(vg_[c]));
+        return k == 0 ? 0 : (2 * k - 1) * (2 * k - 1);
+    }
+    std::int32_t yv(std::int32_t c) const { return c < 0 || c >= W_ ? Y_ : feature_y(Y_, vg_[c]); }
+
+    std::int32_t W_ = 0, Y_ = 0, ca_ = 0, cb_ = 0;
+    const std::int16_t* vg_ = nullptr;
+    std::vector<std::int64_t> hA_;  // envelope: A = offset + 4e^2, edge e, nearest point's y
+    std::vector<std::int32_t> he_, hy_;
+    std::size_t top_ = 0, k_ = 0;
+};
+
+/// Pass 2 over row r: each free run [s, t] against the squares of columns s-1 .. t+1 (the
+/// run's ends are occupied or outside: squares beyond them are farther than the ends' edges).
+inline void row_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t r, RowEnvelope& env) {
+    const std::int32_t W = g.cols;
+    const std::uint8_t* o = &g.occupied[g.at(r, 0)];
+    std::int16_t* fx = &f.fx[f.at(r, 0)];
+    std::int16_t* fy = &f.fy[f.at(r, 0)];
+    const std::int32_t Y = 2 * (g.rows - 1 - r) + 1;
+    std::int32_t c = 0;
+    while (c < W) {
+        if (o[c]) {  // an occupied pixel is its own nearest point (distance 0)
+            fx[c] = static_cast<std::int16_t>(2 * c + 1);
+            fy[c] = static_cast<std::int16_t>(Y);
+            ++c;
+            continue;
+        }
+        std::int32_t t = c;
+        while (t + 1 < W && !o[t + 1]) ++t;
+        env.build(g, f, r, c - 1, t + 1);
+        for (std::int32_t x = c; x <= t; ++x) {
+            const Candidate2 n = env.query(x);
+            fx[x] = static_cast<std::int16_t>(n.x);
+            fy[x] = static_cast<std::int16_t>(n.y);
+        }
+        c = t + 1;
+    }
+}
+
+}  // namespace detail
+
+/// The nearest-point transform of `g` with `workers` threads (same result for any count).
+/// \throws InputError for a grid check_grid rejects.
+/// \note O(rows x cols); 6 bytes per pixel.
+inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
+    check_grid(g);
+    FeatureMap f;
+    f.rows = g.rows;
+    f.cols = g.cols;
+    f.vgap.resize(g.size());
+    f.fx.resize(g.size());
+    f.fy.resize(g.size());
+    const int k_cols = std::max(1, std::min(workers, g.cols / 64 > 0 ? g.cols / 64 : 1));
+    run_team(k_cols, [&](int k) {
+        const auto c0 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.cols) * k / k_cols);
+        const auto c1 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.cols) * (k + 1) / k_cols);
+        detail::column_pass(g, f, c0, c1);
+    });
+    const int k_rows = std::max(1, std::min(workers, g.rows));
+    run_team(k_rows, [&](int k) {
+        detail::RowEnvelope env;
+        const auto r0 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.rows) * k / k_rows);
+        const auto r1 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.rows) * (k + 1) / k_rows);
+        for (std::int32_t r = r0; r < r1; ++r) detail::row_pass(g, f, r, env);
+    });
+    return f;
+}
+
+}  // namespace dvoronoi::gvd

@@ -1,0 +1,74 @@
+// Occupancy grids (SPEC "Grid diagram on occupancy grids"): an H x W array of occupied / free pixels,
+// row 0 at the top as in the image, with the map's resolution (map units per pixel) and origin (the
+// lower-left corner of pixel (H-1, 0), as ROS map_server writes it).
+//
+// Pixel (r, c) covers [c, c+1] x [H-1-r, H-r] in pixel units. Occupied pixels are closed squares;
+// everything outside the map counts as occupied (a map's edge is a wall: what lies beyond is unknown).
+//
+// Exact integer geometry: the diagram code works in *doubled* pixel units, where every pixel centre,
+// square corner and nearest point of an occupied square has integer coordinates: pixel (r, c) has its
+// centre at (2c+1, 2(H-1-r)+1) and covers [2c, 2c+2] x [2(H-1-r), 2(H-r)]. Squared distances are then
+// exact integers (4 x the squared distance in pixel units).
+#pragma once
+
+#include "dvoronoi/core/types.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dvoronoi::gvd {
+
+/// The largest map side: doubled coordinates must fit in 16 bits (features are stored as int16).
+inline constexpr std::int32_t kMaxMapSide = 16383;
+
+struct OccupancyGrid {
+    std::int32_t rows = 0, cols = 0;
+    std::vector<std::uint8_t> occupied;  ///< rows x cols, row-major, row 0 at the top; 1 = occupied
+    double resolution = 1.0;             ///< map units per pixel
+    Vec2 origin = Vec2(0.0, 0.0);        ///< map coordinates of the lower-left corner of pixel (rows-1, 0)
+
+    OccupancyGrid() = default;
+    OccupancyGrid(std::int32_t h, std::int32_t w, double res = 1.0, Vec2 org = Vec2(0.0, 0.0))
+        : rows(h), cols(w), occupied(static_cast<std::size_t>(h) * static_cast<std::size_t>(w), 0),
+          resolution(res), origin(org) {}
+
+    std::size_t size() const { return occupied.size(); }
+    std::size_t at(std::int32_t r, std::int32_t c) const {
+        return static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c);
+    }
+    bool occ(std::int32_t r, std::int32_t c) const { return occupied[at(r, c)] != 0; }
+    /// Occupied, or outside the map.
+    bool blocked(std::int32_t r, std::int32_t c) const {
+        return r < 0 || c < 0 || r >= rows || c >= cols || occupied[at(r, c)] != 0;
+    }
+
+    /// Map coordinates of pixel (r, c)'s centre.
+    Vec2 center(std::int32_t r, std::int32_t c) const {
+        return origin + resolution * Vec2(c + 0.5, (rows - 1 - r) + 0.5);
+    }
+    /// Map coordinates of a point given in doubled pixel units.
+    Vec2 from_doubled(double x2, double y2) const { return origin + resolution * Vec2(0.5 * x2, 0.5 * y2); }
+    /// Pixel units (not doubled) of a map point: x right, y up from the lower-left corner.
+    Vec2 to_pixels(const Vec2& p) const { return (p - origin) / resolution; }
+};
+
+/// Checks sizes, resolution and origin; names the argument.
+inline void check_grid(const OccupancyGrid& g) {
+    if (g.rows < 1 || g.cols < 1)
+        throw InputError("occupancy grid must have at least one row and one column, got " + std::to_string(g.rows) +
+                         " x " + std::to_string(g.cols));
+    if (g.rows > kMaxMapSide || g.cols > kMaxMapSide)
+        throw InputError("occupancy grid of " + std::to_string(g.rows) + " x " + std::to_string(g.cols) +
+                         " pixels: each side must be at most " + std::to_string(kMaxMapSide) + " pixels");
+    if (g.occupied.size() != static_cast<std::size_t>(g.rows) * static_cast<std::size_t>(g.cols))
+        throw InputError("occupancy grid data has " + std::to_string(g.occupied.size()) + " values for " +
+                         std::to_string(g.rows) + " x " + std::to_string(g.cols) + " pixels");
+    if (!std::isfinite(g.resolution) || g.resolution <= 0.0)
+        throw InputError("resolution must be a positive finite number (map units per pixel)");
+    if (!std::isfinite(g.origin.x()) || !std::isfinite(g.origin.y()))
+        throw InputError("origin must be finite");
+}
+
+}  // namespace dvoronoi::gvd

@@ -1,0 +1,134 @@
+#include "dvoronoi/gvd/medial_brute_force.hpp"
+#include "occupancy_scenes.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <queue>
+
+using namespace dvoronoi::gvd;
+
+namespace {
+
+std::vector<OccupancyGrid> all_scenes() {
+    std::vector<OccupancyGrid> maps = {scenes::rooms(), scenes::corridors()};
+    for (int run : {1, 2, 3, 4, 5, 7}) maps.push_back(scenes::staircase(run));
+    for (unsigned s = 0; s < 120; ++s) maps.push_back(scenes::clutter(s));
+    return maps;
+}
+
+/// Free pixels 4-connected to (r, c) without crossing diagram pixels.
+std::vector<std::uint8_t> reach_without_diagram(const MedialDiagram& m, int r, int c) {
+    const OccupancyGrid& g = m.grid;
+    std::vector<std::uint8_t> seen(g.size(), 0);
+    std::queue<std::pair<int, int>> q;
+    q.push({r, c});
+    seen[g.at(r, c)] = 1;
+    while (!q.empty()) {
+        const auto [a, b] = q.front();
+        q.pop();
+        const int da[4] = {1, -1, 0, 0}, db[4] = {0, 0, 1, -1};
+        for (int k = 0; k < 4; ++k) {
+            const int x = a + da[k], y = b + db[k];
+            if (g.blocked(x, y) || seen[g.at(x, y)] || m.mask[g.at(x, y)]) continue;
+            seen[g.at(x, y)] = 1;
+            q.push({x, y});
+        }
+    }
+    return seen;
+}
+
+}  // namespace
+
+TEST_CASE("the diagram is exactly the brute-force oracle's, for every worker count and pruning length") {
+    for (const auto& g : all_scenes())
+        for (double prune : {0.0, 4.0, 8.0, 12.5}) {
+            MedialOptions o;
+            o.prune_length = prune;
+            const auto oracle = brute_force_medial(g, o);
+            for (int workers : {1, 2, 3}) {
+                o.workers = workers;
+                REQUIRE(medial_diagram(g, o).mask == oracle);
+            }
+        }
+}
+
+TEST_CASE("every corridor at least 2 pixels wide has a centreline within one pixel of its middle") {
+    const int length = 20, top = 6;
+    const OccupancyGrid g = scenes::corridors(length);
+    const MedialDiagram m = medial_diagram(g);
+    int c = 2;
+    for (int w = 1; w <= 8; ++w) {
+        const double middle = c + 0.5 * w;  // pixel units
+        for (int r = top; r < top + length; ++r) {
+            int near = 0;
+            for (int x = c; x < c + w; ++x) near += m.mask[g.at(r, x)] && std::abs(x + 0.5 - middle) <= 1.0;
+            INFO("corridor of width " << w << ", row " << r);
+            if (w >= 2) CHECK(near >= 1);
+            else CHECK(near == 0);  // a 1-pixel corridor has no pair of free pixels across it
+        }
+        c += w + 2;
+    }
+}
+
+TEST_CASE("a loop of the diagram closes around every pillar; doors of 2 pixels and more are crossed") {
+    const OccupancyGrid g = scenes::rooms();
+    const MedialDiagram m = medial_diagram(g);
+    // from next to each pillar, without crossing the diagram, the room's far corner is out of reach
+    for (auto [r, c] : {std::pair<int, int>{7, 41}, std::pair<int, int>{27, 21}}) {
+        const auto seen = reach_without_diagram(m, r, c);
+        CHECK_FALSE(seen[g.at(2, 2)]);
+        CHECK_FALSE(seen[g.at(37, 57)]);
+    }
+    // each door of width >= 2 holds diagram pixels in both of its wall rows
+    int c = 4;
+    for (int w = 1; w <= 5; ++w) {
+        int in_door = 0;
+        for (int r = 19; r < 21; ++r)
+            for (int x = c; x < c + w; ++x) in_door += m.mask[g.at(r, x)];
+        if (w >= 2) CHECK(in_door >= 2);
+        c += w + 8;
+    }
+}
+
+TEST_CASE("no spurs along staircase walls of slope 1:1 to 1:7") {
+    // Away from the acute wedge where the staircase meets the map's left edge: a wedge's bisector is
+    // a real branch of the medial axis, and the rule keeps it beyond its tip.
+    for (int run : {1, 2, 3, 4, 5, 7}) {
+        const OccupancyGrid g = scenes::staircase(run);
+        const MedialDiagram m = medial_diagram(g);
+        for (int r = 0; r < g.rows; ++r)
+            for (int c = 4; c < g.cols; ++c)
+                if (m.mask[g.at(r, c)]) {
+                    INFO("run " << run << ", pixel (" << r << ", " << c << "), clearance " << m.clearance(r, c));
+                    CHECK(m.clearance(r, c) >= 1.5);
+                }
+        // without pruning the steps' spurs reach the wall
+        MedialOptions raw;
+        raw.prune_length = 0.0;
+        if (run >= 2) {
+            const MedialDiagram s = medial_diagram(g, raw);
+            bool spur = false;
+            for (int r = 0; r < g.rows; ++r)
+                for (int c = 0; c < g.cols; ++c) spur |= s.mask[g.at(r, c)] && s.clearance(r, c) < 1.5;
+            CHECK(spur);
+        }
+    }
+}
+
+TEST_CASE("maps too narrow for a diagram give none; options are checked") {
+    OccupancyGrid one_wide(9, 1);
+    CHECK(medial_diagram(one_wide).count() == 0);
+    OccupancyGrid full(4, 4);
+    for (auto& v : full.occupied) v = 1;
+    CHECK(medial_diagram(full).count() == 0);
+    MedialOptions bad;
+    bad.min_separation = 0.5;
+    CHECK_THROWS_WITH_AS(medial_diagram(one_wide, bad), doctest::Contains("min_separation"), dvoronoi::InputError);
+    bad = MedialOptions{};
+    bad.prune_length = std::nan("");
+    CHECK_THROWS_WITH_AS(medial_diagram(one_wide, bad), doctest::Contains("prune_length"), dvoronoi::InputError);
+    bad = MedialOptions{};
+    bad.workers = 0;
+    CHECK_THROWS_WITH_AS(medial_diagram(one_wide, bad), doctest::Contains("workers"), dvoronoi::InputError);
+}

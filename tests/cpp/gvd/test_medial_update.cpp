@@ -1,0 +1,64 @@
+#include "dvoronoi/gvd/medial_update.hpp"
+#include "occupancy_scenes.hpp"
+
+#include <doctest/doctest.h>
+
+#include <random>
+
+using namespace dvoronoi::gvd;
+
+namespace {
+
+void require_same_as_full_build(const MedialDiagram& m) {
+    const MedialDiagram full = medial_diagram(m.grid, m.options);
+    REQUIRE(m.features.vgap == full.features.vgap);
+    REQUIRE(m.features.fx == full.features.fx);
+    REQUIRE(m.features.fy == full.features.fy);
+    REQUIRE(m.mask == full.mask);
+    REQUIRE(m.max_sq >= full.max_sq);
+}
+
+}  // namespace
+
+TEST_CASE("after any sequence of additions and removals the diagram is the full build's") {
+    for (unsigned seed = 0; seed < 400; ++seed) {
+        std::mt19937 rng(seed);
+        OccupancyGrid g = seed % 7 == 0 ? scenes::rooms() : scenes::clutter(seed, 60);
+        MedialOptions o;
+        o.prune_length = static_cast<double>(seed % 4) * 3.0;
+        MedialDiagram m = medial_diagram(g, o);
+        for (int step = 0; step < 10; ++step) {
+            const unsigned kind = rng() % 3;
+            if (kind < 2) {  // a block becomes occupied or free
+                std::vector<std::size_t> px;
+                const int r0 = static_cast<int>(rng() % static_cast<unsigned>(g.rows));
+                const int c0 = static_cast<int>(rng() % static_cast<unsigned>(g.cols));
+                const int h = 1 + static_cast<int>(rng() % 5), w = 1 + static_cast<int>(rng() % 5);
+                for (int r = r0; r < std::min(g.rows, r0 + h); ++r)
+                    for (int c = c0; c < std::min(g.cols, c0 + w); ++c) px.push_back(g.at(r, c));
+                set_pixels(m, px, kind == 0);
+            } else {  // scattered flips in both directions at once
+                std::vector<std::uint8_t> occ = m.grid.occupied;
+                const unsigned flips = 1 + rng() % 30;
+                for (unsigned k = 0; k < flips; ++k) occ[rng() % occ.size()] ^= 1;
+                update_occupancy(m, occ);
+            }
+            INFO("seed " << seed << ", step " << step);
+            require_same_as_full_build(m);
+        }
+    }
+}
+
+TEST_CASE("an update reports what it touched and rejects bad input") {
+    MedialDiagram m = medial_diagram(scenes::rooms());
+    const auto before = m.mask;
+    const UpdateStats none = set_pixels(m, {m.grid.at(0, 0)}, true);  // already occupied
+    CHECK(none.changed_pixels == 0);
+    CHECK(m.mask == before);
+    const UpdateStats st = set_pixels(m, {m.grid.at(30, 40), m.grid.at(30, 41)}, true);
+    CHECK(st.changed_pixels == 2);
+    CHECK(st.feature_changes > 0);
+    CHECK_THROWS_WITH_AS(set_pixels(m, {m.grid.size()}, true), doctest::Contains("outside"), dvoronoi::InputError);
+    CHECK_THROWS_WITH_AS(update_occupancy(m, std::vector<std::uint8_t>(3, 0)), doctest::Contains("3 pixels"),
+                         dvoronoi::InputError);
+}
