@@ -8,6 +8,7 @@ void bind_core(py::module_& m);
 void bind_cells(py::module_& m);
 void bind_voronoi(py::module_& m);
 void bind_gvd(py::module_& m);
+void bind_gvd_occupancy(py::module_& m);
 void bind_distances(py::module_& m);
 void bind_coverage(py::module_& m);
 void bind_network(py::module_& m);
@@ -18,6 +19,7 @@ PYBIND11_MODULE(_core, m) {
     bind_cells(m);
     bind_voronoi(m);
     bind_gvd(m);
+    bind_gvd_occupancy(m);
     bind_distances(m);
     bind_coverage(m);
     bind_network(m);

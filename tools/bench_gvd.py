@@ -5,7 +5,7 @@ The route: rasterise the obstacles (and the working area's edges) into a label i
 ``dist, idx = scipy.ndimage.distance_transform_edt(free, return_indices=True)`` (the usual call: the
 distances are the clearance map, the indices give every pixel's nearest obstacle pixel), look up the
 labels, and mark the pixels whose right or upper neighbour has another label. ``--no-distances``
-times the leaner call with ``return_distances=False`` too. dvoronoi: ``dv.grid_voronoi(map, resolution=N)`` (exact point-to-shape distances, only cells
+times the leaner call with ``return_distances=False`` too. dvoronoi: ``dv.grid_voronoi(map, cells=N)`` (exact point-to-shape distances, only cells
 near the diagram labelled).
 
 Reported (markdown, machine/date/load/commit for the README):
@@ -140,7 +140,7 @@ def child(route: str, n: int, obstacles: int) -> None:
 
     doc = make_map(obstacles)
     if route == "gvd":  # warm the import of everything the call uses
-        dv.grid_voronoi(doc, resolution=64)
+        dv.grid_voronoi(doc, cells=64)
     else:
         edt_route(doc, 64)
     import gc
@@ -150,7 +150,7 @@ def child(route: str, n: int, obstacles: int) -> None:
     tracemalloc.start()
     t0 = time.perf_counter()
     if route == "gvd":
-        out = dv.grid_voronoi(doc, resolution=n)
+        out = dv.grid_voronoi(doc, cells=n)
         cells = len(out.cells)
     else:
         out = edt_route(doc, n)
@@ -195,11 +195,11 @@ def main() -> None:
     print(f"- date: {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M} UTC, commit {git_describe()}, "
           f"numpy {np.__version__}, scipy {scipy.__version__}, dvoronoi {dv.__version__}\n")
 
-    dv.grid_voronoi(doc, resolution=64)  # warm-up
+    dv.grid_voronoi(doc, cells=64)  # warm-up
     cpu = lambda f: best_of(1, lambda: (time.process_time(), f(), time.process_time()))  # noqa: E731
     t_gvd, t_edt, c_gvd, c_edt = np.inf, np.inf, np.inf, np.inf
     for rep in range(a.reps):  # interleaved, so both sides see the same load
-        t, (p0, gv, p1) = cpu(lambda: dv.grid_voronoi(doc, resolution=n))
+        t, (p0, gv, p1) = cpu(lambda: dv.grid_voronoi(doc, cells=n))
         t_gvd, c_gvd = min(t_gvd, t), min(c_gvd, p1 - p0)
         # the route too: its time varies by 1.7x between runs here (hundreds of MB of fresh pages)
         t, (p0, mask, p1) = cpu(lambda: edt_route(doc, n))
@@ -210,7 +210,7 @@ def main() -> None:
     inside = near[gv.cells[:, 1], gv.cells[:, 0]].mean()
     print("## 1. Time, one worker\n")
     print("| route | best wall time | best process CPU time | diagram cells |\n|---|---|---|---|")
-    print(f"| dv.grid_voronoi(resolution={n}) | {t_gvd:.3f} s | {c_gvd:.3f} s | {len(gv.cells)} |")
+    print(f"| dv.grid_voronoi(cells={n}) | {t_gvd:.3f} s | {c_gvd:.3f} s | {len(gv.cells)} |")
     print(f"| rasterise + distance_transform_edt(return_indices=True) + label changes | {t_edt:.3f} s | {c_edt:.3f} s | {int(mask.sum())} |")
     if a.no_distances:
         t_lean, c_lean = np.inf, np.inf
@@ -225,7 +225,7 @@ def main() -> None:
           f"of the route's label changes (the route labels pixel centers of a rasterised map; dvoronoi labels "
           f"corners by exact distances). Corners labelled: {gv.stats['corners_labelled']} of {(n + 1) ** 2} "
           f"({100 * gv.stats['corners_labelled'] / (n + 1) ** 2:.2f}%).\n")
-    t_graph, _ = best_of(1, lambda: dv.grid_voronoi(doc, resolution=n).roadmap)
+    t_graph, _ = best_of(1, lambda: dv.grid_voronoi(doc, cells=n).roadmap)
     print(f"Roadmap as a networkx graph on top (built on first use): {t_graph - t_gvd:.3f} s more.\n")
 
     print("## 2. Peak memory (fresh subprocess each: peak RSS, reset just before the call, minus the RSS then)\n")
@@ -246,12 +246,12 @@ def main() -> None:
     best1, best2, parsed1, parsed2 = np.inf, np.inf, np.inf, np.inf
     cpu1, cpu2 = np.inf, np.inf
     for _ in range(max(a.reps, 15)):  # short calls on a shared machine: many interleaved runs
-        t, r = best_of(1, lambda: dv.grid_voronoi(scene, resolution=n, workers=1))
+        t, r = best_of(1, lambda: dv.grid_voronoi(scene, cells=n, workers=1))
         best1, cpu1 = min(best1, t), min(cpu1, max(r.stats["worker_cpu_seconds"]))
-        t, r = best_of(1, lambda: dv.grid_voronoi(scene, resolution=n, workers=2))
+        t, r = best_of(1, lambda: dv.grid_voronoi(scene, cells=n, workers=2))
         best2, cpu2 = min(best2, t), min(cpu2, max(r.stats["worker_cpu_seconds"]))
-        parsed1 = min(parsed1, best_of(1, lambda: dv.grid_voronoi(doc, resolution=n, workers=1))[0])
-        parsed2 = min(parsed2, best_of(1, lambda: dv.grid_voronoi(doc, resolution=n, workers=2))[0])
+        parsed1 = min(parsed1, best_of(1, lambda: dv.grid_voronoi(doc, cells=n, workers=1))[0])
+        parsed2 = min(parsed2, best_of(1, lambda: dv.grid_voronoi(doc, cells=n, workers=2))[0])
     print("| workers | best wall time (map loaded once) | with the map parsed per call | busiest worker's CPU time |\n|---|---|---|---|")
     print(f"| 1 | {best1:.3f} s | {parsed1:.3f} s | {cpu1:.3f} s |\n| 2 | {best2:.3f} s | {parsed2:.3f} s | {cpu2:.3f} s |")
     print(f"\n**2 workers: {best1 / best2:.2f}x wall-clock ({parsed1 / parsed2:.2f}x when each call also parses the "
@@ -262,8 +262,8 @@ def main() -> None:
           "result is split by slice; the obstacle index and the Python wrapper are not.\n")
 
     print("## 4. The paper's visibility test\n")
-    t_on, on = best_of(a.reps, lambda: dv.grid_voronoi(doc, resolution=n, visibility=True))
-    t_off, off = best_of(a.reps, lambda: dv.grid_voronoi(doc, resolution=n, visibility=False))
+    t_on, on = best_of(a.reps, lambda: dv.grid_voronoi(doc, cells=n, visibility=True))
+    t_off, off = best_of(a.reps, lambda: dv.grid_voronoi(doc, cells=n, visibility=False))
     same = np.array_equal(on.cells, off.cells) and np.array_equal(on.labels, off.labels)
     print("| visibility test | edge distances computed | best time |\n|---|---|---|")
     print(f"| on | {on.stats['edge_evaluations']} | {t_on:.3f} s |\n| off | {off.stats['edge_evaluations']} | {t_off:.3f} s |")

@@ -1,6 +1,14 @@
 // `dvoronoi gvd OBSTACLES.json --grid N`: the grid Voronoi diagram of obstacles (Mendes et al.),
 // traced by K slice workers (threads), with clearance, roadmap and an optional path.
+// `dvoronoi gvd MAP.{yaml,pgm,png,map}`: the medial diagram of an occupancy grid (SPEC "Grid diagram
+// on occupancy grids"), with clearance and an optional path for a disk robot.
 #include "common.hpp"
+
+#include "dvoronoi/gvd/grid_path.hpp"
+#include "dvoronoi/io/medial_export.hpp"
+#include "dvoronoi/io/occupancy_map.hpp"
+
+#include <thread>
 
 #include "dvoronoi/gvd/grid_voronoi.hpp"
 #include "dvoronoi/gvd/path.hpp"
@@ -20,7 +28,7 @@ namespace {
 struct GvdCliOptions {
     std::string obstacles;
     std::int64_t grid = 0;
-    int workers = 1;
+    int workers = 0;  // 0: all cores
     std::string mode = "cooperative";
     double robot_radius = 0.0;
     bool no_visibility = false;
@@ -28,11 +36,81 @@ struct GvdCliOptions {
     std::string output;
     std::string svg;
     bool quiet = false;
+    // occupancy maps
+    std::string diagram = "medial";
+    double resolution = 0.0;  // 0: from the YAML, else 1
+    std::vector<double> origin;
+    std::string unknown = "occupied";
+    double min_separation = 1.5, prune_length = 8.0;
 };
 
+bool is_map_file(const std::string& path) {
+    const std::string e = lower_extension(path);
+    return e == ".yaml" || e == ".yml" || e == ".pgm" || e == ".png" || e == ".map";
+}
+
+int run_map(const GvdCliOptions& o) {
+    if (o.diagram != "medial")
+        throw UsageError("--diagram: the CLI draws the medial diagram of map files; for the labelled diagram convert "
+                         "the map to obstacles (Python: dv.obstacles_from_occupancy_grid)");
+    if (o.workers < 0) throw UsageError("--workers: must be 0 (all cores) or positive, got " + std::to_string(o.workers));
+    if (!std::isfinite(o.robot_radius) || o.robot_radius < 0.0)
+        throw UsageError("--robot-radius: must be a finite number >= 0, got " + show(o.robot_radius));
+    if (!o.path.empty() && o.path.size() != 4) throw UsageError("--path: expects SX SY GX GY");
+    for (double v : o.path)
+        if (!std::isfinite(v)) throw UsageError("--path: coordinates must be finite");
+    if (o.resolution < 0.0 || !std::isfinite(o.resolution)) throw UsageError("--resolution: must be a positive number (map units per pixel)");
+    if (!o.origin.empty() && o.origin.size() != 2) throw UsageError("--origin: expects X Y");
+    const bool to_stdout = o.output.empty() || o.output == "-";
+    if (!to_stdout && lower_extension(o.output) != ".json")
+        throw UsageError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
+    if (!to_stdout && !o.svg.empty() && o.output == o.svg) throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
+
+    io::MapReadOptions ro;
+    ro.unknown_occupied = o.unknown == "occupied";
+    if (o.resolution > 0.0) ro.resolution = o.resolution;
+    if (!o.origin.empty()) ro.origin = Vec2(o.origin[0], o.origin[1]);
+    const io::LoadedMap map = io::read_occupancy_map(o.obstacles, ro);
+    std::unique_ptr<io::AtomicFile> out, svg;
+    if (!to_stdout) out = open_output(o.output, "-o/--output");
+    if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
+
+    gvd::MedialOptions mo;
+    mo.min_separation = o.min_separation;
+    mo.prune_length = o.prune_length;
+    mo.workers = o.workers == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : o.workers;
+    const auto t0 = std::chrono::steady_clock::now();
+    const gvd::MedialDiagram m = gvd::medial_diagram(map.grid, mo);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    nlohmann::json doc = io::medial_to_json(m, o.robot_radius);
+    std::vector<Vec2> path_points;
+    if (!o.path.empty()) {
+        gvd::GridPath p;
+        try {
+            p = gvd::find_grid_path(m, Vec2(o.path[0], o.path[1]), Vec2(o.path[2], o.path[3]), o.robot_radius);
+        } catch (const InputError& e) {
+            throw UsageError(std::string("--path: ") + e.what());
+        }
+        path_points = p.points;
+        doc["path"] = io::path_to_json(p);
+    }
+    const std::size_t n = m.count();
+    if (!o.quiet) {
+        std::fprintf(stderr, "gvd: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d worker(s), %.3f s\n",
+                     m.grid.rows, m.grid.cols, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", mo.workers, seconds);
+        if (n == 0)
+            std::fprintf(stderr, "gvd: warning: no diagram pixel: no passage of the map is 2 or more pixels wide with walls "
+                                 "apart by more than --min-separation %.3g pixels\n", o.min_separation);
+    }
+    return deliver(
+        out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
+        [&](std::ostream& os) { io::write_medial_svg(os, m, o.robot_radius, path_points); });
+}
+
 int run_gvd(const GvdCliOptions& o) {
-    if (o.grid < 1) throw UsageError("--grid: must be at least 1, got " + std::to_string(o.grid));
-    if (o.workers < 1) throw UsageError("--workers: must be at least 1, got " + std::to_string(o.workers));
+    if (is_map_file(o.obstacles)) return run_map(o);
+    if (o.grid < 1) throw UsageError("--grid: required for obstacle files, at least 1, got " + std::to_string(o.grid));
+    if (o.workers < 0) throw UsageError("--workers: must be 0 (all cores) or positive, got " + std::to_string(o.workers));
     if (!std::isfinite(o.robot_radius) || o.robot_radius < 0.0)
         throw UsageError("--robot-radius: must be a finite number >= 0, got " + show(o.robot_radius));
     if (!o.path.empty() && o.path.size() != 4) throw UsageError("--path: expects SX SY GX GY");
@@ -50,7 +128,7 @@ int run_gvd(const GvdCliOptions& o) {
 
     gvd::GvdOptions opt;
     opt.resolution = o.grid;
-    opt.workers = o.workers;
+    opt.workers = o.workers == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : o.workers;
     opt.mode = o.mode == "independent" ? gvd::SliceMode::Independent : gvd::SliceMode::Cooperative;
     opt.robot_radius = o.robot_radius;
     opt.visibility = !o.no_visibility;
@@ -87,18 +165,25 @@ Command add_gvd(CLI::App& parent) {
     CLI::App* sub = parent.add_subcommand(
         "gvd", "grid Voronoi diagram of obstacles (Mendes et al.): diagram cells, clearance, blocked cells, "
                "Voronoi vertices, roadmap; slice-parallel workers");
-    sub->add_option("OBSTACLES", o->obstacles,
+    sub->add_option("INPUT", o->obstacles,
+                    "an occupancy map (.yaml map_server, .pgm, .png, MovingAI .map: the medial diagram) or an "
                     "obstacle file (JSON: {\"area\": {\"box\": [x0, y0, x1, y1]}, \"obstacles\": [{\"type\": "
                     "\"polygon\"|\"circle\"|\"point\"|\"segment\"|\"union\", ...}]}; see the README)")
         ->required();
-    sub->add_option("-g,--grid", o->grid, "cells along the longer side of the working area")->required();
-    sub->add_option("-w,--workers", o->workers, "slice workers (threads); same diagram for any count")->capture_default_str();
+    sub->add_option("-g,--grid", o->grid, "obstacle files: cells along the longer side of the working area");
+    sub->add_option("-w,--workers", o->workers, "worker threads (map files: 0 = all cores); same diagram for any count")->capture_default_str();
+    sub->add_option("--diagram", o->diagram, "map files: the diagram's definition (medial)")->check(CLI::IsMember({"medial", "labels"}))->capture_default_str();
+    sub->add_option("--resolution", o->resolution, "map files without YAML: map units per pixel (default 1)");
+    sub->add_option("--origin", o->origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
+    sub->add_option("--unknown", o->unknown, "map files: unknown pixels count as occupied or free")->check(CLI::IsMember({"occupied", "free"}))->capture_default_str();
+    sub->add_option("--min-separation", o->min_separation, "medial diagram: nearest points of a pair farther apart than this (pixels)")->capture_default_str();
+    sub->add_option("--prune-length", o->prune_length, "medial diagram: pairs whose nearest points are this close and joined by walls are dropped (pixels)")->capture_default_str();
     sub->add_option("-m,--mode", o->mode, "slice approach: cooperative (each border scanned once, seeds sent "
                                           "to the left neighbour) or independent (no communication)")
         ->check(CLI::IsMember({"cooperative", "independent"}))
         ->capture_default_str();
-    sub->add_option("-r,--robot-radius", o->robot_radius, "robot radius: diagram cells with a corner this close "
-                                                          "to an obstacle are blocked")->capture_default_str();
+    sub->add_option("-r,--robot-radius", o->robot_radius, "robot radius (map units): diagram cells this close to an "
+                                                          "obstacle are blocked; paths keep this clearance")->capture_default_str();
     sub->add_flag("--no-visibility", o->no_visibility, "turn the paper's edge visibility test off");
     sub->add_option("--path", o->path, "also plan a path SX SY GX GY along the diagram")->expected(4);
     sub->add_option("-o,--output", o->output, "output JSON file (default or '-': stdout)");

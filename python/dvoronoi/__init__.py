@@ -18,6 +18,7 @@ from ._core import ClippedCell, VoronoiCell, VoronoiEdge
 from ._voronoi import VoronoiPartition, voronoi_cell, voronoi_cells
 from . import datasets
 from .gvd import GridVoronoi, grid_voronoi, obstacles_from_occupancy_grid
+from .occupancy import OccupancyGrid, OccupancyVoronoi
 from . import distances
 from .distances import DistanceNeighbors, neighbors_from_distances
 from . import coverage
@@ -40,6 +41,8 @@ __all__ = [
     "grid_voronoi",
     "GridVoronoi",
     "obstacles_from_occupancy_grid",
+    "OccupancyGrid",
+    "OccupancyVoronoi",
     "distances",
     "neighbors_from_distances",
     "DistanceNeighbors",

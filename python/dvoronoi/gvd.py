@@ -5,7 +5,7 @@ slice-parallel workers.
 >>> obstacles = [{"type": "circle", "center": [30, 40], "radius": 8},
 ...              {"type": "polygon", "vertices": [[60, 10], [80, 10], [70, 35]]},
 ...              {"type": "point", "position": [75, 75]}]
->>> gv = dv.grid_voronoi(obstacles, area=(0, 0, 100, 100), resolution=512, robot_radius=2.0, workers=2)
+>>> gv = dv.grid_voronoi(obstacles, area=(0, 0, 100, 100), cells=512, robot_radius=2.0, workers=2)
 >>> gv.diagram_mask, gv.blocked_mask, gv.clearance, gv.vertex_points
 >>> G = gv.roadmap                      # networkx.MultiGraph (nodes at vertices and ends)
 >>> route = gv.path((5, 5), (95, 95))   # (k, 2) array; empty when no collision-free route exists
@@ -25,6 +25,7 @@ from __future__ import annotations
 import functools
 import json
 import os
+import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Tuple, Union
 
@@ -40,6 +41,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import scipy.sparse
 
 __all__ = ["grid_voronoi", "GridVoronoi", "obstacles_from_occupancy_grid", "load_obstacles"]
+
+# Occupancy grids (dvoronoi.occupancy) are dispatched to from grid_voronoi.
 
 _NODE_KINDS = ("vertex", "end", "junction")
 
@@ -299,40 +302,102 @@ class GridVoronoi(Result):
                 f"robot_radius={self.robot_radius})")
 
 
-def grid_voronoi(obstacles: Any, area: Any = None, resolution: int = 512, robot_radius: float = 0.0,
-                 workers: int = 1, mode: str = "cooperative", visibility: bool = True) -> GridVoronoi:
-    """The grid Voronoi diagram of obstacles, traced by `workers` slice threads.
+def _workers(workers: Any) -> int:
+    """SPEC: None or -1 = all cores, k >= 1 = k threads."""
+    if workers is None or (not isinstance(workers, bool) and isinstance(workers, (int, np.integer)) and workers == -1):
+        return max(1, os.cpu_count() or 1)
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ValueError(f"workers must be None or -1 (all cores) or a positive integer, got {workers!r}")
+    return int(workers)
+
+
+def _is_map(source: Any) -> bool:
+    from .occupancy import MAP_EXTENSIONS, OccupancyGrid
+
+    if isinstance(source, OccupancyGrid):
+        return True
+    if isinstance(source, np.ndarray):  # any array is a map; its shape and dtype are checked there
+        return True
+    if isinstance(source, (str, os.PathLike)):
+        return os.fspath(source).lower().endswith(MAP_EXTENSIONS)
+    return False
+
+
+def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot_radius: float = 0.0,
+                 workers: Optional[int] = None, mode: str = "cooperative", visibility: bool = True, *,
+                 cells: Optional[int] = None, diagram: Optional[str] = None, origin: Any = None,
+                 unknown: str = "occupied", occupied_thresh: float = 0.65, min_separation: float = 1.5,
+                 prune_length: float = 8.0) -> Any:
+    """The grid Voronoi diagram of an occupancy grid or of obstacles.
+
+    **Occupancy grids** (a 2-d array, row 0 at the top; an :class:`OccupancyGrid`; or a map file:
+    ROS map_server ``.yaml``, ``.pgm``, ``.png``, MovingAI ``.map``): the diagram grid is the pixel
+    grid and ``diagram="medial"`` (default) separates the parts of one wall — see
+    :mod:`dvoronoi.occupancy` for the exact definition. Returns an :class:`OccupancyVoronoi`.
+    ``diagram="labels"`` gives the paper's labelled diagram of the map's connected occupied regions
+    (a :class:`GridVoronoi`, through :func:`obstacles_from_occupancy_grid`).
+
+    **Obstacle documents** (list of shape dicts, ``{"area": ..., "obstacles": [...]}``, a JSON path,
+    or a scene from :func:`load_obstacles`): the paper's labelled diagram (Mendes et al.), traced by
+    slice workers. Returns a :class:`GridVoronoi`.
 
     Parameters
     ----------
-    obstacles : list of shape dicts, a dict ``{"area": ..., "obstacles": [...]}``, a JSON file path,
-        the output of :func:`obstacles_from_occupancy_grid`, or a scene from :func:`load_obstacles`
-        (parsed and checked once; reuse it when re-planning on the same map).
-    area : ``(xmin, ymin, xmax, ymax)`` box, a convex polygon ``(k, 2)``, or None when `obstacles`
-        carries it. Its edges are obstacles of their own (labels ``n_obstacles + k``).
-    resolution : cells along the longer side of the area's bounding box.
-    robot_radius : diagram cells with a corner within this distance of an obstacle are blocked (kept,
-        marked, traced through); paths keep this clearance.
-    workers : slice workers (threads); the diagram is the same for every count.
-    mode : ``"cooperative"`` (each border scanned once, seeds passed to the left neighbour) or
-        ``"independent"`` (no communication; each worker scans both borders).
-    visibility : the paper's visibility test for polygon edges (same labels, fewer edge distances).
+    resolution : map units per pixel of an occupancy array or image (a YAML or OccupancyGrid brings
+        its own). For obstacle documents it is the deprecated name of `cells`.
+    cells : obstacle documents: cells along the longer side of the area's bounding box (default 512).
+    robot_radius : diagram cells with clearance not greater than this are blocked (kept, marked);
+        paths keep this clearance.
+    workers : None or -1 = all cores, k = k threads; the diagram is the same for every count.
+    diagram : ``"medial"`` (occupancy grids' default) or ``"labels"`` (obstacle documents' default).
+    mode, visibility : the paper's slice approach (``"cooperative"``/``"independent"``) and edge
+        visibility test for the labelled diagram of obstacle documents.
+    origin, unknown, occupied_thresh : how an array or image becomes an occupancy grid.
+    min_separation, prune_length : the medial diagram's parameters in pixels (defaults 1.5 and 8).
 
-    Raises ValueError naming the argument, or the obstacle and field of a bad obstacle.
+    Raises ValueError naming the argument, the file and line of a bad map, or the obstacle and field
+    of a bad obstacle.
     """
-    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)):
-        raise TypeError(f"resolution must be an integer, got {type(resolution).__name__}")
-    if resolution < 1:
-        raise ValueError(f"resolution must be at least 1, got {resolution}")
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers must be a positive integer, got {workers!r}")
     robot_radius = float(robot_radius)
     if not np.isfinite(robot_radius) or robot_radius < 0:
         raise ValueError(f"robot_radius must be a finite number >= 0, got {robot_radius}")
+    n_workers = _workers(workers)
+    if diagram not in (None, "medial", "labels"):
+        raise ValueError(f'diagram must be "medial" or "labels", got {diagram!r}')
+    if _is_map(obstacles):
+        from .occupancy import as_occupancy_grid, medial_voronoi
+
+        if area is not None:
+            raise ValueError("area: an occupancy grid's area is the map itself; do not pass area=")
+        if cells is not None:
+            raise ValueError("cells: an occupancy grid's diagram grid is its pixel grid; do not pass cells=")
+        grid = as_occupancy_grid(obstacles, resolution, origin, unknown, occupied_thresh)
+        if diagram in (None, "medial"):
+            return medial_voronoi(grid, robot_radius, n_workers, min_separation, prune_length)
+        H, W = grid.shape
+        doc = obstacles_from_occupancy_grid(grid.occupied.astype(np.float64), grid.resolution, grid.origin,
+                                            occupied_thresh=0.5)
+        return grid_voronoi(doc, cells=max(H, W), robot_radius=robot_radius, workers=n_workers, mode=mode,
+                            visibility=visibility, diagram="labels")
+    if diagram == "medial":
+        raise ValueError('diagram="medial" is computed on occupancy grids; pass the map (array, OccupancyGrid or '
+                         'map file) instead of obstacles, or use diagram="labels"')
+    if cells is not None and resolution is not None:
+        raise ValueError("pass cells= only (resolution= is its deprecated name for obstacle documents)")
+    if resolution is not None:
+        warnings.warn("grid_voronoi(obstacles, resolution=N) is deprecated: the cells per side are now cells=N "
+                      "(resolution means map units per pixel)", DeprecationWarning, stacklevel=2)
+        cells = resolution
+    if cells is None:
+        cells = 512
+    if isinstance(cells, bool) or not isinstance(cells, (int, np.integer)):
+        raise TypeError(f"cells must be an integer, got {type(cells).__name__}")
+    if cells < 1:
+        raise ValueError(f"cells must be at least 1, got {cells}")
     if mode not in ("cooperative", "independent"):
         raise ValueError(f'mode must be "cooperative" or "independent", got {mode!r}')
     scene = load_obstacles(obstacles, area)
-    core = _core._gvd_run(scene, int(resolution), robot_radius, int(workers), mode, bool(visibility))
+    core = _core._gvd_run(scene, int(cells), robot_radius, n_workers, mode, bool(visibility))
     return GridVoronoi(core, scene)
 
 

@@ -60,7 +60,7 @@ def reachable_from_corners(scene, labels, mixed, grid):
 
 
 def check_against_oracle(doc, resolution):
-    gv = dv.grid_voronoi(doc, resolution=resolution)
+    gv = dv.grid_voronoi(doc, cells=resolution)
     scene, labels, sq, mixed = oracle(doc, resolution)
     grid = (gv.origin[0], gv.origin[1], gv.cell_size, gv.shape[1], gv.shape[0])
     traced = gv.diagram_mask
@@ -174,7 +174,7 @@ def test_convex_polygon_area():
 @pytest.mark.parametrize("doc_name", ["random", "sea", "mixed"])
 def test_diagram_cells_are_near_equidistant_points_exactly(doc_name):
     doc = {"random": random_mixed(5, 15, size=5.0), "sea": sea_of_triangles(4, per_side=5), "mixed": mixed_shapes()}[doc_name]
-    gv = dv.grid_voronoi(doc, resolution=48)
+    gv = dv.grid_voronoi(doc, cells=48)
     check_equidistant(gv, dv.gvd.load_obstacles(doc))
 
 
@@ -196,9 +196,9 @@ def test_corner_labels_are_exact_nearest_obstacles_on_a_sample():
 @pytest.mark.parametrize("mode", ["cooperative", "independent"])
 def test_threads_give_the_single_worker_diagram(mode):
     for doc, res in ((sea_of_triangles(5), 120), (random_mixed(6, 25), 100)):
-        one = dv.grid_voronoi(doc, resolution=res)
+        one = dv.grid_voronoi(doc, cells=res)
         for k in (2, 3, 4, 6):
-            many = dv.grid_voronoi(doc, resolution=res, workers=k, mode=mode)
+            many = dv.grid_voronoi(doc, cells=res, workers=k, mode=mode)
             assert np.array_equal(many.cells, one.cells)
             assert np.array_equal(many.labels, one.labels)
             assert np.array_equal(many.clearance, one.clearance)
@@ -228,7 +228,7 @@ def test_mpi_ranks_give_the_single_worker_diagram(tmp_path):
     doc = random_mixed(7, 30)
     path = tmp_path / "map.json"
     path.write_text(json.dumps(doc))
-    one = json.loads(dv.grid_voronoi(doc, resolution=96, robot_radius=1.0).to_json())
+    one = json.loads(dv.grid_voronoi(doc, cells=96, robot_radius=1.0).to_json())
     flags = ["--oversubscribe"] + (["--allow-run-as-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else [])
     for k in (1, 2, 3, 4):
         for mode in ("cooperative", "independent"):
@@ -248,20 +248,20 @@ def test_mpi_ranks_give_the_single_worker_diagram(tmp_path):
 
 def test_visibility_test_gives_the_same_diagram_with_fewer_edge_distances():
     doc = sea_of_triangles(6)
-    a = dv.grid_voronoi(doc, resolution=128, visibility=True)
-    b = dv.grid_voronoi(doc, resolution=128, visibility=False)
+    a = dv.grid_voronoi(doc, cells=128, visibility=True)
+    b = dv.grid_voronoi(doc, cells=128, visibility=False)
     assert np.array_equal(a.cells, b.cells) and np.array_equal(a.labels, b.labels)
     assert a.stats["edge_evaluations"] < b.stats["edge_evaluations"]
 
 
 def test_sparse_labelling():
-    gv = dv.grid_voronoi(mixed_shapes(), resolution=512)
+    gv = dv.grid_voronoi(mixed_shapes(), cells=512)
     assert gv.stats["corners_labelled"] < 0.05 * 513 * 513  # only corners near the diagram
     assert gv.stats["corners_labelled"] >= len(gv.cells)
 
 
 def test_blocked_clearance_vertices_roadmap():
-    gv = dv.grid_voronoi(mixed_shapes(), resolution=100, robot_radius=3.0)
+    gv = dv.grid_voronoi(mixed_shapes(), cells=100, robot_radius=3.0)
     assert np.array_equal(gv.blocked, gv.clearance <= 3.0)
     assert 0 < gv.blocked.sum() < len(gv.cells)
     assert gv.blocked_mask.sum() == gv.blocked.sum() and gv.diagram_mask.sum() == len(gv.cells)
@@ -319,7 +319,7 @@ def _segment_clearance(doc, a, b):
 @pytest.mark.parametrize("radius", [0.0, 1.0, 2.5])
 def test_paths_are_collision_free(radius):
     doc = mixed_shapes()
-    gv = dv.grid_voronoi(doc, resolution=128, robot_radius=radius)
+    gv = dv.grid_voronoi(doc, cells=128, robot_radius=radius)
     rng = np.random.default_rng(int(radius * 10))
     found = 0
     for _ in range(12):
@@ -341,7 +341,7 @@ def test_paths_are_collision_free(radius):
 
 def test_path_errors_and_no_route():
     doc = mixed_shapes()
-    gv = dv.grid_voronoi(doc, resolution=128, robot_radius=1.5)
+    gv = dv.grid_voronoi(doc, cells=128, robot_radius=1.5)
     with pytest.raises(ValueError, match="start .* is blocked"):
         gv.path((45.0, 40.5), (95, 95))  # 0.5 from a point obstacle
     with pytest.raises(ValueError, match="goal .* is blocked"):
@@ -353,12 +353,12 @@ def test_path_errors_and_no_route():
     wall = {"area": {"box": [0, 0, 100, 100]}, "obstacles": [
         {"type": "polygon", "vertices": [[48, 0], [52, 0], [52, 49], [48, 49]]},
         {"type": "polygon", "vertices": [[48, 51], [52, 51], [52, 100], [48, 100]]}]}
-    thin = dv.grid_voronoi(wall, resolution=200, robot_radius=0.3)
+    thin = dv.grid_voronoi(wall, cells=200, robot_radius=0.3)
     p = thin.path((20, 50), (80, 50))
     assert len(p) > 2
     for a, b in zip(p[:-1], p[1:]):
         assert _segment_clearance(wall, a, b) > 0.3
-    thick = dv.grid_voronoi(wall, resolution=200, robot_radius=1.5)
+    thick = dv.grid_voronoi(wall, cells=200, robot_radius=1.5)
     assert thick.path((20, 50), (80, 50)).shape == (0, 2)
     assert thick.path_length((20, 50), (80, 50)) == np.inf
 
@@ -380,50 +380,50 @@ def test_path_errors_and_no_route():
 ])
 def test_bad_obstacles_name_index_and_field(doc, message):
     with pytest.raises(ValueError, match=message):
-        dv.grid_voronoi(doc, resolution=16)
+        dv.grid_voronoi(doc, cells=16)
 
 
 def test_python_documents_equal_their_json_text():
     # Documents of Python objects (numpy arrays and scalars, tuples) are read without a JSON text round
     # trip: the scene must be the one parsed from the text json.dumps writes.
     doc = mixed_shapes()
-    text = dv.grid_voronoi(json.loads(json.dumps(doc)), resolution=64)
+    text = dv.grid_voronoi(json.loads(json.dumps(doc)), cells=64)
     numpyish = {"area": {"box": np.array(doc["area"]["box"], dtype=np.float64)},
                 "obstacles": [{k: (np.asarray(v) if k in ("vertices", "center", "position") else
                                    np.float64(v) if k == "radius" else v) for k, v in o.items()}
                               for o in doc["obstacles"]]}
-    a = dv.grid_voronoi(numpyish, resolution=64)
+    a = dv.grid_voronoi(numpyish, cells=64)
     assert np.array_equal(a.cells, text.cells) and np.array_equal(a.labels, text.labels)
     with pytest.raises(TypeError, match=r"obstacles\[0\]\.position\[1\]: object of type object is not JSON serialisable"):
         dv.grid_voronoi({"area": {"box": [0, 0, 1, 1]}, "obstacles": [{"type": "point", "position": [0.5, object()]}]},
-                        resolution=16)
+                        cells=16)
     with pytest.raises(ValueError, match=r"obstacles\[0\]\.position\[0\]: must be finite"):
         dv.grid_voronoi({"area": {"box": [0, 0, 1, 1]}, "obstacles": [{"type": "point", "position": [float("nan"), 0.5]}]},
-                        resolution=16)
+                        cells=16)
 
 
 def test_bad_arguments_and_files(tmp_path):
     doc = mixed_shapes()
-    with pytest.raises(ValueError, match="resolution"):
-        dv.grid_voronoi(doc, resolution=0)
+    with pytest.raises(ValueError, match="cells"):
+        dv.grid_voronoi(doc, cells=0)
     with pytest.raises(ValueError, match="workers"):
-        dv.grid_voronoi(doc, resolution=16, workers=0)
+        dv.grid_voronoi(doc, cells=16, workers=0)
     with pytest.raises(ValueError, match="robot_radius"):
-        dv.grid_voronoi(doc, resolution=16, robot_radius=-1)
+        dv.grid_voronoi(doc, cells=16, robot_radius=-1)
     with pytest.raises(ValueError, match="mode"):
-        dv.grid_voronoi(doc, resolution=16, mode="greedy")
+        dv.grid_voronoi(doc, cells=16, mode="greedy")
     bad = tmp_path / "bad.json"
     bad.write_text('{"area": {"box": [0, 0, 1, 1]},\n "obstacles": [,]}')
     with pytest.raises(ValueError, match=r"bad.json:2:16: invalid JSON"):
-        dv.grid_voronoi(bad, resolution=16)
+        dv.grid_voronoi(bad, cells=16)
 
 
 def test_json_file_and_area_argument(tmp_path):
     doc = mixed_shapes()
     f = tmp_path / "m.json"
     f.write_text(json.dumps(doc))
-    a = dv.grid_voronoi(f, resolution=64)
-    b = dv.grid_voronoi(doc["obstacles"], area=(0, 0, 100, 100), resolution=64)
+    a = dv.grid_voronoi(f, cells=64)
+    b = dv.grid_voronoi(doc["obstacles"], area=(0, 0, 100, 100), cells=64)
     assert np.array_equal(a.cells, b.cells)
     out = json.loads(a.to_json())
     assert out["kind"] == "grid_voronoi" and out["cells"]["col"] == a.cells[:, 0].tolist()
@@ -442,7 +442,7 @@ def test_occupancy_grid_pgm_yaml(tmp_path):
     doc = dv.obstacles_from_occupancy_grid(tmp_path / "map.yaml")
     assert len(doc["obstacles"]) == 3
     assert doc["area"]["box"] == pytest.approx([-1.0, -2.0, -1.0 + 80 * 0.05, -2.0 + 60 * 0.05])
-    gv = dv.grid_voronoi(doc, resolution=160)
+    gv = dv.grid_voronoi(doc, cells=160)
     scene = dv.gvd.load_obstacles(doc)
     labels = _core._gvd_brute_force(scene, 160)[0]
     # a corner at the center of an occupied pixel carries its region's label
@@ -461,7 +461,7 @@ def test_occupancy_grid_pgm_yaml(tmp_path):
 def test_plot_and_svg(tmp_path):
     import matplotlib
     matplotlib.use("Agg")
-    gv = dv.grid_voronoi(mixed_shapes(), resolution=64, robot_radius=2)
+    gv = dv.grid_voronoi(mixed_shapes(), cells=64, robot_radius=2)
     route = gv.path((5, 5), (95, 95))
     ax = gv.plot(path=route)
     gids = {a.get_gid() for a in ax.get_children()}

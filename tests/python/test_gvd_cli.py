@@ -35,7 +35,7 @@ def test_cli_matches_python_for_every_worker_count(tmp_path):
     doc = random_mixed(3, 20)
     src = tmp_path / "map.json"
     src.write_text(json.dumps(doc))
-    py = json.loads(dv.grid_voronoi(doc, resolution=80, robot_radius=1.0).to_json())
+    py = json.loads(dv.grid_voronoi(doc, cells=80, robot_radius=1.0).to_json())
     for k, mode in ((1, "cooperative"), (3, "independent"), (4, "cooperative")):
         out = tmp_path / f"o{k}.json"
         p = run("gvd", src, "--grid", 80, "--workers", k, "--mode", mode, "--robot-radius", 1.0, "-o", out, "-q")
@@ -83,7 +83,7 @@ def test_cli_bad_input_names_the_field_and_writes_nothing(tmp_path, text, messag
 def test_cli_bad_arguments(tmp_path):
     src = tmp_path / "map.json"
     src.write_text(json.dumps(mixed_shapes()))
-    for args, message in ((["--grid", 0], "--grid"), (["--grid", 8, "--workers", 0], "--workers"),
+    for args, message in ((["--grid", 0], "--grid"), (["--grid", 8, "--workers", -1], "--workers"), ([], "--grid: required"),
                           (["--grid", 8, "--mode", "greedy"], "--mode"), (["--grid", 8, "-r", -1], "--robot-radius"),
                           (["--grid", 8, "-o", tmp_path / "x.csv"], "-o/--output"),
                           (["--grid", 64, "-r", 1.5, "--path", 45, 40.5, 95, 95], "--path: start")):

@@ -79,7 +79,7 @@ def main() -> None:
                 wall, st, cells = mpi_run(doc, grid, k, mode)
             else:
                 t0 = time.perf_counter()
-                r = dv.grid_voronoi(doc, resolution=grid, workers=k, mode=mode)
+                r = dv.grid_voronoi(doc, cells=grid, workers=k, mode=mode)
                 wall, st, cells = time.perf_counter() - t0, r.stats, (r.cells[:, 0].tolist(), r.cells[:, 1].tolist())
             best_wall = min(best_wall, wall)
             best_cpu = min(best_cpu, max(st.get("worker_cpu_seconds") or st["worker_seconds"]))

@@ -1,0 +1,435 @@
+"""Occupancy grids and their medial diagram (SPEC "Grid diagram on occupancy grids").
+
+>>> import dvoronoi as dv
+>>> grid = dv.OccupancyGrid.load("map.yaml")              # ROS map_server, .pgm, .png or MovingAI .map
+>>> gv = dv.grid_voronoi(grid, robot_radius=0.3)           # or a 2-d array (row 0 at the top)
+>>> gv.diagram_mask, gv.clearance_map                      # H x W, in the image's row order
+>>> route = gv.path((1.0, 2.0), (8.5, 3.0))               # (k, 2) map coordinates; empty if none
+>>> gv.set_occupied([(40, 17), (40, 18)])                  # incremental: only what changed is redone
+>>> gv.plot(path=route)
+
+The diagram (``diagram="medial"``): for every free pixel the nearest point of the occupied set
+(occupied pixels are closed squares; the outside of the map counts as occupied). A pair of 4-adjacent
+free pixels whose nearest points are more than `min_separation` pixels apart puts the pixel nearer
+their bisector on the diagram — unless the two nearest points are at most `prune_length` pixels apart
+and joined by walls inside the box they span (grown by one pixel): that drops the spurs of pixel
+staircases, bumps and room corners, and keeps every passage two or more pixels wide, including a
+corridor between two parts of one wall. The result is exact (integer arithmetic), the same for every
+worker count, and the same after any sequence of updates as a full build.
+"""
+from __future__ import annotations
+
+import os
+import warnings
+from typing import TYPE_CHECKING, Any, Dict, Iterable, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._io import PathLike, atomic_write_text
+
+if TYPE_CHECKING:  # pragma: no cover
+    import matplotlib.axes
+
+__all__ = ["OccupancyGrid", "OccupancyVoronoi", "MAP_EXTENSIONS"]
+
+MAP_EXTENSIONS = (".yaml", ".yml", ".pgm", ".png", ".map")
+
+
+def _positive(value: Any, name: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a number, got {type(value).__name__}") from None
+    if not np.isfinite(v) or v <= 0:
+        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+    return v
+
+
+def _origin(origin: Any) -> Tuple[float, float]:
+    try:
+        o = np.asarray(origin, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise TypeError(f"origin must be two numbers (x, y), got {origin!r}") from None
+    if o.shape == (3,):  # map_server's [x, y, yaw]
+        if o[2] != 0:
+            raise ValueError(f"origin: a rotated map (yaw {o[2]}) is not supported")
+        o = o[:2]
+    if o.shape != (2,) or not np.all(np.isfinite(o)):
+        raise ValueError(f"origin must be two finite numbers (x, y), got {origin!r}")
+    return float(o[0]), float(o[1])
+
+
+def _occupied(data: Any, occupied_thresh: float, unknown: str) -> np.ndarray:
+    """Occupancy values as a bool array: bool as is; floats are probabilities in [0, 1] (occupied
+    above `occupied_thresh`, NaN unknown); int8 is ROS's OccupancyGrid (-1 unknown, 0..100 percent);
+    other integers must be 0/1."""
+    a = np.asarray(data)
+    if a.ndim != 2:
+        raise ValueError(f"occupancy must be a 2-d array (rows x cols, row 0 at the top), got shape {a.shape}")
+    if a.shape[0] < 1 or a.shape[1] < 1:
+        raise ValueError(f"occupancy must have at least one row and one column, got shape {a.shape}")
+    unknown_occ = unknown == "occupied"
+    if a.dtype == bool:
+        return a
+    if a.dtype.kind == "f":
+        bad = ~np.isnan(a) & ((a < 0) | (a > 1))
+        if bad.any():
+            r, c = np.argwhere(bad)[0]
+            raise ValueError(f"occupancy[{r}, {c}] = {float(a[r, c])!r}: probabilities must lie in [0, 1] (NaN = unknown)")
+        return np.where(np.isnan(a), unknown_occ, a > occupied_thresh)
+    if a.dtype == np.int8:
+        bad = (a < -1) | (a > 100)
+        if bad.any():
+            r, c = np.argwhere(bad)[0]
+            raise ValueError(f"occupancy[{r}, {c}] = {int(a[r, c])}: ROS occupancy values are -1 (unknown) or 0..100")
+        return np.where(a < 0, unknown_occ, a > occupied_thresh * 100)
+    if a.dtype.kind in "iu":
+        if not np.isin(a, (0, 1)).all():
+            r, c = np.argwhere(~np.isin(a, (0, 1)))[0]
+            raise ValueError(f"occupancy[{r}, {c}] = {int(a[r, c])}: integer maps must be 0/1 (or int8 ROS values "
+                             "-1..100, or probabilities as floats)")
+        return a.astype(bool)
+    raise TypeError(f"occupancy must be a bool, float, int8 or 0/1 integer array, got dtype {a.dtype}")
+
+
+class OccupancyGrid:
+    """An occupancy grid: ``occupied`` (H x W bool, row 0 at the top, as in the image), ``resolution``
+    (map units per pixel) and ``origin`` (map coordinates of the lower-left corner of pixel (H-1, 0),
+    as ROS map_server writes it). Pixel ``(r, c)`` covers ``[c, c+1] x [H-1-r, H-r]`` in pixel units,
+    scaled by the resolution and shifted by the origin.
+
+    `data` is a bool array, probabilities in [0, 1] (occupied above `occupied_thresh`, NaN unknown),
+    ROS int8 values (-1 unknown, 0..100) or 0/1 integers. Unknown pixels count as occupied unless
+    ``unknown="free"``.
+    """
+
+    def __init__(self, data: Any, resolution: float = 1.0, origin: Sequence[float] = (0.0, 0.0), *,
+                 occupied_thresh: float = 0.65, unknown: str = "occupied") -> None:
+        if unknown not in ("occupied", "free"):
+            raise ValueError(f'unknown must be "occupied" or "free", got {unknown!r}')
+        t = float(occupied_thresh)
+        if not 0.0 <= t <= 1.0:
+            raise ValueError(f"occupied_thresh must lie in [0, 1], got {occupied_thresh!r}")
+        self.occupied = np.ascontiguousarray(_occupied(data, t, unknown), dtype=bool)
+        self.resolution = _positive(resolution, "resolution")
+        self.origin = _origin(origin)
+        self.unknown_pixels = 0
+
+    @classmethod
+    def load(cls, path: PathLike, *, unknown: str = "occupied", resolution: Optional[float] = None,
+             origin: Optional[Sequence[float]] = None, occupied_thresh: float = 0.65, free_thresh: float = 0.196,
+             negate: bool = False) -> "OccupancyGrid":
+        """Read a ROS map_server YAML (with its PGM/PNG image: origin, resolution, negate and thresholds
+        from the YAML), a PGM or PNG image (map_server's trinary rule; give `resolution`, default 1) or
+        a MovingAI ``.map`` (``.`` and ``G`` free). Errors name the file (and line)."""
+        if unknown not in ("occupied", "free"):
+            raise ValueError(f'unknown must be "occupied" or "free", got {unknown!r}')
+        res = 1.0 if resolution is None else _positive(resolution, "resolution")
+        ox, oy = (0.0, 0.0) if origin is None else _origin(origin)
+        path = os.fspath(path)
+        try:
+            occ, res, org, n_unknown, _image = _core._load_occupancy_map(
+                path, unknown == "occupied", res, ox, oy, float(occupied_thresh), float(free_thresh), bool(negate))
+        except ValueError as e:
+            raise ValueError(str(e)) from None
+        g = cls.__new__(cls)
+        g.occupied = occ
+        g.resolution = float(res)
+        g.origin = (float(org[0]), float(org[1]))
+        g.unknown_pixels = int(n_unknown)
+        return g
+
+    @property
+    def shape(self) -> Tuple[int, int]:
+        return (int(self.occupied.shape[0]), int(self.occupied.shape[1]))
+
+    def pixel_centers(self, pixels: Any) -> np.ndarray:
+        """Map coordinates of the centres of pixels given as (row, col) pairs."""
+        p = np.asarray(pixels, dtype=np.float64).reshape(-1, 2)
+        H = self.shape[0]
+        return np.stack([self.origin[0] + (p[:, 1] + 0.5) * self.resolution,
+                         self.origin[1] + (H - 1 - p[:, 0] + 0.5) * self.resolution], axis=1)
+
+    @property
+    def extent(self) -> Tuple[float, float, float, float]:
+        """(xmin, xmax, ymin, ymax) in map coordinates (matplotlib's imshow extent)."""
+        H, W = self.shape
+        x0, y0 = self.origin
+        return (x0, x0 + W * self.resolution, y0, y0 + H * self.resolution)
+
+    def __repr__(self) -> str:
+        H, W = self.shape
+        return (f"OccupancyGrid({H} x {W} pixels, {int(self.occupied.sum())} occupied, resolution={self.resolution}, "
+                f"origin={self.origin})")
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, OccupancyGrid) and self.resolution == other.resolution and self.origin == other.origin
+                and np.array_equal(self.occupied, other.occupied))
+
+
+def as_occupancy_grid(source: Any, resolution: Optional[float], origin: Optional[Sequence[float]], unknown: str,
+                      occupied_thresh: float) -> OccupancyGrid:
+    """An OccupancyGrid from a grid, a map file path or an array."""
+    if isinstance(source, OccupancyGrid):
+        if resolution is not None or origin is not None:
+            raise ValueError("resolution and origin come with the OccupancyGrid; do not pass them again")
+        return source
+    if isinstance(source, (str, os.PathLike)):
+        return OccupancyGrid.load(source, unknown=unknown, resolution=resolution, origin=origin,
+                                  occupied_thresh=occupied_thresh)
+    return OccupancyGrid(source, 1.0 if resolution is None else resolution, (0.0, 0.0) if origin is None else origin,
+                         occupied_thresh=occupied_thresh, unknown=unknown)
+
+
+def _pixel_indices(pixels: Any, shape: Tuple[int, int], name: str) -> list:
+    """Linear indices of (row, col) pairs (or an H x W bool mask), checked against the map."""
+    H, W = shape
+    a = np.asarray(pixels)
+    if a.dtype == bool:
+        if a.shape != shape:
+            raise ValueError(f"{name}: a mask must have the map's shape {shape}, got {a.shape}")
+        return np.flatnonzero(a).tolist()
+    if a.size == 0:
+        return []
+    if a.dtype.kind not in "iu" and not (a.dtype.kind == "f" and np.all(a == np.round(a))):
+        raise TypeError(f"{name} must be (row, col) integer pairs or an H x W bool mask, got dtype {a.dtype}")
+    a = a.astype(np.int64).reshape(-1, 2) if a.ndim != 2 or a.shape[1] != 2 else a.astype(np.int64)
+    bad = (a[:, 0] < 0) | (a[:, 0] >= H) | (a[:, 1] < 0) | (a[:, 1] >= W)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise ValueError(f"{name}[{k}] = ({a[k, 0]}, {a[k, 1]}) is outside the {H} x {W} map")
+    return (a[:, 0] * W + a[:, 1]).tolist()
+
+
+class OccupancyVoronoi:
+    """The medial diagram of an occupancy grid (see :func:`dvoronoi.grid_voronoi` and the module
+    docstring). Arrays are in the image's row order (row 0 at the top):
+
+    - ``diagram_mask`` (H x W bool), ``pixels`` (k x 2 ``(row, col)`` of diagram pixels, row-major),
+      ``points`` (their centres, map coordinates), ``clearance`` (their distance to the nearest
+      occupied point, map units) and ``blocked`` (clearance <= robot_radius);
+    - ``clearance_map`` (H x W, map units; 0 on occupied pixels), ``nearest_points`` (H x W x 2);
+    - ``path(start, goal)``, ``clearance_at(points)``, ``update(new_occupancy)``, ``set_occupied``,
+      ``set_free``, ``to_json``, ``to_svg``, ``plot``.
+    """
+
+    def __init__(self, core: "_core._MedialDiagram", grid: OccupancyGrid, robot_radius: float,
+                 options: Dict[str, Any]) -> None:
+        self._core = core
+        self._grid = grid
+        self.robot_radius = float(robot_radius)
+        self.options = dict(options)
+        self.stats: Dict[str, Any] = {}
+        self._cache: Dict[str, np.ndarray] = {}
+
+    # -- the map and the diagram ---------------------------------------------------------------
+    @property
+    def grid(self) -> OccupancyGrid:
+        """The occupancy grid as it is now (after updates)."""
+        if "occupancy" not in self._cache:
+            self._grid.occupied = self._core.occupancy
+            self._cache["occupancy"] = self._grid.occupied
+        return self._grid
+
+    @property
+    def shape(self) -> Tuple[int, int]:
+        return tuple(self._core.shape)  # type: ignore[return-value]
+
+    @property
+    def resolution(self) -> float:
+        return float(self._core.resolution)
+
+    @property
+    def origin(self) -> Tuple[float, float]:
+        return tuple(self._core.origin)  # type: ignore[return-value]
+
+    def _cached(self, key: str, make: Any) -> np.ndarray:
+        if key not in self._cache:
+            self._cache[key] = make()
+            self._cache[key].flags.writeable = False
+        return self._cache[key]
+
+    @property
+    def diagram_mask(self) -> np.ndarray:
+        """H x W bool: the diagram's pixels."""
+        return self._cached("mask", lambda: self._core.mask)
+
+    @property
+    def pixels(self) -> np.ndarray:
+        """(k, 2) int64 ``(row, col)`` of the diagram's pixels, row-major order."""
+        return self._cached("pixels", lambda: np.argwhere(self.diagram_mask).astype(np.int64))
+
+    @property
+    def points(self) -> np.ndarray:
+        """(k, 2) map coordinates of the diagram pixels' centres."""
+        return self._cached("points", lambda: self.grid.pixel_centers(self.pixels))
+
+    @property
+    def clearance_map(self) -> np.ndarray:
+        """H x W float64: each pixel centre's distance to the nearest occupied point (map units)."""
+        return self._cached("clearance_map", lambda: self._core.clearance_map)
+
+    @property
+    def clearance(self) -> np.ndarray:
+        """Clearance of each diagram pixel (map units), in the order of ``pixels``."""
+        return self._cached("clearance", lambda: self.clearance_map[self.diagram_mask])
+
+    @property
+    def blocked(self) -> np.ndarray:
+        """Diagram pixels whose clearance is not greater than the robot radius."""
+        return self._cached("blocked", lambda: self.clearance <= self.robot_radius)
+
+    @property
+    def blocked_mask(self) -> np.ndarray:
+        """H x W bool: blocked diagram pixels."""
+        return self._cached("blocked_mask", lambda: self.diagram_mask & (self.clearance_map <= self.robot_radius))
+
+    @property
+    def nearest_points(self) -> np.ndarray:
+        """H x W x 2: each pixel's nearest occupied point (map coordinates; an occupied pixel's own centre)."""
+        return self._cached("nearest", lambda: self._core.nearest_points)
+
+    def __len__(self) -> int:
+        return int(self._core.count)
+
+    # -- updates -------------------------------------------------------------------------------
+    def _after_update(self, stats: Dict[str, Any]) -> Dict[str, Any]:
+        self._cache.clear()
+        self.stats = {**self.stats, "last_update": stats}
+        return stats
+
+    def update(self, new_occupancy: Any) -> Dict[str, Any]:
+        """Replace the map's occupancy (same shape; any form :class:`OccupancyGrid` accepts, or an
+        OccupancyGrid) and recompute only what the change can affect. Returns what was touched."""
+        if isinstance(new_occupancy, OccupancyGrid):
+            occ = new_occupancy.occupied
+        else:
+            occ = _occupied(new_occupancy, 0.65, "occupied")
+        if occ.shape != self.shape:
+            raise ValueError(f"new_occupancy must have the map's shape {self.shape}, got {occ.shape}")
+        return self._after_update(self._core.update(np.ascontiguousarray(occ, dtype=np.uint8)))
+
+    def set_occupied(self, pixels: Any) -> Dict[str, Any]:
+        """Mark pixels occupied: ``(row, col)`` pairs or an H x W bool mask."""
+        return self._after_update(self._core.set_pixels(_pixel_indices(pixels, self.shape, "pixels"), True))
+
+    def set_free(self, pixels: Any) -> Dict[str, Any]:
+        """Mark pixels free: ``(row, col)`` pairs or an H x W bool mask."""
+        return self._after_update(self._core.set_pixels(_pixel_indices(pixels, self.shape, "pixels"), False))
+
+    # -- planning ------------------------------------------------------------------------------
+    def path(self, start: Sequence[float], goal: Sequence[float], *, robot_radius: Optional[float] = None,
+             off_diagram_cost: float = 3.0) -> np.ndarray:
+        """A collision-free path for a disk robot (map coordinates): ``(k, 2)`` from `start` to `goal`,
+        along the diagram where it serves and across free pixels where a passage has none. Every
+        segment keeps a distance greater than the robot radius from every occupied pixel; an empty
+        ``(0, 2)`` array means start and goal are not connected for this radius (a path is always found
+        when they are connected with one pixel to spare).
+
+        Raises ValueError naming `start` or `goal` when it is outside the map or blocked.
+        """
+        r = self.robot_radius if robot_radius is None else float(robot_radius)
+        pts, length, expanded = self._core.path(start, goal, r, float(off_diagram_cost))
+        self.stats = {**self.stats, "last_path": {"length": float(length) if len(pts) else float("inf"),
+                                                  "expanded": int(expanded)}}
+        return pts
+
+    def path_length(self, start: Sequence[float], goal: Sequence[float], **kwargs: Any) -> float:
+        """Length of :meth:`path` (inf when there is none)."""
+        self.path(start, goal, **kwargs)
+        return float(self.stats["last_path"]["length"])
+
+    def clearance_at(self, points: Any) -> np.ndarray:
+        """Distance (map units) from each point to the nearest occupied pixel or the map's edge (0 inside
+        an occupied pixel or outside the map): for costmaps."""
+        return self._core.clearance(points)
+
+    # -- export and pictures ---------------------------------------------------------------------
+    def to_json(self, path: Optional[PathLike] = None, *, route: Optional[np.ndarray] = None,
+                indent: Optional[int] = None) -> Optional[str]:
+        """The JSON ``dvoronoi gvd MAP`` writes (optionally with a route); text or written atomically."""
+        text = self._core.to_json(self.robot_radius, route, -1 if indent is None else indent)
+        if path is None:
+            return text
+        atomic_write_text(path, text + "\n")
+        return None
+
+    def to_svg(self, path: Optional[PathLike] = None, route: Optional[np.ndarray] = None) -> Optional[str]:
+        """The picture ``dvoronoi gvd MAP --svg`` draws (optionally with a route); text or written atomically."""
+        text = self._core.to_svg(self.robot_radius, route)
+        if path is None:
+            return text
+        atomic_write_text(path, text)
+        return None
+
+    def plot(self, ax: "Optional[matplotlib.axes.Axes]" = None, path: Optional[np.ndarray] = None,
+             clearance: bool = False, **kwargs: Any) -> "matplotlib.axes.Axes":
+        """Occupied pixels (dark grey), diagram pixels (blue; blocked ones light red), an optional path
+        (green); with ``clearance=True`` the clearance map underneath. Returns the axes."""
+        import matplotlib.pyplot as plt
+        from matplotlib.colors import ListedColormap
+
+        if ax is None:
+            H, W = self.shape
+            side = kwargs.pop("figsize", None) or (7.0, max(2.0, 7.0 * H / W))
+            _, ax = plt.subplots(figsize=side)
+        extent = self.grid.extent
+        if clearance:
+            cm = np.where(self.grid.occupied, np.nan, self.clearance_map)
+            ax.imshow(cm, extent=extent, cmap="Greens", interpolation="nearest", zorder=0)
+        img = np.zeros(self.shape, dtype=np.int8)
+        img[self.grid.occupied] = 1
+        img[self.diagram_mask] = 2
+        img[self.blocked_mask] = 3
+        cmap = ListedColormap([(1, 1, 1, 0), (0.26, 0.26, 0.26, 1), (0.12, 0.47, 0.71, 1), (0.96, 0.65, 0.65, 1)])
+        # nearest-neighbour pixels stay crisp at any size; antialiasing would blur thin diagram lines
+        ax.imshow(img, extent=extent, cmap=cmap, vmin=0, vmax=3, interpolation="nearest", zorder=1,
+                  gid="dvoronoi-gvd-medial")
+        if path is not None and len(path):
+            p = np.asarray(path)
+            ax.plot(p[:, 0], p[:, 1], "-", color="#2e7d32", lw=2, zorder=3, gid="dvoronoi-gvd-path")
+            ax.plot(p[[0, -1], 0], p[[0, -1], 1], "o", color="#2e7d32", ms=5, zorder=4)
+        ax.set_aspect("equal")
+        ax.set_xlim(extent[0], extent[1])
+        ax.set_ylim(extent[2], extent[3])
+        return ax
+
+    # -- pickling: the map and the options; the diagram is rebuilt (exactly the same) -------------
+    def __getstate__(self) -> Dict[str, Any]:
+        return {"occupied": self.grid.occupied, "resolution": self.resolution, "origin": self.origin,
+                "robot_radius": self.robot_radius, "options": self.options}
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:
+        grid = OccupancyGrid(state["occupied"], state["resolution"], state["origin"])
+        o = state["options"]
+        core = _core._medial_build(np.ascontiguousarray(grid.occupied, dtype=np.uint8), grid.resolution,
+                                   grid.origin[0], grid.origin[1], o["min_separation"], o["prune_length"],
+                                   o["workers"])
+        self.__init__(core, grid, state["robot_radius"], o)  # type: ignore[misc]
+
+    def __repr__(self) -> str:
+        H, W = self.shape
+        return (f"OccupancyVoronoi({len(self)} diagram pixels on a {H} x {W} map, resolution={self.resolution}, "
+                f"robot_radius={self.robot_radius}, {int(self.blocked.sum())} blocked)")
+
+
+def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_separation: float,
+                   prune_length: float) -> OccupancyVoronoi:
+    own = OccupancyGrid.__new__(OccupancyGrid)  # the result's own copy: updates never touch the caller's grid
+    own.occupied, own.resolution, own.origin = grid.occupied.copy(), grid.resolution, grid.origin
+    own.unknown_pixels = grid.unknown_pixels
+    grid = own
+    options = {"min_separation": float(min_separation), "prune_length": float(prune_length), "workers": int(workers)}
+    try:
+        core = _core._medial_build(np.ascontiguousarray(grid.occupied, dtype=np.uint8), grid.resolution,
+                                   grid.origin[0], grid.origin[1], options["min_separation"],
+                                   options["prune_length"], options["workers"])
+    except ValueError as e:
+        raise ValueError(str(e)) from None
+    if core.count == 0 and not grid.occupied.all():
+        warnings.warn(f"no diagram pixel: no two neighbouring free pixels have nearest walls more than "
+                      f"min_separation={min_separation} pixels apart that are not joined by walls within "
+                      f"prune_length={prune_length} pixels (the free space is under 2 pixels wide, or only "
+                      f"small pockets); paths still search the free pixels", UserWarning, stacklevel=3)
+    return OccupancyVoronoi(core, grid, robot_radius, options)

@@ -1,0 +1,470 @@
+"""The grid diagram on occupancy grids (dv.grid_voronoi on arrays, OccupancyGrid and map files):
+the medial definition against an independent numpy oracle and the C++ brute force, invariants on
+real-shaped maps, map files, updates, paths and clearance."""
+import json
+import os
+import pickle
+import subprocess
+
+import numpy as np
+import pytest
+from scipy import ndimage
+
+import dvoronoi as dv
+from dvoronoi import _core, occupancy_maps
+
+CLI = os.environ.get("DVORONOI_CLI")
+
+
+# -- an independent oracle of the definition (numpy; doubled pixel units) ------------------------
+
+def oracle_features(occ):
+    """Nearest point of the occupied squares and the outside to each pixel centre; ties to the
+    smallest x, then y."""
+    H, W = occ.shape
+    rr, cc = np.nonzero(occ)
+    sx0, sy0 = 2 * cc, 2 * (H - 1 - rr)
+    fx = np.zeros((H, W), np.int64)
+    fy = np.zeros((H, W), np.int64)
+    for r in range(H):
+        for c in range(W):
+            X, Y = 2 * c + 1, 2 * (H - 1 - r) + 1
+            if occ[r, c]:
+                fx[r, c], fy[r, c] = X, Y
+                continue
+            px = np.r_[np.clip(X, sx0, sx0 + 2), 0, 2 * W, X, X]
+            py = np.r_[np.clip(Y, sy0, sy0 + 2), Y, Y, 0, 2 * H]
+            d = (px - X) ** 2 + (py - Y) ** 2
+            k = np.flatnonzero(d == d.min())
+            j = k[np.lexsort((py[k], px[k]))[0]]
+            fx[r, c], fy[r, c] = px[j], py[j]
+    return fx, fy
+
+
+def oracle_joined(occ, a, b):
+    """Are a's and b's squares joined by occupied squares meeting the box of a, b grown by 1 px?"""
+    H, W = occ.shape
+    pad = np.ones((H + 2, W + 2), bool)   # the outside is occupied: index (j + 1, c + 1), j from the bottom
+    pad[1:-1, 1:-1] = occ[::-1]
+    xlo, xhi = min(a[0], b[0]) - 2, max(a[0], b[0]) + 2
+    ylo, yhi = min(a[1], b[1]) - 2, max(a[1], b[1]) + 2
+    cs = [c for c in range(-1, W + 1) if 2 * c <= xhi and 2 * c + 2 >= xlo]
+    js = [j for j in range(-1, H + 1) if 2 * j <= yhi and 2 * j + 2 >= ylo]
+    sub = pad[js[0] + 1:js[-1] + 2, cs[0] + 1:cs[-1] + 2]
+    lab, _ = ndimage.label(sub, structure=np.ones((3, 3), bool))
+
+    def labels_at(p):
+        out = set()
+        for c in {(p[0] - 1) // 2, p[0] // 2} if p[0] % 2 == 0 else {p[0] // 2}:
+            for j in {(p[1] - 1) // 2, p[1] // 2} if p[1] % 2 == 0 else {p[1] // 2}:
+                if cs[0] <= c <= cs[-1] and js[0] <= j <= js[-1] and lab[j - js[0], c - cs[0]]:
+                    out.add(lab[j - js[0], c - cs[0]])
+        return out
+    return bool(labels_at(a) & labels_at(b))
+
+
+def oracle_medial(occ, min_separation=1.5, prune_length=8.0):
+    H, W = occ.shape
+    fx, fy = oracle_features(occ)
+    out = np.zeros((H, W), bool)
+    for r in range(H):
+        for c in range(W):
+            if occ[r, c]:
+                continue
+            p = np.array([2 * c + 1, 2 * (H - 1 - r) + 1])
+            a = np.array([fx[r, c], fy[r, c]])
+            for r2, c2 in ((r, c - 1), (r, c + 1), (r - 1, c), (r + 1, c)):
+                if not (0 <= r2 < H and 0 <= c2 < W) or occ[r2, c2]:
+                    continue
+                q = np.array([2 * c2 + 1, 2 * (H - 1 - r2) + 1])
+                b = np.array([fx[r2, c2], fy[r2, c2]])
+                d2 = ((a - b) ** 2).sum()
+                if d2 <= 4 * min_separation ** 2:
+                    continue
+                if ((p - b) ** 2).sum() - ((p - a) ** 2).sum() > ((q - a) ** 2).sum() - ((q - b) ** 2).sum():
+                    continue
+                if d2 <= 4 * prune_length ** 2 and oracle_joined(occ, a, b):
+                    continue
+                out[r, c] = True
+    return out
+
+
+def small_maps():
+    rng = np.random.default_rng(3)
+    maps = []
+    for _ in range(6):
+        H, W = rng.integers(3, 22, size=2)
+        occ = np.zeros((H, W), bool)
+        for _ in range(rng.integers(0, 6)):
+            r, c = rng.integers(0, H), rng.integers(0, W)
+            occ[r:r + rng.integers(1, 6), c:c + rng.integers(1, 6)] = True
+        maps.append(occ)
+    maps.append(occupancy_maps.building(20, 1))
+    maps.append(occupancy_maps.cave(24, 2))
+    return maps
+
+
+@pytest.mark.parametrize("k", range(8))
+def test_medial_equals_independent_oracle(k):
+    occ = small_maps()[k]
+    for prune in (0.0, 3.0, 8.0):
+        gv = dv.grid_voronoi(occ, prune_length=prune, workers=1)
+        assert np.array_equal(gv.diagram_mask, oracle_medial(occ, 1.5, prune))
+
+
+@pytest.mark.parametrize("name", ["building", "warehouse", "cave", "rooms_with_islands"])
+def test_medial_equals_brute_force_on_real_shaped_maps(name):
+    occ = getattr(occupancy_maps, name)(72, 5)
+    oracle = _core._medial_brute_force(occ.astype(np.uint8), 1.5, 8.0)
+    for workers in (1, 2, 3, None):
+        gv = dv.grid_voronoi(occ, workers=workers)
+        assert np.array_equal(gv.diagram_mask, oracle)
+    assert gv.diagram_mask.any()
+
+
+def test_corridors_between_parts_of_one_wall_have_centrelines():
+    # one wall (a comb): every corridor lies between two teeth of the same connected wall
+    H, W = 40, 80
+    occ = np.zeros((H, W), bool)
+    occ[H - 4:, :] = True
+    c = 2
+    for width in range(1, 9):
+        occ[8:H - 4, c:c + 2] = True      # a tooth
+        c += 2 + width
+    occ[8:H - 4, c:c + 2] = True
+    assert ndimage.label(occ, structure=np.ones((3, 3)))[1] == 1
+    gv = dv.grid_voronoi(occ)
+    c = 4
+    for width in range(1, 9):
+        middle = c + width / 2
+        # the slots end at the comb's base: the centreline stops where the two corners' bisectors meet
+        for r in range(10, H - 4 - width // 2 - 2):
+            on = [x for x in range(c, c + width) if gv.diagram_mask[r, x] and abs(x + 0.5 - middle) <= 1]
+            if width >= 2:
+                assert on, (width, r)
+            else:
+                assert not gv.diagram_mask[r, c]
+        c += width + 2
+    # the labelled (paper's) diagram has nothing inside them: one wall is one label
+    labels = dv.grid_voronoi(occ, diagram="labels")
+    image_row = H - 1 - labels.cells[:, 1]
+    inside = (image_row > 10) & (image_row < H - 12) & (labels.cells[:, 0] > 4) & (labels.cells[:, 0] < c - 1)
+    assert not inside.any()
+
+
+def test_island_loops_and_disconnected_free_regions_are_found():
+    occ = np.zeros((50, 70), bool)
+    occ[:, 30:33] = True              # a wall splits the map: the right part never meets a map corner
+    occ[20:24, 10:14] = True          # an island on the left
+    occ[10:14, 50:55] = True          # and on the right
+    gv = dv.grid_voronoi(occ)
+    for (r, c) in ((19, 11), (9, 52)):
+        free = ~occ & ~gv.diagram_mask
+        lab, _ = ndimage.label(free)   # 4-connected: cannot cross an 8-connected curve
+        assert lab[r, c] != lab[0, 0] and lab[r, c] != lab[0, 69] and lab[r, c] != lab[49, 69]
+    assert gv.diagram_mask[:, 33:].any()
+
+
+def test_coordinates_follow_the_image_and_the_origin():
+    occ = np.zeros((6, 9), bool)
+    occ[0, :] = True                  # the top row of the image
+    gv = dv.grid_voronoi(occ, resolution=0.5, origin=(10.0, -3.0))
+    assert gv.grid.extent == (10.0, 14.5, -3.0, 0.0)
+    # the top row's pixels are at the top of the map
+    assert gv.grid.pixel_centers([[0, 0]])[0].tolist() == [10.25, -0.25]
+    assert gv.clearance_map[1, 4] == pytest.approx(0.25)   # half a pixel below the top wall
+    assert gv.clearance_map[0, 4] == 0.0
+    pts = gv.points
+    assert np.allclose(pts, gv.grid.pixel_centers(gv.pixels))
+    assert np.all(gv.clearance == gv.clearance_map[gv.diagram_mask])
+
+
+def test_input_forms_and_unknown_pixels():
+    rng = np.random.default_rng(0)
+    occ = rng.random((30, 40)) < 0.1
+    base = dv.grid_voronoi(occ).diagram_mask
+    assert np.array_equal(dv.grid_voronoi(occ.astype(np.uint8)).diagram_mask, base)
+    assert np.array_equal(dv.grid_voronoi(np.where(occ, 0.9, 0.1)).diagram_mask, base)
+    ros = np.where(occ, 100, 0).astype(np.int8)
+    assert np.array_equal(dv.grid_voronoi(ros).diagram_mask, base)
+    ros[5:8, 5:8] = -1   # unknown
+    unknown_occ = dv.grid_voronoi(ros)
+    unknown_free = dv.grid_voronoi(ros, unknown="free")
+    assert unknown_occ.grid.occupied[6, 6] and not unknown_free.grid.occupied[6, 6]
+    probs = np.where(occ, 0.9, 0.1)
+    probs[0, 0] = np.nan
+    assert dv.grid_voronoi(probs).grid.occupied[0, 0]
+    assert not dv.grid_voronoi(probs, unknown="free").grid.occupied[0, 0]
+    grid = dv.OccupancyGrid(occ, resolution=0.05, origin=(1, 2, 0))
+    gv = dv.grid_voronoi(grid)
+    assert gv.resolution == 0.05 and gv.origin == (1.0, 2.0)
+
+
+@pytest.mark.parametrize("bad, kind, match", [
+    (np.zeros((3, 4, 2)), ValueError, r"2-d array"),
+    (np.zeros((0, 4), bool), ValueError, r"at least one row"),
+    (np.full((3, 3), 1.5), ValueError, r"occupancy\[0, 0\] = 1.5.*\[0, 1\]"),
+    (np.full((3, 3), 7), ValueError, r"occupancy\[0, 0\] = 7.*0/1"),
+    (np.full((3, 3), -5, np.int8), ValueError, r"-1 \(unknown\) or 0..100"),
+    (np.array([["a", "b"]]), TypeError, r"dtype"),
+])
+def test_bad_occupancy_arrays(bad, kind, match):
+    with pytest.raises(kind, match=match):
+        dv.grid_voronoi(bad)
+
+
+def test_bad_arguments_name_themselves():
+    occ = np.zeros((10, 10), bool)
+    for kwargs, match in [({"workers": 0}, "workers"), ({"workers": 2.5}, "workers"), ({"robot_radius": -1}, "robot_radius"),
+                          ({"resolution": 0}, "resolution"), ({"origin": (0, 0, 1)}, "rotated"), ({"diagram": "x"}, "diagram"),
+                          ({"min_separation": 0.5}, "min_separation"), ({"prune_length": -1}, "prune_length"),
+                          ({"unknown": "maybe"}, "unknown"), ({"area": (0, 0, 1, 1)}, "area"), ({"cells": 10}, "cells")]:
+        with pytest.raises(ValueError, match=match):
+            dv.grid_voronoi(occ, **kwargs)
+    with pytest.raises(ValueError, match='diagram="medial"'):
+        dv.grid_voronoi([{"type": "point", "position": [1, 1]}], area=(0, 0, 2, 2), diagram="medial")
+    with pytest.deprecated_call():
+        dv.grid_voronoi([{"type": "point", "position": [1, 1]}], area=(0, 0, 2, 2), resolution=16)
+
+
+# -- map files -------------------------------------------------------------------------------------
+
+def write_pgm(path, img, binary=True):
+    H, W = img.shape
+    if binary:
+        path.write_bytes(b"P5\n# made by the tests\n%d %d\n255\n" % (W, H) + img.astype(np.uint8).tobytes())
+    else:
+        path.write_text("P2\n%d %d\n255\n" % (W, H) + "\n".join(" ".join(map(str, row)) for row in img) + "\n")
+
+
+def test_ros_yaml_pgm_png_and_movingai(tmp_path):
+    rng = np.random.default_rng(5)
+    img = np.full((30, 50), 254, np.uint8)
+    img[rng.random(img.shape) < 0.15] = 0
+    img[3:6, 3:6] = 205   # unknown grey (p = 0.196 .. 0.65)
+    write_pgm(tmp_path / "m.pgm", img)
+    (tmp_path / "m.yaml").write_text("image: m.pgm   # the image\nresolution: 0.05\norigin: [-1.0, 2.5, 0.0]\n"
+                                     "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n")
+    g = dv.OccupancyGrid.load(tmp_path / "m.yaml")
+    expect = (img == 0) | (img == 205)
+    assert np.array_equal(g.occupied, expect) and g.resolution == 0.05 and g.origin == (-1.0, 2.5)
+    assert g.unknown_pixels == 9
+    assert not dv.OccupancyGrid.load(tmp_path / "m.yaml", unknown="free").occupied[4, 4]
+    write_pgm(tmp_path / "p2.pgm", img, binary=False)
+    assert np.array_equal(dv.OccupancyGrid.load(tmp_path / "p2.pgm").occupied, expect)
+    neg = dv.OccupancyGrid.load(tmp_path / "m.pgm", negate=True)
+    assert np.array_equal(neg.occupied, img > 0.65 * 255)
+    gv = dv.grid_voronoi(tmp_path / "m.yaml")
+    assert np.array_equal(gv.diagram_mask, dv.grid_voronoi(dv.OccupancyGrid(expect, 0.05, (-1, 2.5))).diagram_mask)
+    if _core._has_png:
+        import matplotlib.image as mpimg
+        mpimg.imsave(tmp_path / "m.png", img, cmap="gray", vmin=0, vmax=255)
+        assert np.array_equal(dv.OccupancyGrid.load(tmp_path / "m.png").occupied, expect)
+    rows = ["".join("@" if v else "." for v in row) for row in expect]
+    rows[0] = "G" + rows[0][1:] if not expect[0, 0] else rows[0]
+    (tmp_path / "m.map").write_text("type octile\nheight 30\nwidth 50\nmap\n" + "\n".join(rows) + "\n")
+    assert np.array_equal(dv.OccupancyGrid.load(tmp_path / "m.map").occupied, expect)
+
+
+def test_real_city_map_from_movingai():
+    path = os.path.join(os.path.dirname(__file__), "..", "data", "maps", "Paris_1_256.map")
+    g = dv.OccupancyGrid.load(path)
+    assert g.shape == (256, 256) and int((~g.occupied).sum()) == 47240
+    gv = dv.grid_voronoi(g)
+    assert len(gv) > 2000
+    # every free region wider than a few pixels holds diagram pixels
+    lab, n = ndimage.label(~g.occupied)
+    sizes = ndimage.sum(np.ones_like(lab), lab, index=np.arange(1, n + 1))
+    for region in np.flatnonzero(sizes > 50) + 1:
+        assert gv.diagram_mask[lab == region].any()
+
+
+@pytest.mark.parametrize("name, text, match", [
+    ("t.pgm", b"P5\n10 10\n255\n" + bytes(20), r"t.pgm: truncated PGM data \(20 of 100"),
+    ("h.pgm", b"P5\n10", r"h.pgm: truncated PGM header"),
+    ("x.pgm", b"P7\n1 1\n255\n\x00", r"x.pgm: not a PGM image"),
+    ("a.yaml", b"image: a.pgm\nresolution: fast\n", r"a.yaml:2: resolution: expected a finite number"),
+    ("b.yaml", b"image: a.pgm\nresolution: 0.1\norigin: [1.0]\n", r"b.yaml:3: origin: expected \[x, y, yaw\]"),
+    ("c.yaml", b"resolution: 0.1\n", r"c.yaml.*missing 'image'"),
+    ("m.map", b"type octile\nheight 2\nwidth 3\nmap\n...\n..\n", r"m.map:6: row 1 has 2 characters, expected 3"),
+    ("n.map", b"type octile\nheight 2\nwidth 3\n", r"n.map:4: missing 'map' line"),
+    ("e.txt", b"", r"unknown map format"),
+])
+def test_bad_map_files_name_file_and_line(tmp_path, name, text, match):
+    (tmp_path / name).write_bytes(text)
+    with pytest.raises(ValueError, match=match):
+        dv.OccupancyGrid.load(tmp_path / name)
+
+
+# -- updates ---------------------------------------------------------------------------------------
+
+def test_updates_give_the_full_build_after_random_sequences():
+    rng = np.random.default_rng(11)
+    for trial in range(12):
+        occ = occupancy_maps.rooms_with_islands(64, trial) if trial % 2 else rng.random((48, 56)) < 0.08
+        gv = dv.grid_voronoi(occ, workers=1)
+        cur = occ.copy()
+        for step in range(8):
+            kind = rng.integers(3)
+            r, c = rng.integers(0, cur.shape[0]), rng.integers(0, cur.shape[1])
+            h, w = rng.integers(1, 6, size=2)
+            block = [(i, j) for i in range(r, min(cur.shape[0], r + h)) for j in range(c, min(cur.shape[1], c + w))]
+            if kind == 0:
+                gv.set_occupied(block)
+                cur[tuple(np.array(block).T)] = True
+            elif kind == 1:
+                gv.set_free(block)
+                cur[tuple(np.array(block).T)] = False
+            else:
+                cur = cur ^ (rng.random(cur.shape) < 0.01)
+                gv.update(cur)
+            fresh = dv.grid_voronoi(cur, workers=2)
+            assert np.array_equal(gv.grid.occupied, cur)
+            assert np.array_equal(gv.diagram_mask, fresh.diagram_mask)
+            assert np.array_equal(gv.clearance_map, fresh.clearance_map)
+
+
+def test_update_arguments_are_checked():
+    gv = dv.grid_voronoi(np.zeros((10, 12), bool))
+    with pytest.raises(ValueError, match=r"shape \(10, 12\)"):
+        gv.update(np.zeros((10, 11), bool))
+    with pytest.raises(ValueError, match=r"pixels\[1\] = \(10, 0\) is outside the 10 x 12 map"):
+        gv.set_occupied([(0, 0), (10, 0)])
+    with pytest.raises(ValueError, match=r"mask must have the map's shape"):
+        gv.set_free(np.zeros((3, 3), bool))
+    stats = gv.set_occupied(np.eye(10, 12, dtype=bool))
+    assert stats["changed_pixels"] == 10
+
+
+# -- paths and clearance ---------------------------------------------------------------------------
+
+def occupied_union(occ, resolution=1.0, origin=(0.0, 0.0)):
+    import shapely
+    from shapely.geometry import box
+    H, W = occ.shape
+    x0, y0 = origin
+    squares = [box(x0 + c * resolution, y0 + (H - 1 - r) * resolution, x0 + (c + 1) * resolution,
+                   y0 + (H - r) * resolution) for r, c in np.argwhere(occ)]
+    frame = box(x0, y0, x0 + W * resolution, y0 + H * resolution).exterior.buffer(1e-9)
+    return shapely.union_all(squares + [frame])
+
+
+def test_paths_keep_the_radius_and_exist_when_the_spec_promises_them():
+    from shapely.geometry import LineString
+    rng = np.random.default_rng(2)
+    for trial in range(6):
+        occ = occupancy_maps.building(64, trial) if trial % 2 else occupancy_maps.rooms_with_islands(64, trial)
+        gv = dv.grid_voronoi(occ, resolution=0.1, origin=(-2.0, 1.0))
+        walls = occupied_union(occ, 0.1, (-2.0, 1.0))
+        cm = gv.clearance_map
+        for radius in (0.0, 0.05, 0.12):
+            # pixels whose centres clear r + 1 pixel, 4-connected: the continuous set {d > r + 1 px}
+            # connects any two of one component, so the SPEC promises a path between them
+            spare, _ = ndimage.label(cm > radius + 0.1)
+            ok = np.argwhere(spare > 0)
+            found = 0
+            for k in range(8):
+                a = ok[rng.integers(len(ok))]
+                pool = np.argwhere(spare == spare[tuple(a)]) if k % 2 else ok   # half the pairs in one component
+                b = pool[rng.integers(len(pool))]
+                start, goal = gv.grid.pixel_centers([a, b])
+                route = gv.path(start, goal, robot_radius=radius)
+                if spare[tuple(a)] == spare[tuple(b)]:
+                    assert len(route) >= 2, (trial, radius, a, b)
+                if len(route):
+                    found += 1
+                    assert np.allclose(route[0], start) and np.allclose(route[-1], goal)
+                    assert LineString(route).distance(walls) > radius
+            assert found > 0
+
+
+def test_no_path_through_a_door_narrower_than_the_robot():
+    occ = np.zeros((30, 40), bool)
+    occ[14:16, :] = True
+    occ[14:16, 18:21] = False          # a door 3 pixels wide
+    gv = dv.grid_voronoi(occ)
+    start, goal = (20.0, 25.0), (20.0, 5.0)
+    assert len(gv.path(start, goal, robot_radius=1.4)) >= 2      # the door's centre is 1.5 from the jambs
+    assert len(gv.path(start, goal, robot_radius=1.5)) == 0      # not greater than 1.5: no path
+    occ[14:16, 18:21] = True
+    gv.update(occ)
+    assert len(gv.path(start, goal, robot_radius=0.0)) == 0
+
+
+def test_path_follows_the_diagram_and_refuses_bad_points():
+    occ = occupancy_maps.building(96, 3)
+    gv = dv.grid_voronoi(occ)
+    spare, _ = ndimage.label(gv.clearance_map > 1.5 + 0.5)
+    big = np.bincount(spare.ravel())[1:].argmax() + 1
+    free = np.argwhere((spare == big) & (gv.clearance_map > 3))
+    start, goal = gv.grid.pixel_centers([free[0], free[-1]])
+    route = gv.path(start, goal, robot_radius=0.5)
+    assert len(route) > 2
+    # most of the route's length runs over diagram pixels (sampled along the segments)
+    pts = np.concatenate([np.linspace(p, q, 20, endpoint=False) for p, q in zip(route[:-1], route[1:])])
+    rc = np.stack([occ.shape[0] - 1 - np.floor(pts[:, 1]), np.floor(pts[:, 0])], axis=1).astype(int)
+    near = ndimage.binary_dilation(gv.diagram_mask, iterations=1)
+    assert near[rc[:, 0], rc[:, 1]].mean() > 0.6
+    with pytest.raises(ValueError, match=r"start \(-5, 1\) is outside the map"):
+        gv.path((-5, 1), goal)
+    wall = np.argwhere(occ)[5]
+    with pytest.raises(ValueError, match=r"goal .* is blocked"):
+        gv.path(start, gv.grid.pixel_centers([wall])[0])
+
+
+def test_clearance_at_matches_shapely():
+    from shapely.geometry import Point
+    occ = occupancy_maps.cave(40, 1)
+    gv = dv.grid_voronoi(occ, resolution=0.5, origin=(3, 4))
+    walls = occupied_union(occ, 0.5, (3, 4))
+    rng = np.random.default_rng(0)
+    pts = np.stack([3 + rng.random(200) * 20, 4 + rng.random(200) * 20], axis=1)
+    got = gv.clearance_at(pts)
+    want = np.array([0.0 if walls.contains(Point(p)) else Point(p).distance(walls) for p in pts])
+    assert np.allclose(got, want, atol=1e-8)
+
+
+# -- results: pickling, JSON, SVG, plots, CLI -----------------------------------------------------
+
+def test_pickle_json_svg_and_plot(tmp_path):
+    import matplotlib
+    matplotlib.use("Agg")
+    occ = occupancy_maps.rooms_with_islands(60, 4)
+    gv = dv.grid_voronoi(occ, resolution=0.2, robot_radius=0.3)
+    gv.set_occupied([(30, 30)])
+    back = pickle.loads(pickle.dumps(gv))
+    assert np.array_equal(back.diagram_mask, gv.diagram_mask) and back.robot_radius == 0.3
+    doc = json.loads(gv.to_json())
+    assert doc["diagram"] == "medial" and doc["map"]["rows"] == 60
+    assert doc["pixels"]["row"] == gv.pixels[:, 0].tolist()
+    assert np.allclose(doc["pixels"]["clearance"], gv.clearance)
+    free = np.argwhere(gv.clearance_map > 1.0)
+    route = gv.path(*gv.grid.pixel_centers([free[0], free[-1]]))
+    svg = gv.to_svg(route=route)
+    assert svg.startswith("<svg") and 'id="path"' in svg and 'id="diagram"' in svg
+    gv.to_svg(tmp_path / "m.svg", route=route)
+    assert (tmp_path / "m.svg").read_text() == svg
+    ax = gv.plot(path=route, clearance=True)
+    assert {"dvoronoi-gvd-medial", "dvoronoi-gvd-path"} <= {a.get_gid() for a in ax.get_children()}
+
+
+def test_empty_diagram_is_explained():
+    occ = np.zeros((9, 1), bool)
+    with pytest.warns(UserWarning, match="no diagram pixel"):
+        gv = dv.grid_voronoi(occ)
+    assert len(gv) == 0
+
+
+@pytest.mark.skipif(not CLI, reason="DVORONOI_CLI not set")
+def test_cli_map_files_write_the_python_json(tmp_path):
+    occ = occupancy_maps.building(80, 2)
+    rows = ["".join("@" if v else "." for v in row) for row in occ]
+    (tmp_path / "b.map").write_text("type octile\nheight 80\nwidth 80\nmap\n" + "\n".join(rows) + "\n")
+    gv = dv.grid_voronoi(tmp_path / "b.map", robot_radius=0.5)
+    out = tmp_path / "b.json"
+    svg = tmp_path / "b.svg"
+    subprocess.run([CLI, "gvd", str(tmp_path / "b.map"), "-r", "0.5", "-o", str(out), "--svg", str(svg), "-q"], check=True)
+    assert json.loads(out.read_text()) == json.loads(gv.to_json())
+    assert svg.read_text() == gv.to_svg()
+    bad = subprocess.run([CLI, "gvd", str(tmp_path / "nope.map")], capture_output=True, text=True)
+    assert bad.returncode != 0 and "nope.map: cannot open file" in bad.stderr
