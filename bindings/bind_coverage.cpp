@@ -8,6 +8,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,12 +57,25 @@ std::vector<Index> ids_arg(const py::object& ids, Eigen::Index n) {
     return std::vector<Index>(a.data(), a.data() + n);
 }
 
-py::tuple moments_tuple(const CoverageMoments& m) {
-    return py::make_tuple(copy_of(m.mass), copy_of(m.centroid), copy_of(m.polar));
+py::array_t<bool> flags_of(const std::vector<char>& v) {
+    py::array_t<bool> a(static_cast<py::ssize_t>(v.size()));
+    std::transform(v.begin(), v.end(), a.mutable_data(), [](char c) { return c != 0; });
+    return a;
 }
 
+/// (mass, centroid, polar, open): `open` says which cells reach their circle (the cost needs it).
+py::tuple moments_tuple(const CoverageMoments& m) {
+    return py::make_tuple(copy_of(m.mass), copy_of(m.centroid), copy_of(m.polar), flags_of(m.open));
+}
+
+/// (x, y, w, ptr) of the environment's nodes.
 py::tuple quadrature_tuple(const CoverageQuadrature& q) {
     return py::make_tuple(copy_of(q.x), copy_of(q.y), copy_of(q.w), copy_of(q.ptr));
+}
+
+/// (x, y, w, ptr, open) of the cells' nodes.
+py::tuple cell_quadrature_tuple(const CoverageQuadrature& q) {
+    return py::make_tuple(copy_of(q.x), copy_of(q.y), copy_of(q.w), copy_of(q.ptr), flags_of(q.open));
 }
 
 py::dict cells_dict(const LimitedPartition& p) {
@@ -180,15 +194,17 @@ void bind_coverage(py::module_& m) {
                 mo = dvoronoi::coverage_moments(s.swarm(), s.environment());
             }
             return moments_tuple(mo);
-        }, "(mass, centroid, polar) of every clipped cell, uniform density.")
+        }, "(mass, centroid, polar, open) of every clipped cell, uniform density; open: the cell "
+           "reaches its circle.")
         .def("quadrature", [](const LloydStepper& s, int order) {
             CoverageQuadrature q;
             {
                 py::gil_scoped_release release;
                 q = dvoronoi::coverage_quadrature(s.swarm(), s.environment(), order);
             }
-            return quadrature_tuple(q);
-        }, py::arg("order") = 8, "(x, y, w, ptr): quadrature nodes of every clipped cell.")
+            return cell_quadrature_tuple(q);
+        }, py::arg("order") = 8,
+           "(x, y, w, ptr, open): quadrature nodes of every clipped cell, and which cells reach their circle.")
         .def("cells", [](const LloydStepper& s) {
             LimitedPartition p;
             {
@@ -218,14 +234,14 @@ void bind_coverage(py::module_& m) {
           },
           py::arg("points"), py::arg("radius"), py::arg("bounds") = py::none(), py::arg("ids") = py::none(),
           py::arg("owned") = -1, py::arg("threads") = 0,
-          "(mass, centroid, polar) of the clipped cells of the first `owned` agents (-1: all); the "
-          "others only shape them. Candidates are ordered by `ids`, so the cells do not depend on "
-          "how the agents are stored.");
+          "(mass, centroid, polar, open) of the clipped cells of the first `owned` agents (-1: all; "
+          "open: the cell reaches its circle); the others only shape them. Candidates are ordered by "
+          "`ids`, so the cells do not depend on how the agents are stored.");
     m.def("coverage_quadrature",
           [](py::handle points, double radius, int order, const py::object& bounds, const py::object& ids, Index owned,
              int threads) {
               const int t = threads_arg(threads);
-              return quadrature_tuple(on_swarm(points, radius, bounds, ids, [&](const Swarm& s, const ConvexPolygon* env) {
+              return cell_quadrature_tuple(on_swarm(points, radius, bounds, ids, [&](const Swarm& s, const ConvexPolygon* env) {
                   return dvoronoi::coverage_quadrature(s, env, order, owned, t);
               }));
           },

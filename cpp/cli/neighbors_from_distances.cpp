@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace dvoronoi::cli {
 namespace {
@@ -24,11 +25,11 @@ struct DistOptions {
     bool quiet = false;
 };
 
-void write(std::ostream& os, bool csv, const dist::DistanceNeighbors& r, bool squared) {
+void write(std::ostream& os, bool csv, const dist::DistanceNeighbors& r, bool squared, const std::vector<Index>& ids) {
     if (csv) {
-        io::write_csv(os, r);
+        io::write_csv(os, r, ids);
     } else {
-        io::write_json(os, r, squared);
+        io::write_json(os, r, squared, ids);
         os << '\n';
     }
 }
@@ -48,7 +49,11 @@ int run_distances(const DistOptions& o) {
             if (file.rows[k] >= o.n || file.cols[k] >= o.n)
                 throw InputError(file.where(k) + ": robot index " + std::to_string(std::max(file.rows[k], file.cols[k])) +
                                  " is not below --n " + std::to_string(o.n));
-    const dist::DistanceGraph g = io::distance_graph(file, static_cast<Index>(o.n), o.squared, o.average);
+    // The file's indices are robot IDs (serial numbers too): robots 0..n-1 in ascending ID order, so
+    // memory follows the file, not the largest ID. With --n, robot k is ID k.
+    const std::vector<Index> ids = o.n >= 0 ? std::vector<Index>{} : io::robot_ids(file);
+    const dist::DistanceGraph g = o.n >= 0 ? io::distance_graph(file, static_cast<Index>(o.n), o.squared, o.average)
+                                           : io::distance_graph(file, ids, o.squared, o.average);
     std::unique_ptr<io::AtomicFile> out;
     if (!to_stdout) out = open_output(o.output, "-o/--output");
 
@@ -57,7 +62,7 @@ int run_distances(const DistOptions& o) {
             return dist::neighbors_from_distances(g, !o.no_consistency, o.threads, fn);
         });
     std::unique_ptr<io::AtomicFile> no_svg;
-    return deliver(out, no_svg, [&](std::ostream& os) { write(os, csv, result, g.squared); });
+    return deliver(out, no_svg, [&](std::ostream& os) { write(os, csv, result, g.squared, ids); });
 }
 
 }  // namespace
@@ -69,12 +74,15 @@ Command add_neighbors_from_distances(CLI::App& parent) {
         "every robot's Voronoi neighbours (Delaunay-path order) and hull flag from measured inter-robot "
         "distances only (Elwin, Freeman & Lynch), then the consistency step");
     sub->add_option("DISTFILE", o->file,
-                    "distance file: 'i j d' per line (0-based robot indices, measured distance d > 0), "
-                    "whitespace- or comma-separated, '#' comments, optional header; a pair once or in both "
-                    "directions; undetected pairs left out; '-' reads stdin")
+                    "distance file: 'i j d' per line (robot IDs i, j: non-negative integers such as serial "
+                    "numbers; measured distance d > 0), whitespace- or comma-separated, '#' comments, optional "
+                    "header; a pair once or in both directions; undetected pairs left out; '-' reads stdin. "
+                    "Robots are the IDs in the file, in ascending ID order; outputs name them by ID (JSON: "
+                    "\"ids\" gives row k's robot and \"indices\" are IDs, unless the IDs are exactly 0..n-1)")
         ->required();
     sub->add_option("-o,--output", o->output, "output file: .json or .csv (robot,on_hull,detected,neighbors); default or '-': JSON on stdout");
-    sub->add_option("-n,--n", o->n, "number of robots (default: largest index + 1)")->check(CLI::NonNegativeNumber);
+    sub->add_option("-n,--n", o->n, "number of robots: robots are IDs 0..n-1, those without a line isolated "
+                                     "(default: the IDs in the file)")->check(CLI::NonNegativeNumber);
     sub->add_flag("--squared", o->squared, "the values are squared distances (exact decisions for exact squared distances)");
     sub->add_flag("--average", o->average, "average the two directions of a pair, e_ij = (s_ij + s_ji) / 2 (default: they must agree)");
     sub->add_flag("--no-consistency", o->no_consistency, "skip the consistency step (the relation may then be asymmetric)");

@@ -15,6 +15,13 @@ performance function ``f(x) = -min(x, R)^2``). Its gradient is ``2 M_i (p_i - C_
 above never increases it. Without ``bounds`` (Q = the plane) the constant ``R^2 Φ(Q)`` is left out
 and the cost is ``Σ_i (J_i - R^2 M_i) <= 0``.
 
+With ``bounds`` the cost is summed as ``Σ_i J_i + R^2 Φ(U)``, ``U`` the part of Q that no disk
+``B(p_i, R)`` covers, never as the difference of ``R^2 Φ(Q)`` and ``Σ R^2 M_i`` (they agree to
+~1e-16 of ``R^2 Φ(Q)``: more than H itself once R is ~1e5 times the cells' size). ``U`` is empty,
+and ``H = Σ J_i`` exactly, when no cell reaches its circle inside Q (always once R exceeds Q's
+diameter); else ``Φ(U) = Φ(Q) - Σ M_i``, whose rounding is small against H because some point of Q
+is then R away from every agent.
+
 Uniform density (``density=None``) is exact: areas, centroids and polar moments in closed form
 (circular sectors included). Any other density is integrated by Gauss quadrature over the cell's
 exact pieces (a fan of triangles from the agent and circular sectors of at most π/4), ``order``
@@ -171,8 +178,8 @@ def _check_count(value: Any, name: str, minimum: int) -> int:
 # ----------------------------------------------------------------------------------------- cells
 def density_moments(points: np.ndarray, quadrature: Tuple[np.ndarray, ...], density: Callable
                     ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(mass, centroid, polar) of every cell from its quadrature nodes ``(x, y, w, ptr)``."""
-    x, y, w, ptr = quadrature
+    """(mass, centroid, polar) of every cell from its quadrature nodes ``(x, y, w, ptr, ...)``."""
+    x, y, w, ptr = quadrature[:4]
     n = len(ptr) - 1
     owner = np.repeat(np.arange(n), np.diff(ptr))
     wf = w * _evaluate(density, x, y)
@@ -187,8 +194,16 @@ def density_moments(points: np.ndarray, quadrature: Tuple[np.ndarray, ...], dens
     return mass, centroid, polar
 
 
-def _cost(mass: np.ndarray, polar: np.ndarray, radius: float, total: float) -> float:
-    return float(radius * radius * total + np.sum(polar - radius * radius * mass))
+def _cost(mass: np.ndarray, polar: np.ndarray, open_cells: np.ndarray, radius: float,
+          total: Optional[float]) -> float:
+    """H from per-cell moments (module docstring), summed without cancellation. ``open_cells``: which
+    cells reach their circle; ``total``: Φ(Q), or None for the plane."""
+    r2 = radius * radius
+    if total is None:
+        return float(np.sum(polar - r2 * mass))
+    # No agent: nothing is covered. Else U is empty exactly when no cell reaches its circle.
+    uncovered = max(total - math.fsum(mass), 0.0) if len(mass) == 0 or np.any(open_cells) else 0.0
+    return math.fsum(polar) + r2 * uncovered
 
 
 class CoverageCells(CellResult):
@@ -317,9 +332,9 @@ class LloydStepper:
     def __len__(self) -> int:
         return len(self._core.points)
 
-    def _phi_total(self) -> float:
+    def _phi_total(self) -> Optional[float]:
         if self.bounds is None:
-            return 0.0
+            return None
         if self.density is None:
             return self._core.bounds_area
         if self._total is None:
@@ -327,25 +342,32 @@ class LloydStepper:
             self._total = float(np.sum(w * _evaluate(self.density, x, y)))
         return self._total
 
-    def moments(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(mass, centroid, polar moment) of every clipped cell at the current positions."""
+    def _moments(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(mass, centroid, polar, open): open says which cells reach their circle."""
         if self.density is None:
             return self._core.moments()
-        return density_moments(self._core.points, self._core.quadrature(self.order), self.density)
+        q = self._core.quadrature(self.order)
+        return density_moments(self._core.points, q, self.density) + (q[4],)
+
+    def moments(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(mass, centroid, polar moment) of every clipped cell at the current positions."""
+        return self._moments()[:3]
 
     def cost(self) -> float:
         """The locational cost H at the current positions (module docstring)."""
-        mass, _, polar = self.moments()
-        return _cost(mass, polar, self.radius, self._phi_total())
+        if self.density is None:
+            return self._core.cost()
+        mass, _, polar, open_cells = self._moments()
+        return _cost(mass, polar, open_cells, self.radius, self._phi_total())
 
     def step(self) -> float:
         """One Lloyd step: cells at the current positions, every agent moves ``gain`` of the way to
         its centroid (staying in the environment). Returns H before the move."""
         if self.density is None:
             return self._core.step()
-        mass, centroid, polar = self.moments()
+        mass, centroid, polar, open_cells = self._moments()
         self._core.move_to_targets(centroid)
-        return _cost(mass, polar, self.radius, self._phi_total())
+        return _cost(mass, polar, open_cells, self.radius, self._phi_total())
 
     def set_points(self, points: Any) -> None:
         """Put the agents somewhere else (same number); the grid is updated, not rebuilt."""

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import time
 from typing import Any, Dict, List, Optional, Tuple
@@ -36,8 +37,8 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from . import _core
-from .coverage import (BoundsArg, CoverageCells, _check_count, _check_density, _check_gain, _cost,
-                       _evaluate, as_bounds, density_moments)
+from .coverage import (BoundsArg, CoverageCells, _check_count, _check_density, _check_gain, _evaluate,
+                       as_bounds, density_moments)
 
 __all__ = ["DistributedLloyd", "lloyd", "cells", "main"]
 
@@ -185,7 +186,8 @@ class DistributedLloyd:
                 raise ValueError(f"rank {r} failed: {e}")
         return result
 
-    def _moments(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _moments(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(mass, centroid, polar, open) of the owned cells; open: the cell reaches its circle."""
         ids, pts = self._local()
         owned = len(self.ids)
 
@@ -193,14 +195,14 @@ class DistributedLloyd:
             if self.density is None:
                 return _core.coverage_moments(pts, self.radius, self.bounds, ids, owned, self.threads)
             q = _core.coverage_quadrature(pts, self.radius, self.order, self.bounds, ids, owned, self.threads)
-            return density_moments(self.points, q, self.density)
+            return density_moments(self.points, q, self.density) + (q[4],)
 
         return self._collective(compute)
 
-    def _total(self) -> float:
-        """Φ(Q): the environment's mass under the density (0 without bounds)."""
+    def _total(self) -> Optional[float]:
+        """Φ(Q): the environment's mass under the density (None without bounds)."""
         if self.bounds is None:
-            return 0.0
+            return None
         if self._phi_total is None:
             if self.density is None:
                 x, y, w, _ = _core.environment_quadrature(self.bounds, 1)
@@ -210,20 +212,29 @@ class DistributedLloyd:
                 self._phi_total = float(np.sum(w * _evaluate(self.density, x, y)))
         return self._phi_total
 
-    def _global_cost(self, mass: np.ndarray, polar: np.ndarray) -> float:
+    def _global_cost(self, mass: np.ndarray, polar: np.ndarray, open_cells: np.ndarray) -> float:
+        """H over every rank's cells, summed as in :func:`dvoronoi.coverage` (no R² Φ(Q) to cancel)."""
         MPI = _mpi()
-        local = float(np.sum(polar - self.radius ** 2 * mass))
-        return _cost(np.zeros(0), np.zeros(0), self.radius, self._total()) + self.comm.allreduce(local, op=MPI.SUM)
+        total = self._total()
+        if total is None:
+            return self.comm.allreduce(float(np.sum(polar - self.radius ** 2 * mass)), op=MPI.SUM)
+        polar_sum = self.comm.allreduce(math.fsum(polar), op=MPI.SUM)
+        mass_sum = self.comm.allreduce(math.fsum(mass), op=MPI.SUM)
+        # No agent: nothing is covered. Else U is empty exactly when no cell reaches its circle.
+        count = self.comm.allreduce(len(mass), op=MPI.SUM)
+        any_open = self.comm.allreduce(bool(np.any(open_cells)), op=MPI.LOR)
+        uncovered = max(total - mass_sum, 0.0) if count == 0 or any_open else 0.0
+        return polar_sum + self.radius ** 2 * uncovered
 
     def cost(self) -> float:
         """H at the current positions (collective; the same value on every rank)."""
-        mass, _, polar = self._moments()
-        return self._global_cost(mass, polar)
+        mass, _, polar, open_cells = self._moments()
+        return self._global_cost(mass, polar, open_cells)
 
     def step(self) -> float:
         """One Lloyd step (collective). Returns H before the move, on every rank."""
-        mass, centroid, polar = self._moments()
-        cost = self._global_cost(mass, polar)
+        mass, centroid, polar, open_cells = self._moments()
+        cost = self._global_cost(mass, polar, open_cells)
         moved = _core.lloyd_move(self.points, centroid, self.gain, self.bounds)
         halo_bytes = self.bytes_halo
         self._migrate(self.ids, moved)

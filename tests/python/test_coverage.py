@@ -177,6 +177,103 @@ def test_cost_equals_brute_force_raster():
     assert free.cost() == pytest.approx(raster2, rel=1e-4)
 
 
+# ------------------------------------------------------------------ the cost at any radius
+# H = Σ_i ∫_{V_i ∩ Q} min(|q - p_i|^2, R^2) dq by the definition, nothing from the library: each
+# Voronoi cell cut to Q by every bisector in exact rational arithmetic, then per fan triangle from the
+# agent a closed form evaluated with 60 digits. Along the triangle's far side (distance h from the
+# agent, angle phi from its foot) the ray reaches rho = h / cos(phi), and ∫_0^rho min(r^2, R^2) r dr
+# is rho^4 / 4 inside the disk (|phi| <= acos(h / R)), R^4 / 4 + R^2 (rho^2 - R^2) / 2 beyond it.
+def exact_voronoi_cells(points, polygon):
+    from fractions import Fraction
+
+    P = [(Fraction(float(x)), Fraction(float(y))) for x, y in points]
+    Q = [(Fraction(float(x)), Fraction(float(y))) for x, y in polygon]
+    cells = []
+    for i, (px, py) in enumerate(P):
+        poly = Q
+        for j, (qx, qy) in enumerate(P):
+            if j == i or not poly:
+                continue
+            ax, ay = qx - px, qy - py
+            h = (ax * ax + ay * ay) / 2
+            f = [(x - px) * ax + (y - py) * ay - h for x, y in poly]
+            out = []
+            for k in range(len(poly)):
+                u, v, fu, fv = poly[k], poly[(k + 1) % len(poly)], f[k], f[(k + 1) % len(poly)]
+                if fu <= 0:
+                    out.append(u)
+                if fu * fv < 0:
+                    t = fu / (fu - fv)
+                    out.append((u[0] + t * (v[0] - u[0]), u[1] + t * (v[1] - u[1])))
+            poly = out
+        cells.append(poly)
+    return cells
+
+
+def exact_cost(points, cells, radius):
+    import mpmath
+
+    with mpmath.workdps(60):
+        R = mpmath.mpf(float(radius))
+        total = mpmath.mpf(0)
+        for (px, py), poly in zip(points, cells):
+            rel = [(mpmath.mpf(x.numerator) / x.denominator - mpmath.mpf(float(px)),
+                    mpmath.mpf(y.numerator) / y.denominator - mpmath.mpf(float(py))) for x, y in poly]
+            for k in range(len(rel)):
+                (ux, uy), (vx, vy) = rel[k], rel[(k + 1) % len(rel)]
+                dx, dy = vx - ux, vy - uy
+                cross = ux * vy - uy * vx
+                if cross == 0:
+                    continue
+                length = mpmath.sqrt(dx * dx + dy * dy)
+                nx, ny = dy / length, -dx / length          # outward normal of the far side
+                h = cross / length
+                phis = [mpmath.atan2(nx * y - ny * x, nx * x + ny * y) for x, y in ((ux, uy), (vx, vy))]
+                star = mpmath.acos(h / R) if h < R else mpmath.mpf(0)
+                cuts = sorted({phis[0], phis[1]} | {c for c in (-star, star) if phis[0] < c < phis[1]})
+                for a, b in zip(cuts[:-1], cuts[1:]):
+                    if h < R and abs((a + b) / 2) <= star:  # inside the disk
+                        F = lambda t: h ** 4 / 4 * (mpmath.tan(t) + mpmath.tan(t) ** 3 / 3)  # noqa: E731
+                    else:
+                        F = lambda t: -R ** 4 * t / 4 + R * R * h * h * mpmath.tan(t) / 2  # noqa: E731
+                    total += F(b) - F(a)
+        return float(total)
+
+
+@pytest.mark.parametrize("bounds", [(0, 0, 1, 1), "hexagon"])
+def test_cost_equals_exact_computation_at_every_radius(bounds):
+    # Issue 20: H was formed as R^2 Φ(Q) + Σ (J_i - R^2 M_i), two terms that cancel: -5.28 for a true
+    # 0.0129 at R = 1e6 in the unit square. And the cells' vertices came from arcs R away: 1e-7 relative
+    # error in every moment at R = 1e9.
+    b = as_bounds(HEXAGON if isinstance(bounds, str) else bounds)
+    pts = swarm(30, 40)
+    pts = pts[_core.bounds_contains(b, pts)][:30]
+    cells = exact_voronoi_cells(pts, b)
+    for R in (1e-3, 1e-2, 0.05, 0.1, 0.15, 0.2, 0.3, 0.5, 1.0, 10.0, 1e3, 1e5, 1e6, 1e9):
+        want = exact_cost(pts, cells, R)
+        s = dv.coverage.LloydStepper(pts, R, bounds=b)
+        assert s.cost() == pytest.approx(want, rel=1e-13), R
+        # The density path (a constant density: quadrature exact) sums the same way.
+        flat = dv.coverage.LloydStepper(pts, R, bounds=b, density=lambda x, y: np.ones_like(x), order=3)
+        assert flat.cost() == pytest.approx(want, rel=1e-12), R
+    # Once the disks cover Q the cells are the Voronoi cells cut to Q, whatever R: the same moments.
+    far = dv.coverage.LloydStepper(pts, 1e12, bounds=b).moments()
+    near = dv.coverage.LloydStepper(pts, 2.0, bounds=b).moments()
+    for x, y in zip(far, near):
+        np.testing.assert_allclose(x, y, rtol=1e-13, atol=1e-15)
+
+
+@pytest.mark.parametrize("radius", [1e5, 1e6])
+def test_lloyd_cost_never_increases_for_a_large_radius(radius):
+    # Issue 20: at R = 1e5 the cost rose between steps (rounding of R^2 Φ(Q) - Σ R^2 M_i).
+    pts = swarm(31, 30)
+    run = dv.coverage.lloyd(pts, radius, steps=30, bounds=(0, 0, 1, 1), progress=False)
+    assert np.all(np.diff(run.cost) <= 0.0), np.diff(run.cost)
+    assert 0 < run.cost[-1] < run.cost[0] < 0.05
+    same = dv.coverage.lloyd(pts, 10.0, steps=30, bounds=(0, 0, 1, 1), progress=False)
+    np.testing.assert_allclose(run.cost, same.cost, rtol=1e-12)
+
+
 # ------------------------------------------------------------------ non-uniform density
 def gaussian(x, y):
     return np.exp(-((x - 0.3) ** 2 + (y - 0.6) ** 2) / (2 * 0.08 ** 2)) + 0.1

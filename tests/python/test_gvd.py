@@ -383,6 +383,52 @@ def test_bad_obstacles_name_index_and_field(doc, message):
         dv.grid_voronoi(doc, cells=16)
 
 
+def test_closed_rings_keep_every_corner():
+    # Issue 20: a ring closed by repeating its first vertex (as GeoJSON writes it) lost that corner,
+    # in obstacles and in the working area; a repeated vertex elsewhere dropped both copies.
+    square = [[40, 40], [60, 40], [60, 60], [40, 60]]
+    box = [[0, 0], [100, 0], [100, 100], [0, 100]]
+    others = [{"type": "circle", "center": [80, 20], "radius": 5}, {"type": "point", "position": [15, 80]}]
+
+    def doc(ring, area):
+        return {"area": {"polygon": area}, "obstacles": [{"type": "polygon", "vertices": ring}] + others}
+
+    plain = dv.gvd.load_obstacles(doc(square, box))
+    variants = {
+        "closed": (square + square[:1], box),
+        "closed area": (square, box + box[:1]),
+        "closed, reversed": ((square + square[:1])[::-1], box + box[:1]),
+        "repeats": ([square[0], square[0], square[1], square[2], square[2], square[3]], box),
+        "repeated area corners": (square, [box[0], box[1], box[1], box[2], box[3], box[3], box[0]]),
+    }
+
+    def first_lowest(v):  # the same ring from its lexicographically lowest vertex
+        return np.roll(v, -min(range(len(v)), key=lambda k: tuple(v[k])), axis=0) if len(v) else v
+
+    def same_parts(a, b):
+        pa, pb = a.parts(), b.parts()
+        assert len(pa) == len(pb)
+        for x, y in zip(pa, pb):
+            assert x[0] == y[0] and x[1] == y[1] and np.array_equal(first_lowest(x[2]), first_lowest(y[2]))
+
+    want = dv.grid_voronoi(plain, resolution=80)
+    for name, (ring, area) in variants.items():
+        scene = dv.gvd.load_obstacles(doc(ring, area))
+        assert scene.n_labels == plain.n_labels == 3 + 4, name
+        polygon = [p for p in scene.parts() if p[1] == 0]
+        assert len(polygon) == 1 and polygon[0][0] == "polygon" and len(polygon[0][2]) == 4, name
+        same_parts(scene, plain)
+        # Just outside each corner of the square, the square is sqrt(2) away.
+        for c in square:
+            q = (c[0] + (c[0] - 50) / 10, c[1] + (c[1] - 50) / 10)
+            assert scene.nearest(q) == (0, pytest.approx(2.0)), (name, c)
+        got = dv.grid_voronoi(doc(ring, area), resolution=80)
+        assert np.array_equal(got.cells, want.cells) and np.array_equal(got.labels, want.labels), name
+    # Still too few distinct vertices.
+    with pytest.raises(ValueError, match=r"obstacles\[0\]\.vertices: a polygon needs at least 3 distinct"):
+        dv.gvd.load_obstacles(doc([[1, 1], [1, 1], [2, 2], [2, 2], [1, 1]], box))
+
+
 def test_python_documents_equal_their_json_text():
     # Documents of Python objects (numpy arrays and scalars, tuples) are read without a JSON text round
     # trip: the scene must be the one parsed from the text json.dumps writes.

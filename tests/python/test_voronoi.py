@@ -114,6 +114,84 @@ def test_clipped_areas_match_cgal_and_sum_to_the_box(oracle, seed):
                     assert sides <= set(part.neighbors(i).tolist())
 
 
+def check_side_labels(points: np.ndarray, bounds, label: str) -> int:
+    """Every side of every clipped cell carries the right label: a side labelled j lies on the bisector
+    of i and j (both ends equidistant from p_i and p_j), a side labelled -1 on the box's boundary, and
+    a side of positive length shared by i and j is listed by both. Returns the sides checked."""
+    part = dv.voronoi_cells(points, bounds=bounds)
+    scale = float(max(np.ptp(points, axis=0).max(), bounds[2] - bounds[0], bounds[3] - bounds[1]))
+    tol = 1e-12 * scale
+    shared = {}
+    checked = 0
+    for i in range(len(points)):
+        c = part.cell(i).clipped
+        v = c.vertices
+        for k, j in enumerate(c.side_neighbors.tolist()):
+            a, b = v[k], v[(k + 1) % len(v)]
+            where = f"{label}: cell {i} side {k} {a.tolist()}->{b.tolist()} labelled {j}"
+            if j >= 0:
+                for q in (a, b):
+                    di, dj = np.hypot(*(q - points[i])), np.hypot(*(q - points[j]))
+                    assert abs(di - dj) <= tol, f"{where}: not on the bisector of {i} and {j}"
+                length = float(np.hypot(*(b - a)))
+                shared[(i, j)] = shared.get((i, j), 0.0) + length
+            else:
+                on = [abs(a[0] - bounds[0]) <= tol and abs(b[0] - bounds[0]) <= tol,
+                      abs(a[0] - bounds[2]) <= tol and abs(b[0] - bounds[2]) <= tol,
+                      abs(a[1] - bounds[1]) <= tol and abs(b[1] - bounds[1]) <= tol,
+                      abs(a[1] - bounds[3]) <= tol and abs(b[1] - bounds[3]) <= tol]
+                assert any(on), f"{where}: not on the boundary of {bounds}"
+            checked += 1
+    for (i, j), length in shared.items():
+        if length > tol:
+            assert shared.get((j, i), 0.0) == pytest.approx(length, rel=1e-9, abs=tol), \
+                f"{label}: cell {i} has a side of length {length:.3g} on the bisector with {j}, cell {j} not"
+    return checked
+
+
+def test_clipped_sides_labelled_when_a_vertex_lies_on_the_box():
+    # Issue 20: the Voronoi vertex (70, 0) of these three agents lies on the box's bottom edge; the
+    # sides leaving it along a bisector kept the label of the side before.
+    pts = np.array([[55.0, 5.0], [85.0, 5.0], [65.0, 15.0]])
+    box = (0.0, 0.0, 110.0, 50.0)
+    part = dv.voronoi_cells(pts, bounds=box)
+    sides = {i: dict(zip(map(tuple, part.cell(i).clipped.vertices.tolist()),
+                         part.cell(i).clipped.side_neighbors.tolist())) for i in range(3)}
+    assert sides[0][(70.0, 0.0)] == 2 and sides[2][(70.0, 0.0)] == 1 and sides[1][(70.0, 0.0)] == -1
+    check_side_labels(pts, box, "three agents")
+    # The per-agent call (neighbour ids index `others`).
+    cell = dv.voronoi_cell(pts[0], pts[1:], bounds=box).clipped
+    assert dict(zip(map(tuple, cell.vertices.tolist()), cell.side_neighbors.tolist()))[(70.0, 0.0)] == 1
+    cell = dv.voronoi_cell(pts[2], pts[:2], bounds=box).clipped
+    assert dict(zip(map(tuple, cell.vertices.tolist()), cell.side_neighbors.tolist()))[(70.0, 0.0)] == 1
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_clipped_side_labels_on_lattices_and_random_boxes(seed):
+    rng = np.random.default_rng(seed)
+    checked = 0
+    # Square and hexagonal lattices in boxes whose edges pass through Voronoi vertices (half-integers),
+    # through agents (integers) and between them; boxes inside and around the lattice.
+    k = 6 + seed
+    square = np.array([[x, y] for x in range(k) for y in range(k)], dtype=np.float64)
+    hexagonal = np.array([[x + 0.5 * (y % 2), y] for x in range(k) for y in range(k)], dtype=np.float64)
+    for name, pts in (("square", square), ("hexagonal", hexagonal)):
+        for _ in range(12):
+            lo = rng.integers(-2, k // 2, size=2) * 0.5
+            hi = lo + rng.integers(2, 2 * k, size=2) * 0.5
+            checked += check_side_labels(pts, (lo[0], lo[1], hi[0], hi[1]), f"{name} {lo} {hi}")
+    # Random integer points (circumcentres on half-integer box edges) and random reals.
+    for t in range(8):
+        pts = grid_points(100 * seed + t, 40, 12)
+        lo = rng.integers(-1, 4, size=2) * 0.5
+        hi = rng.integers(16, 26, size=2) * 0.5
+        checked += check_side_labels(pts, (lo[0], lo[1], hi[0], hi[1]), f"grid {t}")
+        pts = random_points(100 * seed + t, 60) * 10.0
+        checked += check_side_labels(pts, (rng.uniform(-1, 3), rng.uniform(-1, 3), rng.uniform(7, 11),
+                                           rng.uniform(7, 11)), f"random {t}")
+    assert checked > 1000
+
+
 def test_bounded_cells_measured_and_hull_cells_not_invented():
     pts = random_points(3, 400)
     part = dv.voronoi_cells(pts)

@@ -1,6 +1,8 @@
 // coverage/lloyd.hpp and partition/swarm.hpp: the moving swarm's cells equal limited_cells, the grid
 // survives small moves, Lloyd's cost never increases, agents stay in the environment, results do not
-// depend on the thread count or on the order agents are stored in.
+// depend on the thread count or on the order agents are stored in; the cost keeps its digits at any
+// radius.
+#include "dvoronoi/cells/clip.hpp"
 #include "dvoronoi/coverage/lloyd.hpp"
 
 #include <doctest/doctest.h>
@@ -87,6 +89,58 @@ TEST_CASE("Lloyd in a box: cost never increases, agents stay inside, threads do 
         CHECK(one.points() == two.points());
         CHECK(one.cost() <= prev * (1 + 1e-13));
     }
+}
+
+TEST_CASE("issue 20: the cost at a radius far beyond the environment") {
+    // Once the disks hold the box, H = Σ_i ∫_{V_i ∩ Q} |q - p_i|^2: the Voronoi cells cut to the box by
+    // cells/clip.hpp (every other agent's bisector, in the agent's frame), their polar moments by the
+    // shoelace formula. The old sum R^2 |Q| + Σ (J_i - R^2 M_i) was off by ~1e-16 R^2: 5 at R = 1e6.
+    const Points P = random_points(30, 7, 1.0);
+    const ConvexRegion region = ConvexRegion::box(0, 0, 1, 1);
+    double want = 0.0;
+    for (Index i = 0; i < P.rows(); ++i) {
+        std::vector<Vec2> others;
+        std::vector<Index> ids;
+        for (Index j = 0; j < P.rows(); ++j)
+            if (j != i) {
+                others.push_back(P.row(j).transpose());
+                ids.push_back(j);
+            }
+        const Vec2 c = P.row(i).transpose();
+        const ClippedCell cell = clip_cell(c, others, ids, region);
+        for (std::size_t k = 0; k < cell.vertices.size(); ++k) {
+            const Vec2 u = cell.vertices[k] - c, v = cell.vertices[(k + 1) % cell.vertices.size()] - c;
+            want += (u.x() * v.y() - u.y() * v.x()) / 12.0 * (u.squaredNorm() + v.squaredNorm() + u.dot(v));
+        }
+    }
+    const ConvexPolygon box = ConvexPolygon::box(0, 0, 1, 1);
+    for (double R : {2.0, 1e3, 1e5, 1e6, 1e9, 1e12}) {
+        CAPTURE(R);
+        LloydStepper s(P, R, box);
+        CHECK(s.cost() == doctest::Approx(want).epsilon(1e-13));
+        const CoverageMoments m = coverage_moments(s.swarm(), s.environment());
+        CHECK(std::count(m.open.begin(), m.open.end(), char{1}) == 0);
+    }
+    // Lloyd's cost never increases, also where the rounding of R^2 |Q| exceeded each step's decrease.
+    for (double R : {1e5, 1e6}) {
+        CAPTURE(R);
+        LloydStepper s(P, R, box);
+        double prev = s.cost();
+        for (int t = 0; t < 30; ++t) {
+            const double c = s.step();
+            CHECK(c <= prev);
+            prev = c;
+        }
+    }
+}
+
+TEST_CASE("coverage_cost: uncovered area only while a cell reaches its circle") {
+    const std::vector<double> mass = {0.25, 0.5}, polar = {0.01, 0.02};
+    const double total = 1.0;
+    CHECK(coverage_cost(mass, polar, {0, 0}, 3.0, &total) == doctest::Approx(0.03));
+    CHECK(coverage_cost(mass, polar, {0, 1}, 3.0, &total) == doctest::Approx(0.03 + 9.0 * 0.25));
+    CHECK(coverage_cost(mass, polar, {0, 1}, 3.0, nullptr) == doctest::Approx(0.03 - 9.0 * 0.75));
+    CHECK(coverage_cost({}, {}, {}, 3.0, &total) == doctest::Approx(9.0));  // no agent: nothing covered
 }
 
 TEST_CASE("cells depend on positions only: ids fix the order, a permuted swarm gives the same cells") {

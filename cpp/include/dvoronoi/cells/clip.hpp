@@ -7,7 +7,10 @@
 // combinatorics of the cell (its neighbours, bounded or not) come from the exact predicates; the
 // clipped polygon is a constructed object: its vertices carry rounding error (relative ~1e-15 of the
 // region's size in the agent's frame), so clipped areas over all agents sum to the region's area up
-// to about n * 1e-15 of it.
+// to about n * 1e-15 of it. A cell that meets the region with zero area (along the region's side or at
+// a corner) misses it: empty, like a cell outside it. Each side is labelled with what it lies on, the
+// neighbour whose bisector cut it or the region's boundary (-1), also where a Voronoi vertex lies
+// exactly on the region's boundary.
 #pragma once
 
 #include "dvoronoi/core/predicates.hpp"
@@ -97,7 +100,8 @@ private:
 
 /// A Voronoi cell clipped to a convex region: a convex polygon, counter-clockwise.
 struct ClippedCell {
-    std::vector<Vec2> vertices;        ///< counter-clockwise; empty when the cell misses the region
+    std::vector<Vec2> vertices;        ///< counter-clockwise; empty when the cell misses the region (or
+                                       ///< meets it with zero area)
     std::vector<Index> side_neighbor;  ///< per side (vertex k -> k+1): the Voronoi neighbour, or -1 for the region's boundary
     double area = 0.0;
     Vec2 centroid = Vec2::Constant(std::numeric_limits<double>::quiet_NaN());
@@ -149,7 +153,9 @@ inline ClippedCell clip_cell(const Vec2& center, const std::vector<Vec2>& neighb
             const double fp = f(p), fq = f(q);
             if (fp <= 0.0) {
                 next.push_back(p);
-                next_side.push_back(side[k]);
+                // p on the bisector with q outside: the side from p now runs along the bisector
+                // (the old side leaves the half-plane at p itself).
+                next_side.push_back(fp == 0.0 && fq > 0.0 ? ids[t] : side[k]);
             }
             if ((fp < 0.0 && fq > 0.0) || (fp > 0.0 && fq < 0.0)) {
                 const double s = fp / (fp - fq);
@@ -171,6 +177,18 @@ inline ClippedCell clip_cell(const Vec2& center, const std::vector<Vec2>& neighb
         }
     }
     if (poly.size() < 3) return out;
+    // A cell that only touches the region (along a side of the region, or at a corner) leaves a flat
+    // polygon whose area is rounding noise (each vertex is off by ~1e-16 of its distance from the
+    // agent): it misses the region. Its sides would lie on a bisector and the region's boundary at once.
+    double twice_area = 0.0, fan = 0.0;
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+        const Vec2& p = poly[k];
+        const Vec2& q = poly[(k + 1) % poly.size()];
+        const double w = p.x() * q.y() - p.y() * q.x();
+        twice_area += w;
+        fan += std::fabs(w);
+    }
+    if (!(twice_area > 1e-12 * fan)) return out;
     detail::polygon_measures(poly, center, out);
     for (const Vec2& p : poly) out.vertices.push_back(center + p);
     out.side_neighbor = std::move(side);

@@ -9,7 +9,8 @@
 // Accuracy: the cut points are constructed in floating point (one division or one acos per cut);
 // which vertices lie inside a half-plane is decided once per vertex from the same rounded values, so
 // the cycle is always consistent. Pieces shorter than 1e-13 R left by cuts through a vertex are
-// dropped.
+// dropped. Points on the circle carry ~1e-16 R of rounding, so when the disk holds all of Q (R may be
+// a billion times Q's size) the cell is not cut: clip_environment cuts Q by the cell's bisectors.
 #pragma once
 
 #include "dvoronoi/core/cell.hpp"
@@ -160,6 +161,58 @@ inline void clip_to_halfplane(const std::vector<Piece>& in, double R, const Vec2
 }
 
 }  // namespace detail
+
+/// Does the disk B(center, R) hold all of `env`? Decided with a margin of 1e-12 R^2: a disk that
+/// nearly touches a corner counts as not holding it (clip_cell then cuts its arcs, accurate there).
+inline bool disk_holds(const ConvexPolygon& env, const Vec2& center, double R) {
+    const double r2 = R * R * (1.0 - 1e-12);
+    for (const Vec2& v : env.vertices())
+        if (!((v - center).squaredNorm() < r2)) return false;
+    return true;
+}
+
+/// V_i ∩ Q for a disk that holds all of `env` (see disk_holds): `env` (relative to `center`) cut by
+/// the bisector of every neighbour in `neighbors` (positions relative to `center`; pass the cell's edge
+/// neighbours), into `out`. Pieces are walls (kWall) and edges named by the neighbour whose bisector
+/// cut them (Sutherland-Hodgman, one decision per vertex; a side leaving a vertex that lies exactly on
+/// the bisector runs along it). Nothing here is farther than Q's extent from the agent, whereas the
+/// cell's arcs at radius R >> |Q| would carry a rounding error of ~1e-16 R into every cut. Pieces
+/// shorter than 1e-13 of the cell's extent are dropped, as clip_cell drops them.
+/// \note Thread-safe.
+inline void clip_environment(const ConvexPolygon& env, const Vec2& center, const std::vector<detail::Candidate>& neighbors,
+                             std::vector<Piece>& out, std::vector<Piece>& scratch) {
+    out.clear();
+    for (const Vec2& v : env.vertices()) out.push_back(Piece{kWall, v - center, 0.0});
+    for (const detail::Candidate& q : neighbors) {
+        const Vec2& a = q.p;
+        const double h = 0.5 * a.squaredNorm();
+        scratch.clear();
+        const std::size_t m = out.size();
+        for (std::size_t k = 0; k < m; ++k) {
+            const Vec2& u = out[k].start;
+            const Vec2& v = out[(k + 1) % m].start;
+            const double fu = u.dot(a) - h, fv = v.dot(a) - h;
+            if (fu <= 0.0) scratch.push_back(Piece{fu == 0.0 && fv > 0.0 ? q.id : out[k].neighbor, u, 0.0});
+            if ((fu < 0.0 && fv > 0.0) || (fu > 0.0 && fv < 0.0))  // leaving: along the bisector
+                scratch.push_back(Piece{fu < 0.0 ? q.id : out[k].neighbor, u + (v - u) * (fu / (fu - fv)), 0.0});
+        }
+        out.swap(scratch);
+        if (out.size() < 3) {
+            out.clear();
+            return;
+        }
+    }
+    double extent = 0.0;
+    for (const Piece& p : out) extent = std::max(extent, p.start.norm());
+    const double tol = 1e-13 * extent;
+    for (std::size_t k = 0; k < out.size() && out.size() > 1;) {
+        if ((out[(k + 1) % out.size()].start - out[k].start).norm() <= tol)
+            out.erase(out.begin() + static_cast<std::ptrdiff_t>(k));
+        else
+            ++k;
+    }
+    if (out.size() < 3) out.clear();
+}
 
 /// The cell `local` (pieces relative to `center`, circle radius R) clipped to `env`, into `out`
 /// (relative to `center` too). Walls carry neighbor kWall. `scratch` is reused between calls.

@@ -10,7 +10,16 @@
 // fixed, Σ ∫_{W_i} |q - p_i|^2 φ = Σ (∫_{W_i} |q - C_i|^2 φ + M_i |p_i - C_i|^2) drops (|p_i' - C_i|
 // = (1 - g)|p_i - C_i|), and re-assigning each q to its nearest agent (capped at R^2) can only lower it
 // further. Without an environment (Q = the plane) the constant R^2 Φ(Q) is left out: the reported
-// cost is Σ_i (J_i - R^2 M_i) <= 0.
+// cost is Σ_i (J_i - R^2 M_i) <= 0 (each term at most half the size of R^2 M_i: nothing cancels).
+//
+// With an environment the cost is summed as H = Σ_i J_i + R^2 Φ(U), U = Q \ ∪ B(p_i, R) the uncovered
+// part, never as the difference of R^2 Φ(Q) and Σ R^2 M_i: those agree to ~1e-16 R^2 Φ(Q), which at
+// R = 1e6 in a unit square is 100 times H itself. U is empty exactly when no clipped cell reaches its
+// circle (an arc of W_i inside Q borders U; U's boundary inside Q is made of such arcs), always once R
+// exceeds Q's diameter: then H = Σ J_i, positive terms. Otherwise Φ(U) = Φ(Q) - Σ M_i (compensated
+// sum), whose rounding of ~1e-16 R^2 Φ(Q) is small against H since some point of Q is then R away
+// from every agent: for uniform density H >= R^4 |Q| / (16 D^2), D the diameter of Q, so the
+// relative error stays below ~1e-14 (D/R)^2, and near 1e-16 wherever most of Q is uncovered.
 //
 // Agents stay in Q: W_i ⊂ Q is convex and so contains C_i, and Q contains the segment from p_i to
 // C_i. A move that rounding puts a hair outside Q is shortened (halved until inside, exactly tested).
@@ -24,6 +33,7 @@
 #include "dvoronoi/partition/swarm.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <functional>
 #include <limits>
@@ -38,7 +48,7 @@ namespace detail {
 
 /// Per-thread scratch of the coverage computations.
 struct CoverageWorkspace {
-    std::vector<Candidate> cand;
+    std::vector<Candidate> cand, edges;
     std::vector<Index> same;
     LimitedCell cell;
     CellWorkspace ws;
@@ -60,6 +70,19 @@ inline void clipped_local_cell(const Swarm& swarm, Index i, const ConvexPolygon*
     }
     const Vec2 c = swarm.point(i);
     boundary_scan(c, w.cand, swarm.radius(), w.cell, w.ws);
+    if (env && disk_holds(*env, c, swarm.radius())) {
+        // The disk holds Q, so W_i = V_i ∩ Q: Q cut by the edge neighbours' bisectors, without the
+        // arcs far outside Q (R may be 1e9 |Q|) that cutting the cell would construct.
+        w.edges.clear();
+        for (const Piece& p : w.cell.pieces) {
+            if (p.neighbor < 0) continue;
+            const auto it = std::lower_bound(w.cand.begin(), w.cand.end(), p.neighbor,
+                                             [](const Candidate& a, Index want) { return a.id < want; });
+            w.edges.push_back({it->p - c, p.neighbor});  // candidates are sorted by id (Swarm::within)
+        }
+        clip_environment(*env, c, w.edges, w.clipped, w.scratch);
+        return;
+    }
     w.local = w.cell.pieces;
     for (Piece& p : w.local) p.start -= c;
     if (env)
@@ -108,18 +131,48 @@ void for_each_agent(Index count, int threads, const ProgressFn& progress, F&& f)
 
 }  // namespace detail
 
+/// Does the clipped cell reach its circle inside the environment (has it an arc)? Then the disks
+/// leave part of Q uncovered (see the top of this file).
+inline bool reaches_circle(const std::vector<Piece>& clipped) {
+    for (const Piece& p : clipped)
+        if (p.neighbor == kArc) return true;
+    return false;
+}
+
+/// The cost H (top of this file) from per-agent moments M_i (`mass`), J_i (`polar`) and whether W_i
+/// reaches its circle (`open`), summed without cancellation: `total` = Φ(Q), or nullptr for the plane
+/// (then Σ_i (J_i - R^2 M_i)). With an environment H = Σ J_i + R^2 Φ(U): Φ(U) = 0 when there are
+/// agents and no cell is open, else Φ(Q) - Σ M_i by a compensated sum (at least 0).
+inline double coverage_cost(const std::vector<double>& mass, const std::vector<double>& polar,
+                            const std::vector<char>& open, double radius, const double* total) {
+    const double r2 = radius * radius;
+    double s = 0.0;
+    if (!total) {
+        for (std::size_t i = 0; i < mass.size(); ++i) s += polar[i] - r2 * mass[i];
+        return s;
+    }
+    for (const double j : polar) s += j;
+    // No agent: nothing is covered. Else U is empty exactly when no cell is open.
+    if (!mass.empty() && std::find(open.begin(), open.end(), char{1}) == open.end()) return s;
+    // Φ(Q) - Σ M_i, Neumaier's compensated sum: one rounding of the result, not one per agent.
+    double u = *total, comp = 0.0;
+    for (const double m : mass) {
+        const double t = u - m;
+        comp += std::fabs(u) >= m ? (u - t) - m : (-m - t) + u;
+        u = t;
+    }
+    return s + r2 * std::max(u + comp, 0.0);
+}
+
 /// Uniform-density moments of the clipped cells of agents 0..owned-1 of `swarm`.
 struct CoverageMoments {
     std::vector<double> mass;   ///< M_i (area of W_i)
     Points centroid;            ///< C_i (the agent itself when W_i is empty)
     std::vector<double> polar;  ///< J_i = ∫_{W_i} |q - p_i|^2
+    std::vector<char> open;     ///< W_i reaches its circle (reaches_circle)
 
-    /// Σ_i (J_i - R^2 M_i), summed in agent order.
-    double cost_terms(double radius) const {
-        double s = 0.0;
-        for (std::size_t i = 0; i < mass.size(); ++i) s += polar[i] - radius * radius * mass[i];
-        return s;
-    }
+    /// H at these moments (coverage_cost); `total` = Φ(Q), nullptr for the plane.
+    double cost(double radius, const double* total) const { return coverage_cost(mass, polar, open, radius, total); }
 };
 
 /// \param owned the first `owned` agents get cells (the rest only shape them: an MPI halo); -1 = all.
@@ -131,6 +184,7 @@ inline CoverageMoments coverage_moments(const Swarm& swarm, const ConvexPolygon*
     CoverageMoments out;
     out.mass.assign(static_cast<std::size_t>(n), 0.0);
     out.polar.assign(static_cast<std::size_t>(n), 0.0);
+    out.open.assign(static_cast<std::size_t>(n), 0);
     out.centroid.resize(n, 2);
     detail::for_each_agent(n, threads, progress, [&](Index i, detail::CoverageWorkspace& w) {
         detail::clipped_local_cell(swarm, i, env, w);
@@ -138,6 +192,7 @@ inline CoverageMoments coverage_moments(const Swarm& swarm, const ConvexPolygon*
         const auto ii = static_cast<std::size_t>(i);
         out.mass[ii] = m.mass;
         out.polar[ii] = m.polar;
+        out.open[ii] = reaches_circle(w.clipped);
         out.centroid.row(i) = m.centroid(swarm.point(i)).transpose();
     });
     return out;
@@ -194,6 +249,7 @@ inline LimitedPartition coverage_cells(const Swarm& swarm, const ConvexPolygon* 
 struct CoverageQuadrature {
     std::vector<double> x, y, w;
     std::vector<Index> ptr{0};
+    std::vector<char> open;  ///< per cell: W_i reaches its circle (reaches_circle); empty for Q itself
 };
 
 inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPolygon* env, int order,
@@ -201,9 +257,12 @@ inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPo
     const GaussRule g(order);
     const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
     std::vector<std::vector<double>> xs(static_cast<std::size_t>(n)), ys(xs), ws(xs);
+    CoverageQuadrature out;
+    out.open.assign(static_cast<std::size_t>(n), 0);
     detail::for_each_agent(n, threads, nullptr, [&](Index i, detail::CoverageWorkspace& w) {
         detail::clipped_local_cell(swarm, i, env, w);
         const auto ii = static_cast<std::size_t>(i);
+        out.open[ii] = reaches_circle(w.clipped);
         const Vec2 c = swarm.point(i);
         const std::size_t k = quadrature_size(w.clipped, g);
         xs[ii].clear();
@@ -218,7 +277,6 @@ inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPo
             ws[ii].push_back(wt);
         });
     });
-    CoverageQuadrature out;
     for (Index i = 0; i < n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
         out.x.insert(out.x.end(), xs[ii].begin(), xs[ii].end());
@@ -323,8 +381,8 @@ public:
     }
 
     double cost_of(const CoverageMoments& m) const {
-        const double r2 = radius() * radius();
-        return m.cost_terms(radius()) + (env_ ? r2 * env_->area() : 0.0);
+        const double area = env_ ? env_->area() : 0.0;
+        return m.cost(radius(), env_ ? &area : nullptr);
     }
 
 private:

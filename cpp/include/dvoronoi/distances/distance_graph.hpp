@@ -62,6 +62,7 @@ struct DistanceGraph {
 /// with an infinite value mean "not detected" and are skipped (a pair detected in one direction only
 /// is then taken as given by the other direction's value).
 /// \param where names entry k in messages (e.g. "distances[3, 7]" or "file.txt:12:5"); default "entry k".
+/// \param ids names robot i as ids[i] in messages (the caller's robot IDs); empty: by its index.
 /// \throws InputError naming the entry for: n < 0, an index outside [0, n), i == j, a value that is
 ///         NaN, zero or negative, the same directed pair twice, or (Require) two different values of
 ///         one pair.
@@ -69,9 +70,13 @@ struct DistanceGraph {
 inline DistanceGraph make_distance_graph(Index n, const std::vector<Index>& rows, const std::vector<Index>& cols,
                                          const std::vector<double>& vals, bool squared = false,
                                          Symmetry symmetry = Symmetry::Require,
-                                         const std::function<std::string(std::size_t)>& where = nullptr) {
+                                         const std::function<std::string(std::size_t)>& where = nullptr,
+                                         const std::vector<Index>& ids = {}) {
     const auto name = [&](std::size_t k) {
         return where ? where(k) : "entry " + std::to_string(k);
+    };
+    const auto robot = [&](Index i) {
+        return std::to_string(ids.empty() || i < 0 || i >= static_cast<Index>(ids.size()) ? i : ids[static_cast<std::size_t>(i)]);
     };
     if (n < 0) throw InputError("n must be >= 0, got " + std::to_string(n));
     if (rows.size() != cols.size() || rows.size() != vals.size())
@@ -92,12 +97,12 @@ inline DistanceGraph make_distance_graph(Index n, const std::vector<Index>& rows
             throw InputError(name(k) + ": robot index " + std::to_string(i < 0 || i >= n ? i : j) +
                              " out of range [0, " + std::to_string(n) + ")");
         if (std::isinf(v) && v > 0) continue;  // not detected
-        if (i == j) throw InputError(name(k) + ": a robot's distance to itself (" + std::to_string(i) + ", " + std::to_string(j) + ") is not a measurement");
+        if (i == j) throw InputError(name(k) + ": a robot's distance to itself (" + robot(i) + ", " + robot(j) + ") is not a measurement");
         if (!(v > 0.0) || !std::isfinite(v)) {
             char got[32];
             std::snprintf(got, sizeof got, "%.17g", v);
-            throw InputError(name(k) + ": " + what + " between robots " + std::to_string(i) + " and " +
-                             std::to_string(j) + " must be positive and finite (or inf = not detected), got " + got +
+            throw InputError(name(k) + ": " + what + " between robots " + robot(i) + " and " +
+                             robot(j) + " must be positive and finite (or inf = not detected), got " + got +
                              (v == 0.0 ? " (coinciding robots have no Voronoi cells)" : ""));
         }
         e.push_back({std::min(i, j), std::max(i, j), v, k, i < j});
@@ -114,7 +119,7 @@ inline DistanceGraph make_distance_graph(Index n, const std::vector<Index>& rows
         double v = e[a].v;
         if (b - a > 2 || (b - a == 2 && e[a].forward == e[a + 1].forward)) {
             const Entry& dup = b - a > 2 ? e[a + 2] : e[a + 1];
-            throw InputError(name(dup.k) + ": the pair (" + std::to_string(e[a].lo) + ", " + std::to_string(e[a].hi) +
+            throw InputError(name(dup.k) + ": the pair (" + robot(e[a].lo) + ", " + robot(e[a].hi) +
                              ") is given twice in the same direction (first at " + name(e[a].k) + ")");
         }
         if (b - a == 2) {
@@ -122,8 +127,8 @@ inline DistanceGraph make_distance_graph(Index n, const std::vector<Index>& rows
             if (symmetry == Symmetry::Require && w != v) {
                 char msg[96];
                 std::snprintf(msg, sizeof msg, "%.17g vs %.17g", v, w);
-                throw InputError(name(e[a + 1].k) + ": the two directions of the pair (" + std::to_string(e[a].lo) +
-                                 ", " + std::to_string(e[a].hi) + ") differ (" + msg + ", other at " + name(e[a].k) +
+                throw InputError(name(e[a + 1].k) + ": the two directions of the pair (" + robot(e[a].lo) +
+                                 ", " + robot(e[a].hi) + ") differ (" + msg + ", other at " + name(e[a].k) +
                                  "); pass symmetric measurements or average them (symmetrize)");
             }
             v = 0.5 * v + 0.5 * w;

@@ -115,14 +115,25 @@ inline std::vector<Vec2> clean_ring(std::vector<Vec2> v) {
     bool changed = true;
     while (changed && v.size() >= 3) {
         changed = false;
+        // Runs of equal consecutive vertices (cyclically: a closed ring repeats its first vertex at
+        // the end) become one vertex first. Testing a copy against its original neighbours would drop
+        // both copies (orient(p, c, q) is 0 when p == c), and with them a corner.
         std::vector<Vec2> out;
+        for (const Vec2& c : v)
+            if (out.empty() || c != out.back()) out.push_back(c);
+        while (out.size() > 1 && out.back() == out.front()) out.pop_back();
+        changed = out.size() != v.size();
+        v.swap(out);
+        out.clear();
         const std::size_t n = v.size();
+        if (n < 3) break;
         for (std::size_t i = 0; i < n; ++i) {
             const Vec2& p = v[(i + n - 1) % n];
             const Vec2& c = v[i];
             const Vec2& q = v[(i + 1) % n];
-            if (c == q || pred::orient(p, c, q) == 0) {
-                // c repeats q, or lies on the line p-q: drop it (a spike p-c-p also lands here)
+            if (pred::orient(p, c, q) == 0) {
+                // c lies on the line p-q: drop it (a spike p-c-p also lands here). Neighbours are
+                // distinct, so two adjacent drops mean all four vertices lie on one line.
                 changed = true;
                 continue;
             }

@@ -1,11 +1,16 @@
 // Reading measured inter-robot distances from text files (`i j d` per line) and writing the
 // distance-only neighbour result as JSON (the same fields as Python's DistanceNeighbors.to_json) or
 // CSV. Errors name FILE:LINE:COLUMN.
+//
+// i and j are robot IDs (serial numbers are normal input): the robots are the IDs that occur, numbered
+// 0..n-1 in ascending ID order, and the outputs name them by ID. Memory follows the file, never the
+// largest ID. A file whose IDs are exactly 0..n-1 reads and writes as robot indices, as before.
 #pragma once
 
 #include "dvoronoi/distances/neighbors_from_distances.hpp"
 #include "dvoronoi/io/point_file.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <ostream>
 #include <string>
@@ -26,8 +31,8 @@ struct DistanceFile {
 };
 
 /// Parses `i j d` lines: whitespace- or comma-separated, `#` comments, blank lines, an optional header
-/// line (no numeric field). i and j are 0-based robot indices (non-negative integers), d > 0 a finite
-/// distance (or squared distance). A pair may appear once or in both directions.
+/// line (no numeric field). i and j are robot IDs (non-negative integers), d > 0 a finite distance (or
+/// squared distance). A pair may appear once or in both directions.
 /// \throws InputError "NAME:LINE:COLUMN: ..." for a malformed line or value.
 inline DistanceFile parse_distance_text(std::string_view text, const std::string& name) {
     DistanceFile out;
@@ -99,21 +104,60 @@ inline DistanceFile read_distance_file(const std::string& path) {
     return parse_distance_text(read_file_bytes(path), name);
 }
 
-/// The detection graph of a distance file: n = `n` if given (>= 0), else the largest index + 1.
-/// \throws InputError naming FILE:LINE:COLUMN (index >= n, a pair twice in one direction, two
+/// The robot IDs of a distance file: every ID in it once, ascending (robot k is ids[k]). O(m log m).
+inline std::vector<Index> robot_ids(const DistanceFile& f) {
+    std::vector<Index> ids;
+    ids.reserve(2 * f.rows.size());
+    ids.insert(ids.end(), f.rows.begin(), f.rows.end());
+    ids.insert(ids.end(), f.cols.begin(), f.cols.end());
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+}
+
+namespace detail {
+/// Robot k is ID k: no IDs given, or (ascending, distinct) IDs exactly 0..n-1.
+inline bool ids_are_indices(const std::vector<Index>& ids) {
+    return ids.empty() || ids.back() == static_cast<Index>(ids.size()) - 1;
+}
+}  // namespace detail
+
+/// The detection graph of a distance file with robot k = ids[k] (`ids` from robot_ids: ascending).
+/// \throws InputError naming FILE:LINE:COLUMN and robots by ID (a pair twice in one direction, two
+///         different values of a pair without `average`).
+inline dist::DistanceGraph distance_graph(const DistanceFile& f, const std::vector<Index>& ids, bool squared,
+                                          bool average) {
+    const auto position = [&ids](Index id) {
+        return static_cast<Index>(std::lower_bound(ids.begin(), ids.end(), id) - ids.begin());
+    };
+    std::vector<Index> rows(f.rows.size()), cols(f.cols.size());
+    for (std::size_t k = 0; k < f.rows.size(); ++k) {
+        rows[k] = position(f.rows[k]);
+        cols[k] = position(f.cols[k]);
+    }
+    return dist::make_distance_graph(static_cast<Index>(ids.size()), rows, cols, f.values, squared,
+                                     average ? dist::Symmetry::Average : dist::Symmetry::Require,
+                                     [&f](std::size_t k) { return f.where(k); },
+                                     detail::ids_are_indices(ids) ? std::vector<Index>{} : ids);
+}
+
+/// The detection graph of a distance file with `n` robots 0..n-1, robot k being ID k (robots without
+/// a measurement are isolated).
+/// \throws InputError naming FILE:LINE:COLUMN (an ID outside [0, n), a pair twice in one direction, two
 ///         different values of a pair without `average`).
 inline dist::DistanceGraph distance_graph(const DistanceFile& f, Index n, bool squared, bool average) {
-    Index need = 0;
-    for (std::size_t k = 0; k < f.rows.size(); ++k) need = std::max({need, f.rows[k] + 1, f.cols[k] + 1});
-    if (n < 0) n = need;
     return dist::make_distance_graph(n, f.rows, f.cols, f.values, squared,
                                      average ? dist::Symmetry::Average : dist::Symmetry::Require,
                                      [&f](std::size_t k) { return f.where(k); });
 }
 
 /// The result as JSON: {"kind": "distance_neighbors", "n", "consistency", "squared", "indptr",
-/// "indices", "on_hull", "path_length", "added", "detected"} (Python's to_json writes the same).
-inline void write_json(std::ostream& os, const dist::DistanceNeighbors& r, bool squared) {
+/// "indices", "on_hull", "path_length", "added", "detected"} (Python's to_json writes the same). With
+/// robot IDs `ids` (robot k is ids[k], ascending) that are not 0..n-1, also "ids" after "n": row k is
+/// robot ids[k], and "indices" lists neighbours by ID.
+inline void write_json(std::ostream& os, const dist::DistanceNeighbors& r, bool squared,
+                       const std::vector<Index>& ids = {}) {
+    const bool by_id = !detail::ids_are_indices(ids);
     const auto list = [&os](const auto& v, auto&& item) {
         os << '[';
         for (std::size_t k = 0; k < v.size(); ++k) {
@@ -123,11 +167,17 @@ inline void write_json(std::ostream& os, const dist::DistanceNeighbors& r, bool 
         os << ']';
     };
     const auto num = [&os](Index x) { os << x; };
-    os << "{\"kind\": \"distance_neighbors\", \"n\": " << r.n << ", \"consistency\": " << (r.consistency ? "true" : "false")
+    const auto id = [&](Index x) { os << (by_id ? ids[static_cast<std::size_t>(x)] : x); };
+    os << "{\"kind\": \"distance_neighbors\", \"n\": " << r.n;
+    if (by_id) {
+        os << ", \"ids\": ";
+        list(ids, num);
+    }
+    os << ", \"consistency\": " << (r.consistency ? "true" : "false")
        << ", \"squared\": " << (squared ? "true" : "false") << ", \"indptr\": ";
     list(r.indptr, num);
     os << ", \"indices\": ";
-    list(r.indices, num);
+    list(r.indices, id);
     os << ", \"on_hull\": ";
     list(r.on_hull, [&os](char h) { os << (h ? "true" : "false"); });
     os << ", \"path_length\": ";
@@ -140,13 +190,16 @@ inline void write_json(std::ostream& os, const dist::DistanceNeighbors& r, bool 
 }
 
 /// The result as CSV: robot,on_hull,detected,neighbors (neighbours space-separated, path order first,
-/// then the consistency additions).
-inline void write_csv(std::ostream& os, const dist::DistanceNeighbors& r) {
+/// then the consistency additions), one row per robot in ascending ID order; with robot IDs `ids`
+/// (robot k is ids[k]) robots and neighbours are written by ID.
+inline void write_csv(std::ostream& os, const dist::DistanceNeighbors& r, const std::vector<Index>& ids = {}) {
+    const bool by_id = !detail::ids_are_indices(ids);
+    const auto id = [&](Index x) { return by_id ? ids[static_cast<std::size_t>(x)] : x; };
     os << "robot,on_hull,detected,neighbors\n";
     for (Index i = 0; i < r.n; ++i) {
         const auto ii = static_cast<std::size_t>(i);
-        os << i << ',' << (r.on_hull[ii] ? 1 : 0) << ',' << r.detected[ii] << ',';
-        for (Index q = r.indptr[ii]; q < r.indptr[ii + 1]; ++q) os << (q > r.indptr[ii] ? " " : "") << r.indices[static_cast<std::size_t>(q)];
+        os << id(i) << ',' << (r.on_hull[ii] ? 1 : 0) << ',' << r.detected[ii] << ',';
+        for (Index q = r.indptr[ii]; q < r.indptr[ii + 1]; ++q) os << (q > r.indptr[ii] ? " " : "") << id(r.indices[static_cast<std::size_t>(q)]);
         os << '\n';
     }
 }
