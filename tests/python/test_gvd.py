@@ -411,7 +411,7 @@ def test_closed_rings_keep_every_corner():
         for x, y in zip(pa, pb):
             assert x[0] == y[0] and x[1] == y[1] and np.array_equal(first_lowest(x[2]), first_lowest(y[2]))
 
-    want = dv.grid_voronoi(plain, resolution=80)
+    want = dv.grid_voronoi(plain, cells=80)
     for name, (ring, area) in variants.items():
         scene = dv.gvd.load_obstacles(doc(ring, area))
         assert scene.n_labels == plain.n_labels == 3 + 4, name
@@ -422,7 +422,7 @@ def test_closed_rings_keep_every_corner():
         for c in square:
             q = (c[0] + (c[0] - 50) / 10, c[1] + (c[1] - 50) / 10)
             assert scene.nearest(q) == (0, pytest.approx(2.0)), (name, c)
-        got = dv.grid_voronoi(doc(ring, area), resolution=80)
+        got = dv.grid_voronoi(doc(ring, area), cells=80)
         assert np.array_equal(got.cells, want.cells) and np.array_equal(got.labels, want.labels), name
     # Still too few distinct vertices.
     with pytest.raises(ValueError, match=r"obstacles\[0\]\.vertices: a polygon needs at least 3 distinct"):
