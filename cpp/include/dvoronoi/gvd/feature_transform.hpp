@@ -17,12 +17,14 @@
 // Rows are split over worker threads (pass 1 by columns); the result is identical for any count.
 #pragma once
 
+#include "dvoronoi/core/pages.hpp"
 #include "dvoronoi/gvd/occupancy_grid.hpp"
 #include "dvoronoi/gvd/team.hpp"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -145,6 +147,73 @@ public:
         k_ = 0;
     }
 
+    /// build() for a whole free run [s, t] (columns s-1 and t+1 occupied or outside, offset 0 in the
+    /// row): no range checks, and each column's V and y computed once for the build and the queries.
+    void build_run(const OccupancyGrid& g, const FeatureMap& f, std::int32_t r, std::int32_t s, std::int32_t t) {
+        W_ = g.cols;
+        Y_ = 2 * (g.rows - 1 - r) + 1;
+        vg_ = &f.vgap[f.at(r, 0)];
+        ca_ = s - 1;
+        cb_ = t + 1;
+        const std::size_t m = static_cast<std::size_t>(t - s + 3);  // edges s .. t+1, one spare
+        if (hA_.size() < m) { hA_.resize(m); he_.resize(m); hy_.resize(m); cv_.resize(m); cy_.resize(m); }
+        std::int64_t* cv = cv_.data();  // V and y of columns s .. t at index x - s
+        std::int32_t* cy = cy_.data();
+        for (std::int32_t x = s; x <= t; ++x) {
+            const std::int32_t k = vg_[x];
+            const std::int64_t a = k < 0 ? -k : k;
+            cv[x - s] = (2 * a - 1) * (2 * a - 1);
+            cy[x - s] = k > 0 ? Y_ + 1 - 2 * k : Y_ - 1 - 2 * k;  // free pixels: k != 0
+        }
+        std::int64_t* hA = hA_.data();
+        std::int32_t* he = he_.data();
+        std::int32_t* hy = hy_.data();
+        std::size_t top = 0;
+        auto push = [&](std::int32_t e, std::int64_t off, std::int32_t y) {
+            const std::int64_t Au = off + 4 * std::int64_t{e} * e;
+            while (top >= 2) {
+                const std::int64_t Aq = hA[top - 1], Ap = hA[top - 2];
+                const std::int64_t eq = he[top - 1], ep = he[top - 2];
+                if ((Au - Aq) * (eq - ep) <= (Aq - Ap) * (e - eq)) --top;
+                else break;
+            }
+            hA[top] = Au;
+            he[top] = e;
+            hy[top] = y;
+            ++top;
+        };
+        push(s, 0, Y_);  // the occupied (or outside) pixel left of the run, in this row
+        for (std::int32_t e = s + 1; e <= t; ++e) {
+            const std::int64_t a = cv[e - 1 - s], b = cv[e - s];
+            const std::int32_t ya = cy[e - 1 - s], yb = cy[e - s];
+            const bool left = a < b || (a == b && ya <= yb);  // the nearer square; equal: the lower point
+            push(e, left ? a : b, left ? ya : yb);
+        }
+        push(t + 1, 0, Y_);
+        top_ = top;
+        k_ = 0;
+        run_s_ = s;
+    }
+
+    /// Queries after build_run, for ascending x of the run.
+    Candidate2 query_run(std::int32_t x) {
+        const std::int64_t X = 2 * x + 1, X4 = 4 * X;
+        std::size_t k = k_;
+        std::int64_t best = hA_[k] - X4 * he_[k];
+        while (k + 1 < top_) {
+            const std::int64_t nxt = hA_[k + 1] - X4 * he_[k + 1];
+            if (nxt >= best) break;
+            best = nxt;
+            ++k;
+        }
+        k_ = k;
+        const std::int64_t e = he_[k], sq = best + X * X;
+        const std::int64_t own = cv_[static_cast<std::size_t>(x - run_s_)];
+        // the pixel's own column (dx = 0) wins ties against edges to its right only
+        if (own < sq || (own == sq && 2 * e > X)) return {own, static_cast<std::int32_t>(X), cy_[static_cast<std::size_t>(x - run_s_)]};
+        return {sq, static_cast<std::int32_t>(2 * e), hy_[k]};
+    }
+
     /// The nearest candidate of pixel x among the envelope's squares. Fastest when queries come in
     /// ascending x (the minimising edge only moves right), correct in any order: along the envelope
     /// the values at one x fall, then rise, and the first minimiser is the smallest edge (tie rule).
@@ -184,7 +253,10 @@ private:
     const std::int16_t* vg_ = nullptr;
     std::vector<std::int64_t> hA_;  // envelope: A = offset + 4e^2, edge e, nearest point's y
     std::vector<std::int32_t> he_, hy_;
+    std::vector<std::int64_t> cv_;  // build_run: the run's columns' V and nearest y
+    std::vector<std::int32_t> cy_;
     std::size_t top_ = 0, k_ = 0;
+    std::int32_t run_s_ = 0;
 };
 
 /// Pass 2 over row r: each free run [s, t] against the squares of columns s-1 .. t+1 (the
@@ -203,11 +275,12 @@ inline void row_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t r, RowE
             ++c;
             continue;
         }
-        std::int32_t t = c;
-        while (t + 1 < W && !o[t + 1]) ++t;
-        env.build(g, f, r, c - 1, t + 1);
+        // the run ends before the next occupied pixel (memchr scans a word at a time)
+        const void* next = std::memchr(o + c, 1, static_cast<std::size_t>(W - c));
+        const std::int32_t t = next ? static_cast<std::int32_t>(static_cast<const std::uint8_t*>(next) - o) - 1 : W - 1;
+        env.build_run(g, f, r, c, t);
         for (std::int32_t x = c; x <= t; ++x) {
-            const Candidate2 n = env.query(x);
+            const Candidate2 n = env.query_run(x);
             fx[x] = static_cast<std::int16_t>(n.x);
             fy[x] = static_cast<std::int16_t>(n.y);
         }
@@ -225,9 +298,10 @@ inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
     FeatureMap f;
     f.rows = g.rows;
     f.cols = g.cols;
-    f.vgap.resize(g.size());
-    f.fx.resize(g.size());
-    f.fy.resize(g.size());
+    // filled in order: pages mapped in bulk, not one fault each (core/pages.hpp)
+    ::dvoronoi::detail::assign_prefaulted(f.vgap, g.size());
+    ::dvoronoi::detail::assign_prefaulted(f.fx, g.size());
+    ::dvoronoi::detail::assign_prefaulted(f.fy, g.size());
     const int k_cols = std::max(1, std::min(workers, g.cols / 64 > 0 ? g.cols / 64 : 1));
     run_team(k_cols, [&](int k) {
         const auto c0 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.cols) * k / k_cols);

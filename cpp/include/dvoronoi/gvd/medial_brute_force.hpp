@@ -1,7 +1,8 @@
 // The brute-force oracle of the medial diagram (SPEC: computable on small maps): every free pixel's
 // nearest point found by scanning every occupied square and the map's four outside half-planes, with
 // the same tie rule (smallest squared distance, then x, then y), then the pair rule of
-// medial_diagram.hpp. Shares no code with the two-pass transform. O((rows x cols) x occupied).
+// medial_diagram.hpp with the box rule's join searched square by square. Shares no code with the
+// two-pass transform or BoxJoin. O((rows x cols) x occupied).
 #pragma once
 
 #include "dvoronoi/gvd/medial_diagram.hpp"
@@ -50,12 +51,48 @@ inline FeatureMap brute_force_features(const OccupancyGrid& g) {
     return f;
 }
 
+namespace detail {
+
+/// The box rule's join by the definition: a breadth-first search over the occupied squares that meet
+/// the grown box (none of BoxJoin's shortcuts or bit tricks).
+struct JoinByDefinition {
+    bool operator()(const OccupancyGrid& g, std::int32_t ax, std::int32_t ay, std::int32_t bx, std::int32_t by) const {
+        const double xlo = std::min(ax, bx) - 2, xhi = std::max(ax, bx) + 2, ylo = std::min(ay, by) - 2, yhi = std::max(ay, by) + 2;
+        auto meets = [&](std::int32_t c, std::int32_t j) { return 2.0 * c <= xhi && 2.0 * c + 2 >= xlo && 2.0 * j <= yhi && 2.0 * j + 2 >= ylo; };
+        auto holds = [](std::int32_t c, std::int32_t j, std::int32_t x, std::int32_t y) {
+            return 2 * c <= x && x <= 2 * c + 2 && 2 * j <= y && y <= 2 * j + 2;
+        };
+        std::vector<std::array<std::int32_t, 2>> todo, seen;
+        for (std::int32_t j = -1; j <= g.rows; ++j)
+            for (std::int32_t c = -1; c <= g.cols; ++c)
+                if (meets(c, j) && g.blocked(g.rows - 1 - j, c) && holds(c, j, ax, ay)) todo.push_back({c, j});
+        seen = todo;
+        while (!todo.empty()) {
+            const auto s = todo.back();
+            todo.pop_back();
+            if (holds(s[0], s[1], bx, by)) return true;
+            for (std::int32_t dj = -1; dj <= 1; ++dj)
+                for (std::int32_t dc = -1; dc <= 1; ++dc) {
+                    const std::array<std::int32_t, 2> n{s[0] + dc, s[1] + dj};
+                    if (n[0] < -1 || n[0] > g.cols || n[1] < -1 || n[1] > g.rows || !meets(n[0], n[1]) ||
+                        !g.blocked(g.rows - 1 - n[1], n[0]) || std::find(seen.begin(), seen.end(), n) != seen.end())
+                        continue;
+                    seen.push_back(n);
+                    todo.push_back(n);
+                }
+        }
+        return false;
+    }
+};
+
+}  // namespace detail
+
 /// The diagram mask from brute-force nearest points.
 inline std::vector<std::uint8_t> brute_force_medial(const OccupancyGrid& g, const MedialOptions& o = {}) {
     check_medial_options(o);
     const FeatureMap f = brute_force_features(g);
     const detail::PairRule rule(o);
-    detail::BoxJoin join;
+    detail::JoinByDefinition join;
     std::vector<std::uint8_t> mask(g.size(), 0);
     for (std::int32_t r = 0; r < g.rows; ++r)
         for (std::int32_t c = 0; c < g.cols; ++c) mask[f.at(r, c)] = detail::on_diagram(g, f, rule, join, r, c);

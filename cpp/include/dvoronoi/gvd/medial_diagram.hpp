@@ -27,8 +27,10 @@
 #include <algorithm>
 #include <array>
 #include <climits>
+#include <cstring>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -54,62 +56,121 @@ namespace detail {
 /// a, b in doubled units.
 class BoxJoin {
 public:
+    BoxJoin() = default;
+    /// With the map's bits (kept by MedialDiagram), box rows are read a word at a time.
+    explicit BoxJoin(const OccupancyBits* bits) : bits_(bits) {}
+
     bool operator()(const OccupancyGrid& g, std::int32_t ax, std::int32_t ay, std::int32_t bx, std::int32_t by) {
         // the box spanned by a and b, grown by one pixel (two doubled units) on every side
         const std::int32_t xlo = std::min(ax, bx) - 2, xhi = std::max(ax, bx) + 2;
         const std::int32_t ylo = std::min(ay, by) - 2, yhi = std::max(ay, by) + 2;
         // square column c covers [2c, 2c+2]; it meets [xlo, xhi] when 2c <= xhi and 2c + 2 >= xlo
         c0_ = std::max<std::int32_t>(-1, ceil_half(xlo - 2));
-        const std::int32_t c1 = std::min<std::int32_t>(g.cols, xhi >> 1);
+        c1_ = std::min<std::int32_t>(g.cols, xhi >> 1);
         j0_ = std::max<std::int32_t>(-1, ceil_half(ylo - 2));  // j: square row counted from the bottom
-        const std::int32_t j1 = std::min<std::int32_t>(g.rows, yhi >> 1);
-        nw_ = c1 - c0_ + 1;
-        const std::int32_t nh = j1 - j0_ + 1;
-        cell_.assign(static_cast<std::size_t>(nw_ * nh), 0);  // 0 free, 1 occupied, 2 reached
-        for (std::int32_t j = j0_; j <= j1; ++j)
-            for (std::int32_t c = c0_; c <= c1; ++c)
-                cell_[idx(c, j)] = g.blocked(g.rows - 1 - j, c) ? 1 : 0;
+        j1_ = std::min<std::int32_t>(g.rows, yhi >> 1);
+        // Most calls come from spurs whose two points lie on one square or on touching squares.
+        std::array<std::int32_t, 8> sa{}, sb{};
+        const int na = squares_at(g, ax, ay, sa), nb = squares_at(g, bx, by, sb);
+        for (int i = 0; i < na; i += 2)
+            for (int k = 0; k < nb; k += 2)
+                if (std::abs(sa[i] - sb[k]) <= 1 && std::abs(sa[i + 1] - sb[k + 1]) <= 1) return true;
+        const std::int32_t nw = c1_ - c0_ + 1, nh = j1_ - j0_ + 1;
+        if (nw > 64) return flood_fill(g, sa, na, sb, nb);
+        // Bit-parallel flood fill: one 64-bit word per square row of the box, grown through the 3 x 3
+        // neighbourhood and masked by the occupied squares until it stops growing.
+        occ_.assign(static_cast<std::size_t>(nh), 0);
+        reach_.assign(static_cast<std::size_t>(nh), 0);
+        for (std::int32_t j = j0_; j <= j1_; ++j) {
+            if (bits_) {
+                occ_[static_cast<std::size_t>(j - j0_)] = bits_->row(j, c0_, nw);
+                continue;
+            }
+            const std::int32_t r = g.rows - 1 - j;
+            std::uint64_t bits = 0;
+            if (r < 0 || r >= g.rows) {
+                bits = nw == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << nw) - 1);
+            } else {
+                const std::uint8_t* row = &g.occupied[g.at(r, 0)];
+                for (std::int32_t c = c0_; c <= c1_; ++c)
+                    if (c < 0 || c >= g.cols || row[c]) bits |= std::uint64_t{1} << (c - c0_);
+            }
+            occ_[static_cast<std::size_t>(j - j0_)] = bits;
+        }
+        for (int i = 0; i < na; i += 2) reach_[static_cast<std::size_t>(sa[i + 1] - j0_)] |= std::uint64_t{1} << (sa[i] - c0_);
+        for (bool grew = true; grew;) {
+            grew = false;
+            for (int pass = 0; pass < 2; ++pass)  // downward, then upward: a path is found in few rounds
+                for (std::int32_t t = 0; t < nh; ++t) {
+                    const std::size_t j = static_cast<std::size_t>(pass == 0 ? t : nh - 1 - t);
+                    std::uint64_t x = reach_[j];
+                    if (j > 0) x |= reach_[j - 1];
+                    if (j + 1 < static_cast<std::size_t>(nh)) x |= reach_[j + 1];
+                    x = (x | (x << 1) | (x >> 1)) & occ_[j];
+                    // along the row: spread through runs of occupied squares
+                    for (std::uint64_t y = x; (y = (x | (x << 1) | (x >> 1)) & occ_[j]) != x;) x = y;
+                    if ((x & ~reach_[j]) != 0) {
+                        reach_[j] |= x;
+                        grew = true;
+                    }
+                }
+            for (int k = 0; k < nb; k += 2)
+                if (reach_[static_cast<std::size_t>(sb[k + 1] - j0_)] >> (sb[k] - c0_) & 1) return true;
+        }
+        return false;
+    }
+
+private:
+    static std::int32_t ceil_half(std::int32_t v) { return v >= 0 ? (v + 1) / 2 : -((-v) / 2); }
+
+    /// The occupied squares (c, j pairs, flattened) whose closed extent holds the point (x, y).
+    int squares_at(const OccupancyGrid& g, std::int32_t x, std::int32_t y, std::array<std::int32_t, 8>& out) const {
+        const std::int32_t cs[2] = {(x >> 1) - ((x & 1) ? 0 : 1), x >> 1};
+        const std::int32_t js[2] = {(y >> 1) - ((y & 1) ? 0 : 1), y >> 1};
+        int n = 0;
+        for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b) {
+                if ((a == 1 && cs[1] == cs[0]) || (b == 1 && js[1] == js[0])) continue;
+                const std::int32_t c = cs[a], j = js[b];
+                if (c < c0_ || c > c1_ || j < j0_ || j > j1_ || !g.blocked(g.rows - 1 - j, c)) continue;
+                out[static_cast<std::size_t>(n++)] = c;
+                out[static_cast<std::size_t>(n++)] = j;
+            }
+        return n;
+    }
+
+    /// The same search square by square, for boxes wider than 64 squares (prune_length > ~30).
+    bool flood_fill(const OccupancyGrid& g, const std::array<std::int32_t, 8>& sa, int na,
+                    const std::array<std::int32_t, 8>& sb, int nb) {
+        const std::int32_t nw = c1_ - c0_ + 1, nh = j1_ - j0_ + 1;
+        auto idx = [&](std::int32_t c, std::int32_t j) { return static_cast<std::size_t>((j - j0_) * nw + (c - c0_)); };
+        cell_.assign(static_cast<std::size_t>(nw * nh), 0);  // 0 free, 1 occupied, 2 reached
+        for (std::int32_t j = j0_; j <= j1_; ++j)
+            for (std::int32_t c = c0_; c <= c1_; ++c) cell_[idx(c, j)] = g.blocked(g.rows - 1 - j, c) ? 1 : 0;
         stack_.clear();
-        for_squares_at(ax, ay, j1, c1, [&](std::int32_t c, std::int32_t j) {
-            auto& v = cell_[idx(c, j)];
-            if (v == 1) { v = 2; stack_.push_back({c, j}); }
-        });
+        for (int i = 0; i < na; i += 2) {
+            cell_[idx(sa[i], sa[i + 1])] = 2;
+            stack_.push_back({sa[i], sa[i + 1]});
+        }
         while (!stack_.empty()) {
             const auto [c, j] = stack_.back();
             stack_.pop_back();
             for (std::int32_t dj = -1; dj <= 1; ++dj)
                 for (std::int32_t dc = -1; dc <= 1; ++dc) {
                     const std::int32_t cc = c + dc, jj = j + dj;
-                    if (cc < c0_ || cc > c1 || jj < j0_ || jj > j1) continue;
+                    if (cc < c0_ || cc > c1_ || jj < j0_ || jj > j1_) continue;
                     auto& v = cell_[idx(cc, jj)];
                     if (v == 1) { v = 2; stack_.push_back({cc, jj}); }
                 }
         }
-        bool joined = false;
-        for_squares_at(bx, by, j1, c1, [&](std::int32_t c, std::int32_t j) { joined |= cell_[idx(c, j)] == 2; });
-        return joined;
+        for (int k = 0; k < nb; k += 2)
+            if (cell_[idx(sb[k], sb[k + 1])] == 2) return true;
+        return false;
     }
 
-private:
-    static std::int32_t ceil_half(std::int32_t v) { return v >= 0 ? (v + 1) / 2 : -((-v) / 2); }
-    std::size_t idx(std::int32_t c, std::int32_t j) const {
-        return static_cast<std::size_t>((j - j0_) * nw_ + (c - c0_));
-    }
-    /// Squares (in the box) whose closed extent holds the point (x, y).
-    template <class Fn>
-    void for_squares_at(std::int32_t x, std::int32_t y, std::int32_t j1, std::int32_t c1, Fn&& fn) const {
-        const std::int32_t cs[2] = {(x >> 1) - ((x & 1) ? 0 : 1), x >> 1};
-        const std::int32_t js[2] = {(y >> 1) - ((y & 1) ? 0 : 1), y >> 1};
-        for (std::int32_t a = 0; a < 2; ++a)
-            for (std::int32_t b = 0; b < 2; ++b) {
-                const std::int32_t c = cs[a], j = js[b];
-                if ((a == 1 && cs[1] == cs[0]) || (b == 1 && js[1] == js[0])) continue;
-                if (c < c0_ || c > c1 || j < j0_ || j > j1) continue;
-                fn(c, j);
-            }
-    }
-
-    std::int32_t c0_ = 0, j0_ = 0, nw_ = 0;
+    const OccupancyBits* bits_ = nullptr;
+    std::int32_t c0_ = 0, c1_ = 0, j0_ = 0, j1_ = 0;
+    std::vector<std::uint64_t> occ_, reach_;
     std::vector<std::uint8_t> cell_;
     std::vector<std::array<std::int32_t, 2>> stack_;
 };
@@ -124,7 +185,8 @@ struct PairRule {
 
 /// Does the pair (p, q) put p on the diagram? p, q: pixel centres; a, b: their nearest points
 /// (doubled units). `sep2` is floor(4 s^2): |a-b|^2 > 4 s^2 <=> |a-b|^2 > floor(4 s^2) for integers.
-inline bool pair_marks_first(const OccupancyGrid& g, const PairRule& rule, BoxJoin& join, std::int64_t px,
+template <class Join>
+bool pair_marks_first(const OccupancyGrid& g, const PairRule& rule, Join& join, std::int64_t px,
                              std::int64_t py, std::int64_t qx, std::int64_t qy, std::int32_t ax, std::int32_t ay,
                              std::int32_t bx, std::int32_t by) {
     const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
@@ -138,8 +200,9 @@ inline bool pair_marks_first(const OccupancyGrid& g, const PairRule& rule, BoxJo
 }
 
 /// Is free pixel (r, c) on the diagram, given every pixel's nearest point?
-inline bool on_diagram(const OccupancyGrid& g, const FeatureMap& f, const PairRule& rule, BoxJoin& join,
-                       std::int32_t r, std::int32_t c) {
+template <class Join>
+bool on_diagram(const OccupancyGrid& g, const FeatureMap& f, const PairRule& rule, Join& join, std::int32_t r,
+                std::int32_t c) {
     const std::size_t i = f.at(r, c);
     if (g.occupied[i]) return false;
     const std::int32_t ax = f.fx[i], ay = f.fy[i];
@@ -164,7 +227,8 @@ struct MedialDiagram {
     FeatureMap features;
     std::vector<std::uint8_t> mask;  ///< rows x cols, 1 = on the diagram
     MedialOptions options;
-    std::int64_t max_sq = 0;         ///< an upper bound of every pixel's squared clearance (doubled units)
+    std::int64_t max_sq = -1;        ///< an upper bound of every pixel's squared clearance (doubled units); -1: not known yet
+    OccupancyBits bits;              ///< the occupancy as bits, for the box rule
 
     /// Clearance of pixel (r, c)'s centre in map units (0 for occupied pixels).
     double clearance(std::int32_t r, std::int32_t c) const {
@@ -197,7 +261,7 @@ inline std::int64_t largest_sq(const FeatureMap& f, std::int32_t r0, std::int32_
 /// rows (branch-free, vectorised), and only pixels with a separated pair get the full rule.
 inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
     const PairRule rule(m.options);
-    BoxJoin join;
+    BoxJoin join(&m.bits);
     const OccupancyGrid& g = m.grid;
     const FeatureMap& f = m.features;
     const std::int32_t W = g.cols;
@@ -224,12 +288,20 @@ inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
             flag[static_cast<std::size_t>(c) + 1] = dx * dx + dy * dy > sep2;
         }
         std::uint8_t* out = &m.mask[f.at(r, 0)];
-        for (std::int32_t c = 0; c < W; ++c) {
-            const std::size_t uc = static_cast<std::size_t>(c);
-            const bool right = c + 1 < W && flag[uc + 1];
-            const bool any = flag[uc] | right | up[uc] | down[uc];
-            out[c] = any && on_diagram(g, f, rule, join, r, c) ? 1 : 0;
+        // pixel c has a separated pair when flag[c] (left), flag[c+1] (right), up[c] or down[c]
+        for (std::int32_t c = 0; c + 1 < W; ++c) flag[static_cast<std::size_t>(c)] |= flag[static_cast<std::size_t>(c) + 1];
+        for (std::int32_t c = 0; c < W; ++c) flag[static_cast<std::size_t>(c)] |= up[static_cast<std::size_t>(c)] | down[static_cast<std::size_t>(c)];
+        std::fill(out, out + W, std::uint8_t(0));
+        std::int32_t c = 0;
+        for (; c + 8 <= W; c += 8) {  // most of a row has no separated pair: skip eight at a time
+            std::uint64_t word;
+            std::memcpy(&word, &flag[static_cast<std::size_t>(c)], 8);
+            if (word == 0) continue;
+            for (std::int32_t d = c; d < c + 8; ++d)
+                if (flag[static_cast<std::size_t>(d)]) out[d] = on_diagram(g, f, rule, join, r, d) ? 1 : 0;
         }
+        for (; c < W; ++c)
+            if (flag[static_cast<std::size_t>(c)]) out[c] = on_diagram(g, f, rule, join, r, c) ? 1 : 0;
         std::swap(up, down);
     }
 }
@@ -246,16 +318,14 @@ inline MedialDiagram medial_diagram(OccupancyGrid grid, const MedialOptions& opt
     m.features = feature_transform(grid, options.workers);
     m.grid = std::move(grid);
     m.options = options;
-    m.mask.assign(m.grid.size(), 0);
+    m.bits = OccupancyBits(m.grid);
+    ::dvoronoi::detail::assign_prefaulted(m.mask, m.grid.size());
     const int k_rows = std::max(1, std::min(options.workers, m.grid.rows));
-    std::vector<std::int64_t> max_sq(static_cast<std::size_t>(k_rows), 0);
     run_team(k_rows, [&](int k) {
         const auto r0 = static_cast<std::int32_t>(static_cast<std::int64_t>(m.grid.rows) * k / k_rows);
         const auto r1 = static_cast<std::int32_t>(static_cast<std::int64_t>(m.grid.rows) * (k + 1) / k_rows);
         detail::mark_rows(m, r0, r1);
-        max_sq[static_cast<std::size_t>(k)] = detail::largest_sq(m.features, r0, r1);
     });
-    m.max_sq = *std::max_element(max_sq.begin(), max_sq.end());
     return m;
 }
 

@@ -73,6 +73,8 @@ public:
         stats.changed_pixels += todo.size();
         for (std::size_t i : todo) {
             g_.occupied[i] = occupied ? 1 : 0;
+            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(g_.cols));
+            m_.bits.put(g_.rows - 1 - r, static_cast<std::int32_t>(i % static_cast<std::size_t>(g_.cols)), occupied);
             changed_.push_back(i);
             touched_.push_back(i);
         }
@@ -90,7 +92,7 @@ public:
         if (changed_.empty()) return;
         const std::int32_t H = g_.rows, W = g_.cols;
         const PairRule rule(m_.options);
-        BoxJoin join;
+        BoxJoin join(&m_.bits);
         auto recheck = [&](std::size_t i) {
             const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
             const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
@@ -145,6 +147,7 @@ public:
 private:
     /// Largest squared clearance (doubled units) now, an upper bound kept by the diagram.
     std::int64_t max_sq() {
+        if (m_.max_sq < 0) m_.max_sq = largest_sq(f_, 0, f_.rows);  // the first update finds it
         for (std::size_t i : touched_) {
             const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(g_.cols));
             const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(g_.cols));

@@ -13,6 +13,7 @@
 
 #include "dvoronoi/core/types.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -52,6 +53,56 @@ struct OccupancyGrid {
     Vec2 from_doubled(double x2, double y2) const { return origin + resolution * Vec2(0.5 * x2, 0.5 * y2); }
     /// Pixel units (not doubled) of a map point: x right, y up from the lower-left corner.
     Vec2 to_pixels(const Vec2& p) const { return (p - origin) / resolution; }
+};
+
+/// The occupancy as bits, with the outside: square row j (counted from the bottom, -1 .. rows) and
+/// column c (-1 .. cols) at bit c + 1 of row j + 1. The medial diagram's box rule reads a box's rows
+/// as words instead of byte by byte.
+class OccupancyBits {
+public:
+    OccupancyBits() = default;
+    explicit OccupancyBits(const OccupancyGrid& g)
+        : rows_(g.rows), cols_(g.cols), stride_((static_cast<std::size_t>(g.cols) + 2 + 63) / 64 + 1),
+          w_(stride_ * (static_cast<std::size_t>(g.rows) + 2), 0) {
+        for (std::size_t k = 0; k < stride_; ++k) {  // the outside rows
+            w_[k] = ~std::uint64_t{0};
+            w_[(static_cast<std::size_t>(rows_) + 1) * stride_ + k] = ~std::uint64_t{0};
+        }
+        for (std::int32_t j = 0; j < rows_; ++j) {
+            const std::uint8_t* o = &g.occupied[g.at(rows_ - 1 - j, 0)];
+            std::uint64_t* w = &w_[static_cast<std::size_t>(j + 1) * stride_];
+            for (std::int32_t c0 = 0; c0 < cols_; c0 += 64) {  // 64 bytes to one word, then into place
+                const std::int32_t n = std::min(64, cols_ - c0);
+                std::uint64_t m = 0;
+                for (std::int32_t k = 0; k < n; ++k) m |= static_cast<std::uint64_t>(o[c0 + k] != 0) << k;
+                const std::size_t bit = static_cast<std::size_t>(c0) + 1;
+                w[bit / 64] |= m << (bit % 64);
+                if (bit % 64 != 0) w[bit / 64 + 1] |= m >> (64 - bit % 64);
+            }
+            put(j, -1, true);
+            put(j, cols_, true);
+        }
+    }
+    void put(std::int32_t j, std::int32_t c, bool v) {
+        const std::size_t bit = static_cast<std::size_t>(c + 1);
+        std::uint64_t& word = w_[static_cast<std::size_t>(j + 1) * stride_ + bit / 64];
+        const std::uint64_t m = std::uint64_t{1} << (bit % 64);
+        word = v ? (word | m) : (word & ~m);
+    }
+    /// Bits of columns c0 .. c0 + n - 1 (n <= 64, -1 <= c0, c0 + n - 1 <= cols) of square row j.
+    std::uint64_t row(std::int32_t j, std::int32_t c0, std::int32_t n) const {
+        const std::size_t bit = static_cast<std::size_t>(c0 + 1), k = bit / 64, sh = bit % 64;
+        const std::uint64_t* p = &w_[static_cast<std::size_t>(j + 1) * stride_ + k];
+        std::uint64_t v = p[0] >> sh;
+        if (sh != 0) v |= p[1] << (64 - sh);  // the spare word per row keeps p[1] in range
+        return n == 64 ? v : v & ((std::uint64_t{1} << n) - 1);
+    }
+    bool empty() const { return w_.empty(); }
+
+private:
+    std::int32_t rows_ = 0, cols_ = 0;
+    std::size_t stride_ = 0;
+    std::vector<std::uint64_t> w_;
 };
 
 /// Checks sizes, resolution and origin; names the argument.
