@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -93,7 +94,12 @@ public:
         const std::int32_t H = g_.rows, W = g_.cols;
         const PairRule rule(m_.options);
         BoxJoin join(&m_.bits);
+        std::vector<std::uint64_t> seen(g_.size() / 64 + 1, 0);  // each pixel is rechecked once
         auto recheck = [&](std::size_t i) {
+            std::uint64_t& w = seen[i / 64];
+            const std::uint64_t bit = std::uint64_t{1} << (i % 64);
+            if (w & bit) return;
+            w |= bit;
             const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
             const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
             m_.mask[i] = on_diagram(g_, f_, rule, join, r, c) ? 1 : 0;
@@ -206,12 +212,19 @@ private:
                 done_to = hi - 1;
             }
         }
-        std::sort(cells.begin(), cells.end());
+        // by row, columns ascending: the cells come column by column with rows ascending, so a stable
+        // bucketing by row keeps each row's columns in order
+        std::vector<std::size_t> start(static_cast<std::size_t>(H) + 1, 0);
+        for (const auto& rc : cells) ++start[static_cast<std::size_t>(rc.first) + 1];
         std::vector<std::pair<std::int32_t, std::vector<std::int32_t>>> rows;
-        for (const auto& rc : cells) {
-            if (rows.empty() || rows.back().first != rc.first) rows.push_back({rc.first, {}});
-            rows.back().second.push_back(rc.second);
-        }
+        std::vector<std::size_t> slot(static_cast<std::size_t>(H), 0);
+        for (std::int32_t r = 0; r < H; ++r)
+            if (start[static_cast<std::size_t>(r) + 1] != 0) {
+                slot[static_cast<std::size_t>(r)] = rows.size();
+                rows.push_back({r, {}});
+                rows.back().second.reserve(start[static_cast<std::size_t>(r) + 1]);
+            }
+        for (const auto& rc : cells) rows[slot[static_cast<std::size_t>(rc.first)]].second.push_back(rc.second);
         return rows;
     }
 
@@ -231,7 +244,7 @@ private:
 
     /// Removals in row r with changed columns `cols`: recompute the pixels whose nearest point is gone.
     void remove_row(std::int32_t r, const std::vector<std::int32_t>& cols) {
-        const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
+        const std::int32_t W = g_.cols;
         const std::size_t base = f_.at(r, 0);
         std::vector<std::int32_t> redo;
         const std::int32_t xlo = 2 * cols.front(), xhi = 2 * cols.back() + 2;
@@ -240,23 +253,25 @@ private:
             if (g_.occupied[i]) continue;  // still occupied: its own centre
             if (!on_occupied(g_, f_.fx[i], f_.fy[i])) redo.push_back(x);
         }
-        // one window per group of nearby pixels in one free run
+        // one window per group of pixels with no occupied pixel between them
+        const std::uint8_t* o = &g_.occupied[base];
         std::size_t a = 0;
         while (a < redo.size()) {
-            std::int32_t s = redo[a], t = redo[a];
-            while (s > 0 && !g_.occ(r, s - 1)) --s;  // the run [s, t] holding redo[a]
-            while (t + 1 < W && !g_.occ(r, t + 1)) ++t;
-            std::size_t b = a;
+            std::size_t b = a + 1;
+            while (b < redo.size() && !std::memchr(o + redo[b - 1] + 1, 1, static_cast<std::size_t>(redo[b] - redo[b - 1] - 1))) ++b;
             std::int64_t U = 0;
-            while (b < redo.size() && redo[b] <= t) {
-                const std::int64_t k = std::abs(static_cast<std::int32_t>(f_.vgap[base + static_cast<std::size_t>(redo[b])]));
+            for (std::size_t q = a; q < b; ++q) {
+                const std::int64_t k = std::abs(static_cast<std::int32_t>(f_.vgap[base + static_cast<std::size_t>(redo[q])]));
                 U = std::max(U, (2 * k - 1) * (2 * k - 1));
-                ++b;
             }
             // A square of column c is at least |X - 2e| away for its nearer edge e, so columns more than
-            // sqrt(U)/2 + 1 from every pixel cannot beat the pixels' own columns.
+            // sqrt(U)/2 + 1 from every pixel cannot beat the pixels' own columns; nor can columns
+            // beyond an occupied pixel of the row (its edge is nearer, at distance 0 in the row).
             const auto R = static_cast<std::int32_t>(std::sqrt(static_cast<double>(U)) / 2.0) + 2;
-            const std::int32_t ca = std::max(s - 1, redo[a] - R), cb = std::min(t + 1, redo[b - 1] + R);
+            std::int32_t ca = redo[a] - 1;
+            while (ca >= 0 && !o[ca] && redo[a] - ca < R) --ca;
+            std::int32_t cb = redo[b - 1] + 1;
+            while (cb < W && !o[cb] && cb - redo[b - 1] < R) ++cb;
             env_.build(g_, f_, r, ca, cb);
             for (std::size_t q = a; q < b; ++q) {
                 const Candidate2 n = env_.query(redo[q]);
@@ -264,7 +279,6 @@ private:
             }
             a = b;
         }
-        (void)Y;
     }
 
     /// Additions in row r with changed columns `cols`.
