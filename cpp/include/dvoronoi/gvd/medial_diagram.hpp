@@ -257,8 +257,11 @@ inline std::int64_t largest_sq(const FeatureMap& f, std::int32_t r0, std::int32_
     return best;
 }
 
-/// Marks rows [r0, r1) of `m.mask`. Most pairs fail the separation test: it runs first over whole
-/// rows (branch-free, vectorised), and only pixels with a separated pair get the full rule.
+/// Marks rows [r0, r1) of `m.mask`, pair by pair: a pair is judged once and marks one or both of
+/// its pixels (on_diagram's rule seen from both ends). Most pairs fail the separation test: it runs
+/// first over whole rows (branch-free, vectorised), and only separated pairs get the full rule. The
+/// vertical pairs across the band's edges are judged by both bands, each marking its own row only,
+/// so threads never write the same row.
 inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
     const PairRule rule(m.options);
     BoxJoin join(&m.bits);
@@ -266,43 +269,58 @@ inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
     const FeatureMap& f = m.features;
     const std::int32_t W = g.cols;
     const std::int32_t sep2 = static_cast<std::int32_t>(std::min<std::int64_t>(rule.sep2, INT32_MAX));
-    std::vector<std::uint8_t> down(static_cast<std::size_t>(W), 0), up(static_cast<std::size_t>(W), 0),
-        flag(static_cast<std::size_t>(W), 0);
-    // separated(row a, row b)[c]: the vertical pair (a, c), (b, c)
-    auto vertical = [&](std::int32_t a, std::int32_t b, std::uint8_t* out) {
-        const std::int16_t *ax = &f.fx[f.at(a, 0)], *ay = &f.fy[f.at(a, 0)];
-        const std::int16_t *bx = &f.fx[f.at(b, 0)], *by = &f.fy[f.at(b, 0)];
-        for (std::int32_t c = 0; c < W; ++c) {
-            const std::int32_t dx = ax[c] - bx[c], dy = ay[c] - by[c];
-            out[c] = dx * dx + dy * dy > sep2;
-        }
+    std::vector<std::uint8_t> flag(static_cast<std::size_t>(W) + 8, 0);
+    std::fill(m.mask.begin() + static_cast<std::ptrdiff_t>(f.at(r0, 0)), m.mask.begin() + static_cast<std::ptrdiff_t>(f.at(r1, 0)), std::uint8_t(0));
+    // 1: p is marked, 2: q is marked (both on a tie), 0: the pair does not separate
+    auto judge = [&](std::int32_t pr, std::int32_t pc, std::int32_t qr, std::int32_t qc) -> int {
+        const std::size_t i = f.at(pr, pc), j = f.at(qr, qc);
+        if (g.occupied[i] || g.occupied[j]) return 0;
+        const std::int32_t ax = f.fx[i], ay = f.fy[i], bx = f.fx[j], by = f.fy[j];
+        const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
+        if (d2 <= rule.sep2) return 0;
+        const std::int64_t px = 2 * pc + 1, py = 2 * (g.rows - 1 - pr) + 1, qx = 2 * qc + 1, qy = 2 * (g.rows - 1 - qr) + 1;
+        auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
+        const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay), sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
+        if (d2 <= rule.prune2 && join(g, ax, ay, bx, by)) return 0;
+        return (sp <= sq_ ? 1 : 0) | (sq_ <= sp ? 2 : 0);
     };
-    if (r0 > 0) vertical(r0 - 1, r0, up.data());
-    for (std::int32_t r = r0; r < r1; ++r) {
-        if (r + 1 < g.rows) vertical(r, r + 1, down.data());
-        else std::fill(down.begin(), down.end(), std::uint8_t(0));
-        const std::int16_t *x = &f.fx[f.at(r, 0)], *y = &f.fy[f.at(r, 0)];
-        flag[0] = 0;
-        for (std::int32_t c = 0; c + 1 < W; ++c) {
-            const std::int32_t dx = x[c] - x[c + 1], dy = y[c] - y[c + 1];
-            flag[static_cast<std::size_t>(c) + 1] = dx * dx + dy * dy > sep2;
-        }
-        std::uint8_t* out = &m.mask[f.at(r, 0)];
-        // pixel c has a separated pair when flag[c] (left), flag[c+1] (right), up[c] or down[c]
-        for (std::int32_t c = 0; c + 1 < W; ++c) flag[static_cast<std::size_t>(c)] |= flag[static_cast<std::size_t>(c) + 1];
-        for (std::int32_t c = 0; c < W; ++c) flag[static_cast<std::size_t>(c)] |= up[static_cast<std::size_t>(c)] | down[static_cast<std::size_t>(c)];
-        std::fill(out, out + W, std::uint8_t(0));
-        std::int32_t c = 0;
-        for (; c + 8 <= W; c += 8) {  // most of a row has no separated pair: skip eight at a time
+    // visit the columns whose flag is set, eight at a time past the empty stretches
+    auto each_flagged = [&](auto&& fn) {
+        for (std::int32_t c = 0; c < W; c += 8) {
             std::uint64_t word;
             std::memcpy(&word, &flag[static_cast<std::size_t>(c)], 8);
             if (word == 0) continue;
-            for (std::int32_t d = c; d < c + 8; ++d)
-                if (flag[static_cast<std::size_t>(d)]) out[d] = on_diagram(g, f, rule, join, r, d) ? 1 : 0;
+            for (std::int32_t d = c; d < std::min(W, c + 8); ++d)
+                if (flag[static_cast<std::size_t>(d)]) fn(d);
         }
-        for (; c < W; ++c)
-            if (flag[static_cast<std::size_t>(c)]) out[c] = on_diagram(g, f, rule, join, r, c) ? 1 : 0;
-        std::swap(up, down);
+    };
+    for (std::int32_t r = std::max(0, r0 - 1); r < r1; ++r) {
+        if (r + 1 < g.rows) {  // vertical pairs (r, c), (r + 1, c)
+            const std::int16_t *ax = &f.fx[f.at(r, 0)], *ay = &f.fy[f.at(r, 0)];
+            const std::int16_t *bx = &f.fx[f.at(r + 1, 0)], *by = &f.fy[f.at(r + 1, 0)];
+            for (std::int32_t c = 0; c < W; ++c) {
+                const std::int32_t dx = ax[c] - bx[c], dy = ay[c] - by[c];
+                flag[static_cast<std::size_t>(c)] = dx * dx + dy * dy > sep2;
+            }
+            each_flagged([&](std::int32_t c) {
+                const int v = judge(r, c, r + 1, c);
+                if ((v & 1) && r >= r0) m.mask[f.at(r, c)] = 1;
+                if ((v & 2) && r + 1 < r1) m.mask[f.at(r + 1, c)] = 1;
+            });
+        }
+        if (r < r0) continue;
+        const std::int16_t *x = &f.fx[f.at(r, 0)], *y = &f.fy[f.at(r, 0)];
+        flag[0] = 0;  // a one-column map has no horizontal pair
+        for (std::int32_t c = 0; c + 1 < W; ++c) {  // horizontal pairs (r, c), (r, c + 1)
+            const std::int32_t dx = x[c] - x[c + 1], dy = y[c] - y[c + 1];
+            flag[static_cast<std::size_t>(c)] = dx * dx + dy * dy > sep2;
+            flag[static_cast<std::size_t>(c) + 1] = 0;
+        }
+        each_flagged([&](std::int32_t c) {
+            const int v = judge(r, c, r, c + 1);
+            if (v & 1) m.mask[f.at(r, c)] = 1;
+            if (v & 2) m.mask[f.at(r, c + 1)] = 1;
+        });
     }
 }
 
