@@ -285,12 +285,12 @@ inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
         return (sp <= sq_ ? 1 : 0) | (sq_ <= sp ? 2 : 0);
     };
     // visit the columns whose flag is set, eight at a time past the empty stretches
-    auto each_flagged = [&](auto&& fn) {
-        for (std::int32_t c = 0; c < W; c += 8) {
+    auto each_flagged = [&](std::int32_t n, auto&& fn) {  // columns [0, n)
+        for (std::int32_t c = 0; c < n; c += 8) {
             std::uint64_t word;
             std::memcpy(&word, &flag[static_cast<std::size_t>(c)], 8);
             if (word == 0) continue;
-            for (std::int32_t d = c; d < std::min(W, c + 8); ++d)
+            for (std::int32_t d = c; d < std::min(n, c + 8); ++d)
                 if (flag[static_cast<std::size_t>(d)]) fn(d);
         }
     };
@@ -302,7 +302,7 @@ inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
                 const std::int32_t dx = ax[c] - bx[c], dy = ay[c] - by[c];
                 flag[static_cast<std::size_t>(c)] = dx * dx + dy * dy > sep2;
             }
-            each_flagged([&](std::int32_t c) {
+            each_flagged(W, [&](std::int32_t c) {
                 const int v = judge(r, c, r + 1, c);
                 if ((v & 1) && r >= r0) m.mask[f.at(r, c)] = 1;
                 if ((v & 2) && r + 1 < r1) m.mask[f.at(r + 1, c)] = 1;
@@ -310,13 +310,11 @@ inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
         }
         if (r < r0) continue;
         const std::int16_t *x = &f.fx[f.at(r, 0)], *y = &f.fy[f.at(r, 0)];
-        flag[0] = 0;  // a one-column map has no horizontal pair
         for (std::int32_t c = 0; c + 1 < W; ++c) {  // horizontal pairs (r, c), (r, c + 1)
             const std::int32_t dx = x[c] - x[c + 1], dy = y[c] - y[c + 1];
             flag[static_cast<std::size_t>(c)] = dx * dx + dy * dy > sep2;
-            flag[static_cast<std::size_t>(c) + 1] = 0;
         }
-        each_flagged([&](std::int32_t c) {
+        each_flagged(W - 1, [&](std::int32_t c) {
             const int v = judge(r, c, r, c + 1);
             if (v & 1) m.mask[f.at(r, c)] = 1;
             if (v & 2) m.mask[f.at(r, c + 1)] = 1;
