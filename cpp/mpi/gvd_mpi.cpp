@@ -1,30 +1,45 @@
-// dvoronoi_gvd_mpi: the grid Voronoi diagram of obstacles traced by a team of MPI ranks, one
-// vertical slice each (Mendes et al., Section 3), as the paper ran it on a cluster.
+// dvoronoi_gvd_mpi: the grid Voronoi diagram computed by a team of MPI ranks, in two modes chosen by
+// the input's extension, as `dvoronoi gvd` chooses them.
 //
 //   mpirun -n K dvoronoi_gvd_mpi OBSTACLES.json --grid N [--mode cooperative|independent]
 //          [--robot-radius R] [-o OUT.json] [--svg OUT.svg]
+//   mpirun -n K dvoronoi_gvd_mpi MAP.{yaml,pgm,png,map} [--robot-radius R] [--min-separation S]
+//          [--prune-length L] [--unknown occupied|free] [--resolution M] [--origin X Y]
+//          [-o OUT.json] [--svg OUT.svg]
 //
-// Rank 0 reads the obstacle file and broadcasts it (the paper broadcasts the obstacle data to every
-// robot). Each rank runs gvd::run_slice on its slice: in the cooperative approach a rank sends the
-// rows of the label changes on its left border to its left neighbour (one small message). Each rank
-// then sends a summary of its traced components to rank 0, which joins them across the borders and
-// answers which to keep; the kept cells go to rank 0, which writes the same JSON as `dvoronoi gvd`.
-// The diagram is identical for every K and both approaches.
+// Obstacle files: one vertical slice per rank (Mendes et al., Section 3), as the paper ran it on a
+// cluster. Rank 0 reads the obstacle file and broadcasts it (the paper broadcasts the obstacle data to
+// every robot). Each rank runs gvd::run_slice on its slice: in the cooperative approach a rank sends
+// the rows of the label changes on its left border to its left neighbour (one small message). Each
+// rank then sends a summary of its traced components to rank 0, which joins them across the borders
+// and answers which to keep; the kept cells go to rank 0, which writes the same JSON as `dvoronoi gvd`.
+//
+// Map files: the medial diagram (medial_diagram.hpp), one band of rows per rank. Rank 0 reads the map
+// and broadcasts it; every rank runs the column pass of the nearest-point transform over the whole map
+// (it needs whole columns, and is cheap), the row pass over its band and one halo row on each side,
+// and marks its band. Rank 0 gathers the bands and the nearest points of the diagram pixels and writes
+// the bytes `dvoronoi gvd MAP` writes.
+//
+// The diagram is identical for every K (and both approaches).
 //
 // Exit codes as the CLI: 0 success, 2 bad command line or input (rank 0 prints the message), 1 other.
 #include "dvoronoi/gvd/grid_voronoi.hpp"
 #include "dvoronoi/io/atomic_write.hpp"
 #include "dvoronoi/io/gvd_json.hpp"
 #include "dvoronoi/io/gvd_svg.hpp"
+#include "dvoronoi/io/medial_export.hpp"
 #include "dvoronoi/io/obstacles_json.hpp"
+#include "dvoronoi/io/occupancy_map.hpp"
 
 #include <CLI/CLI.hpp>
 #include <mpi.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -34,13 +49,29 @@ namespace {
 using namespace dvoronoi;
 
 struct Args {
-    std::string obstacles;
+    std::string input;
     std::int64_t grid = 0;
     std::string mode = "cooperative";
     double robot_radius = 0.0;
     bool no_visibility = false;
     std::string output, svg;
+    // map files, as `dvoronoi gvd MAP`
+    double resolution = 0.0;  // 0: from the YAML, else 1
+    std::vector<double> origin;
+    std::string unknown = "occupied";
+    double min_separation = 1.5, prune_length = 8.0;
 };
+
+bool is_map_file(const std::string& path) {
+    const std::string e = io::detail::lower_ext(path);
+    return e == ".yaml" || e == ".yml" || e == ".pgm" || e == ".png" || e == ".map";
+}
+
+std::string show(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
 
 std::vector<std::int32_t> pack(const gvd::SliceSummary& s) {
     std::vector<std::int32_t> v{s.n_components};
@@ -85,16 +116,17 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
     return all;
 }
 
-int run(const Args& a, int rank, int size) {
+int run_obstacles(const Args& a, int rank, int size) {
+    if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
     // Rank 0 reads the file and broadcasts its text; every rank parses it (same scene everywhere).
     std::string text;
     int ok = 1;
     std::string error;
     if (rank == 0) {
-        std::ifstream in(a.obstacles, std::ios::binary);
+        std::ifstream in(a.input, std::ios::binary);
         if (!in) {
             ok = 0;
-            error = a.obstacles + ": cannot open file";
+            error = a.input + ": cannot open file";
         } else {
             std::ostringstream s;
             s << in.rdbuf();
@@ -107,7 +139,7 @@ int run(const Args& a, int rank, int size) {
     MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     text.resize(len);
     MPI_Bcast(text.data(), static_cast<int>(len), MPI_CHAR, 0, MPI_COMM_WORLD);
-    const io::ObstacleFile file = io::parse_obstacles(text, a.obstacles);
+    const io::ObstacleFile file = io::parse_obstacles(text, a.input);
 
     gvd::GvdOptions opt;
     opt.resolution = a.grid;
@@ -219,6 +251,146 @@ int run(const Args& a, int rank, int size) {
     return 0;
 }
 
+/// Opens an output file on rank 0 before any work (as the CLI does), naming the option on failure.
+std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::string& option) {
+    try {
+        return std::make_unique<io::AtomicFile>(path);
+    } catch (const io::OutputError& e) {
+        throw InputError(option + ": " + e.what());
+    }
+}
+
+int run_map(const Args& a, int rank, int size) {
+    // The same checks and messages as `dvoronoi gvd MAP`; every rank sees the same arguments, so all
+    // throw together.
+    if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
+        throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
+    if (a.resolution < 0.0 || !std::isfinite(a.resolution))
+        throw InputError("--resolution: must be a positive number (map units per pixel)");
+    if (!a.origin.empty() && a.origin.size() != 2) throw InputError("--origin: expects X Y");
+    if (!std::isfinite(a.min_separation) || a.min_separation < 1.0)
+        throw InputError("--min-separation: must be a finite number >= 1 (pixels), got " + show(a.min_separation));
+    if (!std::isfinite(a.prune_length) || a.prune_length < 0.0 || a.prune_length > 256.0)
+        throw InputError("--prune-length: must be a finite number in [0, 256] (pixels), got " + show(a.prune_length));
+    const bool to_stdout = a.output.empty() || a.output == "-";
+    if (!to_stdout && io::detail::lower_ext(a.output) != ".json")
+        throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
+    if (!to_stdout && !a.svg.empty() && a.output == a.svg) throw InputError("--svg: same file as -o/--output ('" + a.svg + "')");
+    gvd::MedialOptions mo;
+    mo.min_separation = a.min_separation;
+    mo.prune_length = a.prune_length;
+    gvd::check_medial_options(mo);
+
+    // Rank 0 reads the map and opens the outputs (an unwritable output fails before any work).
+    io::MapReadOptions ro;
+    ro.unknown_occupied = a.unknown == "occupied";
+    if (a.resolution > 0.0) ro.resolution = a.resolution;
+    if (!a.origin.empty()) ro.origin = Vec2(a.origin[0], a.origin[1]);
+    io::LoadedMap map;
+    std::unique_ptr<io::AtomicFile> out, svg;
+    int ok = 1;
+    std::string error;
+    if (rank == 0) {
+        try {
+            map = io::read_occupancy_map(a.input, ro);
+            try {
+                gvd::check_grid(map.grid);
+            } catch (const InputError& e) {
+                throw InputError(a.input + ": " + e.what());
+            }
+            if (!to_stdout) out = open_output(a.output, "-o/--output");
+            if (!a.svg.empty()) svg = open_output(a.svg, "--svg");
+        } catch (const InputError& e) {
+            ok = 0;
+            error = e.what();
+        }
+    }
+    MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (!ok) throw InputError(error);
+
+    // Broadcast: sizes, resolution, origin, then the occupancy bytes.
+    std::int32_t dims[2] = {map.grid.rows, map.grid.cols};
+    double geom[3] = {map.grid.resolution, map.grid.origin.x(), map.grid.origin.y()};
+    MPI_Bcast(dims, 2, MPI_INT32_T, 0, MPI_COMM_WORLD);
+    MPI_Bcast(geom, 3, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    if (rank != 0) map.grid = gvd::OccupancyGrid(dims[0], dims[1], geom[0], Vec2(geom[1], geom[2]));
+    const std::int32_t H = dims[0], W = dims[1];
+    MPI_Bcast(map.grid.occupied.data(), static_cast<int>(map.grid.size()), MPI_UINT8_T, 0, MPI_COMM_WORLD);
+
+    MPI_Barrier(MPI_COMM_WORLD);
+    const auto t0 = std::chrono::steady_clock::now();
+    gvd::MedialDiagram m;
+    m.grid = std::move(map.grid);
+    m.options = mo;
+    gvd::FeatureMap& f = m.features;
+    f.rows = H;
+    f.cols = W;
+    ::dvoronoi::detail::assign_prefaulted(f.vgap, m.grid.size());
+    ::dvoronoi::detail::assign_prefaulted(f.fx, m.grid.size());
+    ::dvoronoi::detail::assign_prefaulted(f.fy, m.grid.size());
+    ::dvoronoi::detail::assign_prefaulted(m.mask, m.grid.size());
+    gvd::detail::column_pass(m.grid, f, 0, W);
+    // Bands as medial_diagram splits rows over threads; with more ranks than rows some are empty.
+    auto band = [&](int k) { return static_cast<std::int32_t>(static_cast<std::int64_t>(H) * k / size); };
+    const std::int32_t r0 = band(rank), r1 = band(rank + 1);
+    std::vector<std::int16_t> nearest;  // fx, fy of the band's diagram pixels, row-major
+    if (r0 < r1) {
+        // mark_rows reads the nearest points of rows r0-1 .. r1: the row pass covers one halo row each side
+        gvd::detail::RowEnvelope env;
+        for (std::int32_t r = std::max(0, r0 - 1); r < std::min(H, r1 + 1); ++r) gvd::detail::row_pass(m.grid, f, r, env);
+        m.bits = gvd::OccupancyBits(m.grid);  // the box rule reads walls anywhere near the band's nearest points
+        gvd::detail::mark_rows(m, r0, r1);
+        for (std::size_t i = f.at(r0, 0); i < f.at(r1, 0); ++i)
+            if (m.mask[i]) {
+                nearest.push_back(f.fx[i]);
+                nearest.push_back(f.fy[i]);
+            }
+    }
+
+    // Rank 0 gathers the bands into its mask (its own band is in place) ...
+    std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
+    for (int k = 0; k < size; ++k) {
+        counts[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k + 1) - band(k)) * W);
+        displs[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k)) * W);
+    }
+    const std::uint8_t* mine = &m.mask[static_cast<std::size_t>(r0) * static_cast<std::size_t>(W)];
+    MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : mine, counts[static_cast<std::size_t>(rank)], MPI_UINT8_T, m.mask.data(),
+                counts.data(), displs.data(), MPI_UINT8_T, 0, MPI_COMM_WORLD);
+    // ... and the diagram pixels' nearest points: the writers read the clearance of those pixels only.
+    const std::vector<std::int16_t> all = gather(nearest, rank, size);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (rank != 0) return 0;
+
+    std::size_t k = 0;  // bands arrive in rank order, so the pairs follow the mask's row-major order
+    for (std::size_t i = 0; i < m.mask.size(); ++i)
+        if (m.mask[i]) {
+            f.fx[i] = all[k++];
+            f.fy[i] = all[k++];
+        }
+    if (k != all.size()) throw std::logic_error("gathered nearest points do not match the gathered mask");
+    const std::size_t n = m.count();
+    std::fprintf(stderr, "dvoronoi_gvd_mpi: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d ranks, %.3f s\n",
+                 H, W, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", size, seconds);
+    if (n == 0)
+        std::fprintf(stderr, "dvoronoi_gvd_mpi: warning: no diagram pixel: no passage of the map is 2 or more pixels wide "
+                             "with walls apart by more than --min-separation %.3g pixels\n", a.min_separation);
+    // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
+    if (svg) io::write_medial_svg(svg->stream(), m, a.robot_radius);
+    const std::string doc = io::medial_to_json(m, a.robot_radius).dump();
+    if (out) {
+        out->stream() << doc << '\n';
+        out->commit();
+    } else {
+        std::cout << doc << '\n';
+    }
+    if (svg) svg->commit();
+    return 0;
+}
+
+int run(const Args& a, int rank, int size) {
+    return is_map_file(a.input) ? run_map(a, rank, size) : run_obstacles(a, rank, size);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -227,12 +399,19 @@ int main(int argc, char** argv) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     Args a;
-    CLI::App app{"dvoronoi_gvd_mpi: grid Voronoi diagram of obstacles, one slice per MPI rank", "dvoronoi_gvd_mpi"};
-    app.add_option("OBSTACLES", a.obstacles, "obstacle file (JSON, as for `dvoronoi gvd`)")->required();
-    app.add_option("-g,--grid", a.grid, "cells along the longer side of the working area")->required();
+    CLI::App app{"dvoronoi_gvd_mpi: grid Voronoi diagram of obstacles (one slice per MPI rank) or medial diagram of "
+                 "an occupancy map (one band of rows per MPI rank)", "dvoronoi_gvd_mpi"};
+    app.add_option("INPUT", a.input, "an occupancy map (.yaml map_server, .pgm, .png, MovingAI .map) or an obstacle "
+                                     "file (JSON), as for `dvoronoi gvd`")->required();
+    app.add_option("-g,--grid", a.grid, "obstacle files: cells along the longer side of the working area");
     app.add_option("-m,--mode", a.mode, "cooperative or independent")->check(CLI::IsMember({"cooperative", "independent"}));
-    app.add_option("-r,--robot-radius", a.robot_radius, "robot radius (blocked cells)");
+    app.add_option("-r,--robot-radius", a.robot_radius, "robot radius (map units): diagram cells or pixels this close to an obstacle are blocked");
     app.add_flag("--no-visibility", a.no_visibility, "turn the paper's edge visibility test off");
+    app.add_option("--resolution", a.resolution, "map files without YAML: map units per pixel (default 1)");
+    app.add_option("--origin", a.origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
+    app.add_option("--unknown", a.unknown, "map files: unknown pixels count as occupied or free")->check(CLI::IsMember({"occupied", "free"}))->capture_default_str();
+    app.add_option("--min-separation", a.min_separation, "medial diagram: nearest points of a pair farther apart than this (pixels)")->capture_default_str();
+    app.add_option("--prune-length", a.prune_length, "medial diagram: pairs whose nearest points are this close and joined by walls are dropped (pixels)")->capture_default_str();
     app.add_option("-o,--output", a.output, "output JSON file (default: stdout)");
     app.add_option("--svg", a.svg, "also draw the diagram into this SVG file");
     int code = 0;

@@ -1,8 +1,11 @@
 """dv.mpi: `mpirun -n 1/2/3 --oversubscribe` give the single-process API's cells and trajectories bit
-for bit (uniform density; a density path to rounding), and the cost to rounding. Runs when mpirun and
-mpi4py are present."""
+for bit (uniform density; a density path to rounding), and the cost to rounding. dvoronoi_gvd_mpi on
+map files (MovingAI .map, YAML + PGM) writes the JSON and SVG of `dvoronoi gvd MAP` byte for byte on
+1, 2 and 3 ranks; a bad map exits 2 naming the file, nothing written. Runs when mpirun and mpi4py are
+present; the map tests when $DVORONOI_GVD_MPI (or a build*/ tree) and $DVORONOI_CLI are there."""
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -13,6 +16,7 @@ import numpy as np
 import pytest
 
 import dvoronoi as dv
+from dvoronoi import occupancy_maps
 
 pytest.importorskip("mpi4py")
 MPIRUN = shutil.which("mpirun")
@@ -25,7 +29,7 @@ FIELDS = ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "in
           "areas", "centroids")
 
 
-def mpirun(k: int, *args: str, timeout: float = 240) -> subprocess.CompletedProcess:
+def mpirun(k: int, *args: str, timeout: float = 240, program: str = sys.executable) -> subprocess.CompletedProcess:
     env = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
     if not (shutil.which("ssh") or shutil.which("rsh")):
         # Open MPI 4 refuses to start without an rsh agent even for local ranks (a container with
@@ -34,7 +38,7 @@ def mpirun(k: int, *args: str, timeout: float = 240) -> subprocess.CompletedProc
     cmd = [MPIRUN, "-n", str(k), "--oversubscribe"]
     if hasattr(os, "geteuid") and os.geteuid() == 0:
         cmd.append("--allow-run-as-root")
-    return subprocess.run(cmd + [sys.executable, *args], capture_output=True, text=True, env=env,
+    return subprocess.run(cmd + [program, *args], capture_output=True, text=True, env=env,
                           timeout=timeout)
 
 
@@ -88,8 +92,109 @@ def test_mpi_entry_point(tmp_path):
                   "--bounds", "0", "0", "1", "1", "-o", str(out))
     assert proc.returncode == 0, proc.stderr[-3000:]
     assert "400 agents on 2 ranks, 3 steps" in proc.stdout
-    import json
-
     doc = json.loads(out.read_text())
     assert len(doc["points"]) == 400 and len(doc["cost"]) == 4
     assert all(b <= a * (1 + 1e-12) for a, b in zip(doc["cost"], doc["cost"][1:]))
+
+
+# -- dvoronoi_gvd_mpi on occupancy maps: the CLI's bytes for any rank count ---------------------------
+
+ROOT = HERE.parents[1]
+
+
+def _gvd_mpi_exe():
+    env = os.environ.get("DVORONOI_GVD_MPI")
+    if env:  # MPI is optional: a missing build skips
+        return env if Path(env).is_file() else None
+    for c in [ROOT / "build" / "cpp" / "mpi" / "dvoronoi_gvd_mpi", *sorted(ROOT.glob("build*/cpp/mpi/dvoronoi_gvd_mpi"))]:
+        if c.is_file():
+            return str(c)
+    return shutil.which("dvoronoi_gvd_mpi")
+
+
+GVD_MPI = _gvd_mpi_exe()
+CLI = os.environ.get("DVORONOI_CLI")
+needs_gvd = pytest.mark.skipif(GVD_MPI is None or not CLI or not Path(CLI).is_file(),
+                               reason="dvoronoi_gvd_mpi or $DVORONOI_CLI not found")
+
+
+def _write_movingai(path: Path, occ: np.ndarray) -> Path:
+    rows = ["".join("@" if v else "." for v in row) for row in occ]
+    path.write_text(f"type octile\nheight {occ.shape[0]}\nwidth {occ.shape[1]}\nmap\n" + "\n".join(rows) + "\n")
+    return path
+
+
+def _write_ros(folder: Path, occ: np.ndarray) -> Path:
+    """map_server's files: grey 0 occupied, 254 free, 205 unknown (a block of unknown pixels)."""
+    grey = np.where(occ, 0, 254).astype(np.uint8)
+    grey[10:16, 20:40] = 205
+    H, W = occ.shape
+    (folder / "floor.pgm").write_bytes(f"P5\n{W} {H}\n255\n".encode() + grey.tobytes())
+    (folder / "floor.yaml").write_text("image: floor.pgm\nresolution: 0.05\norigin: [-2.5, 1.25, 0.0]\n"
+                                    "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    return folder / "floor.yaml"
+
+
+# map, options: defaults and non-default ones for each option of the map route
+MAPS = {
+    "building": ([], ["-r", "0.5"]),
+    "rooms": (["--resolution", "0.5", "--origin", "10", "-4", "-r", "1"], ["--min-separation", "2", "--prune-length", "12"]),
+    "ros": (["--unknown", "free", "-r", "0.1"], ["--prune-length", "5"]),
+}
+
+
+@pytest.fixture(scope="module")
+def map_files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("maps")
+    return {"building": _write_movingai(d / "building.map", occupancy_maps.building(96, 1)),
+            "rooms": _write_movingai(d / "rooms.map", occupancy_maps.rooms_with_islands((90, 130), 2)),
+            "ros": _write_ros(d, occupancy_maps.building((80, 110), 4))}
+
+
+@needs_gvd
+@pytest.mark.parametrize("name", sorted(MAPS))
+def test_gvd_mpi_map_equals_cli_bytes(name, map_files, tmp_path):
+    path = map_files[name]
+    for opts in MAPS[name]:
+        ref_json, ref_svg = tmp_path / "cli.json", tmp_path / "cli.svg"
+        subprocess.run([CLI, "gvd", str(path), *opts, "-o", str(ref_json), "--svg", str(ref_svg), "-q"], check=True)
+        ref = ref_json.read_bytes()
+        assert len(json.loads(ref)["pixels"]["row"]) > 50  # a real diagram
+        for k in (1, 2, 3):
+            out, svg = tmp_path / f"mpi{k}.json", tmp_path / f"mpi{k}.svg"
+            proc = mpirun(k, str(path), *opts, "-o", str(out), "--svg", str(svg), program=GVD_MPI, timeout=120)
+            assert proc.returncode == 0, proc.stderr[-3000:]
+            assert f"{k} ranks" in proc.stderr
+            if name == "ros":
+                assert "120 unknown pixels" in proc.stderr
+            assert out.read_bytes() == ref, (name, opts, k)
+            assert svg.read_bytes() == ref_svg.read_bytes(), (name, opts, k)
+        # stdout as the CLI's stdout
+        proc = mpirun(2, str(path), *opts, program=GVD_MPI, timeout=120)
+        assert proc.returncode == 0 and proc.stdout.encode() == ref
+
+
+@needs_gvd
+def test_gvd_mpi_more_ranks_than_rows(tmp_path):
+    path = _write_movingai(tmp_path / "thin.map", np.array([[0, 0, 0, 0, 0, 0, 0], [0, 0, 0, 1, 0, 0, 0]], bool))
+    ref = subprocess.run([CLI, "gvd", str(path), "-q"], check=True, capture_output=True).stdout
+    proc = mpirun(3, str(path), program=GVD_MPI, timeout=120)  # rank 0's band is empty
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert proc.stdout.encode() == ref
+
+
+@needs_gvd
+def test_gvd_mpi_bad_map_exits_2_naming_the_file(tmp_path):
+    bad = tmp_path / "bad.map"
+    bad.write_text("type octile\nheight 3\nwidth 4\nmap\n....\n..\n....\n")
+    out = tmp_path / "out.json"
+    for k in (1, 3):
+        proc = mpirun(k, str(bad), "-o", str(out), "--svg", str(tmp_path / "out.svg"), program=GVD_MPI, timeout=120)
+        assert proc.returncode == 2, proc.stderr[-3000:]
+        assert f"{bad}:6: row 1 has 2 characters, expected 4" in proc.stderr
+        assert proc.stderr.count("dvoronoi_gvd_mpi: error:") == 1  # rank 0 alone prints
+    proc = mpirun(2, str(tmp_path / "nope.yaml"), "-o", str(out), program=GVD_MPI, timeout=120)
+    assert proc.returncode == 2 and f"{tmp_path / 'nope.yaml'}: cannot open file" in proc.stderr
+    proc = mpirun(2, str(bad.with_name("x.map")), "--min-separation", "0.5", program=GVD_MPI, timeout=120)
+    assert proc.returncode == 2 and "--min-separation: must be a finite number >= 1" in proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.map"]  # nothing written, no temporary left
