@@ -79,7 +79,13 @@ void bind_gvd_occupancy(py::module_& m) {
         .def_property_readonly("resolution", [](const gvd::MedialDiagram& d) { return d.grid.resolution; })
         .def_property_readonly("origin", [](const gvd::MedialDiagram& d) { return py::make_tuple(d.grid.origin.x(), d.grid.origin.y()); })
         .def_property_readonly("count", [](const gvd::MedialDiagram& d) { return d.count(); })
-        .def_property_readonly("mask", [](const gvd::MedialDiagram& d) { return bool_image(d.mask, d.grid.rows, d.grid.cols); })
+        .def_property_readonly("mask", [](const gvd::MedialDiagram& d) {
+            py::array_t<bool> a({static_cast<py::ssize_t>(d.grid.rows), static_cast<py::ssize_t>(d.grid.cols)});
+            bool* out = a.mutable_data();
+            for (std::int32_t r = 0; r < d.grid.rows; ++r)
+                for (std::int32_t c = 0; c < d.grid.cols; ++c) out[d.grid.at(r, c)] = d.mask(r, c);
+            return a;
+        })
         .def_property_readonly("occupancy", [](const gvd::MedialDiagram& d) { return bool_image(d.grid.occupied, d.grid.rows, d.grid.cols); })
         .def_property_readonly("clearance_map", [](const gvd::MedialDiagram& d) {
             py::array_t<double> a({static_cast<py::ssize_t>(d.grid.rows), static_cast<py::ssize_t>(d.grid.cols)});

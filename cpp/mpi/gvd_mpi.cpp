@@ -328,7 +328,7 @@ int run_map(const Args& a, int rank, int size) {
     ::dvoronoi::detail::assign_prefaulted(f.vgap, m.grid.size());
     ::dvoronoi::detail::assign_prefaulted(f.fx, m.grid.size());
     ::dvoronoi::detail::assign_prefaulted(f.fy, m.grid.size());
-    ::dvoronoi::detail::assign_prefaulted(m.mask, m.grid.size());
+    m.mask = gvd::PixelMask(H, W);
     gvd::detail::column_pass(m.grid, f, 0, W);
     // Bands as medial_diagram splits rows over threads; with more ranks than rows some are empty.
     auto band = [&](int k) { return static_cast<std::int32_t>(static_cast<std::int64_t>(H) * k / size); };
@@ -340,33 +340,35 @@ int run_map(const Args& a, int rank, int size) {
         for (std::int32_t r = std::max(0, r0 - 1); r < std::min(H, r1 + 1); ++r) gvd::detail::row_pass(m.grid, f, r, env);
         m.bits = gvd::OccupancyBits(m.grid);  // the box rule reads walls anywhere near the band's nearest points
         gvd::detail::mark_rows(m, r0, r1);
-        for (std::size_t i = f.at(r0, 0); i < f.at(r1, 0); ++i)
-            if (m.mask[i]) {
-                nearest.push_back(f.fx[i]);
-                nearest.push_back(f.fy[i]);
-            }
+        for (std::int32_t r = r0; r < r1; ++r)
+            for (std::int32_t c = 0; c < W; ++c)
+                if (m.mask(r, c)) {
+                    nearest.push_back(f.fx[f.at(r, c)]);
+                    nearest.push_back(f.fy[f.at(r, c)]);
+                }
     }
 
-    // Rank 0 gathers the bands into its mask (its own band is in place) ...
+    // Rank 0 gathers the bands into its mask (its own band is in place; every row is whole words) ...
+    const auto per_row = static_cast<std::int64_t>(m.mask.words_per_row());
     std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
     for (int k = 0; k < size; ++k) {
-        counts[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k + 1) - band(k)) * W);
-        displs[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k)) * W);
+        counts[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k + 1) - band(k)) * per_row);
+        displs[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k)) * per_row);
     }
-    const std::uint8_t* mine = &m.mask[static_cast<std::size_t>(r0) * static_cast<std::size_t>(W)];
-    MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : mine, counts[static_cast<std::size_t>(rank)], MPI_UINT8_T, m.mask.data(),
-                counts.data(), displs.data(), MPI_UINT8_T, 0, MPI_COMM_WORLD);
+    MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : m.mask.row_words(r0), counts[static_cast<std::size_t>(rank)], MPI_UINT64_T,
+                m.mask.row_words(0), counts.data(), displs.data(), MPI_UINT64_T, 0, MPI_COMM_WORLD);
     // ... and the diagram pixels' nearest points: the writers read the clearance of those pixels only.
     const std::vector<std::int16_t> all = gather(nearest, rank, size);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (rank != 0) return 0;
 
     std::size_t k = 0;  // bands arrive in rank order, so the pairs follow the mask's row-major order
-    for (std::size_t i = 0; i < m.mask.size(); ++i)
-        if (m.mask[i]) {
-            f.fx[i] = all[k++];
-            f.fy[i] = all[k++];
-        }
+    for (std::int32_t r = 0; r < H; ++r)
+        for (std::int32_t c = 0; c < W; ++c)
+            if (m.mask(r, c)) {
+                f.fx[f.at(r, c)] = all[k++];
+                f.fy[f.at(r, c)] = all[k++];
+            }
     if (k != all.size()) throw std::logic_error("gathered nearest points do not match the gathered mask");
     const std::size_t n = m.count();
     std::fprintf(stderr, "dvoronoi_gvd_mpi: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d ranks, %.3f s\n",

@@ -225,7 +225,7 @@ bool on_diagram(const OccupancyGrid& g, const FeatureMap& f, const PairRule& rul
 struct MedialDiagram {
     OccupancyGrid grid;
     FeatureMap features;
-    std::vector<std::uint8_t> mask;  ///< rows x cols, 1 = on the diagram
+    PixelMask mask;                  ///< the diagram's pixels (bits)
     MedialOptions options;
     std::int64_t max_sq = -1;        ///< an upper bound of every pixel's squared clearance (doubled units); -1: not known yet
     OccupancyBits bits;              ///< the occupancy as bits, for the box rule
@@ -234,11 +234,7 @@ struct MedialDiagram {
     double clearance(std::int32_t r, std::int32_t c) const {
         return 0.5 * std::sqrt(static_cast<double>(features.sq(r, c))) * grid.resolution;
     }
-    std::size_t count() const {
-        std::size_t n = 0;
-        for (std::uint8_t v : mask) n += v;
-        return n;
-    }
+    std::size_t count() const { return mask.count(); }
 };
 
 namespace detail {
@@ -270,7 +266,7 @@ inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
     const std::int32_t W = g.cols;
     const std::int32_t sep2 = static_cast<std::int32_t>(std::min<std::int64_t>(rule.sep2, INT32_MAX));
     std::vector<std::uint8_t> flag(static_cast<std::size_t>(W) + 8, 0);
-    std::fill(m.mask.begin() + static_cast<std::ptrdiff_t>(f.at(r0, 0)), m.mask.begin() + static_cast<std::ptrdiff_t>(f.at(r1, 0)), std::uint8_t(0));
+    m.mask.clear_rows(r0, r1);
     // 1: p is marked, 2: q is marked (both on a tie), 0: the pair does not separate
     auto judge = [&](std::int32_t pr, std::int32_t pc, std::int32_t qr, std::int32_t qc) -> int {
         const std::size_t i = f.at(pr, pc), j = f.at(qr, qc);
@@ -304,8 +300,8 @@ inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
             }
             each_flagged(W, [&](std::int32_t c) {
                 const int v = judge(r, c, r + 1, c);
-                if ((v & 1) && r >= r0) m.mask[f.at(r, c)] = 1;
-                if ((v & 2) && r + 1 < r1) m.mask[f.at(r + 1, c)] = 1;
+                if ((v & 1) && r >= r0) m.mask.set(r, c, true);
+                if ((v & 2) && r + 1 < r1) m.mask.set(r + 1, c, true);
             });
         }
         if (r < r0) continue;
@@ -316,8 +312,8 @@ inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
         }
         each_flagged(W - 1, [&](std::int32_t c) {
             const int v = judge(r, c, r, c + 1);
-            if (v & 1) m.mask[f.at(r, c)] = 1;
-            if (v & 2) m.mask[f.at(r, c + 1)] = 1;
+            if (v & 1) m.mask.set(r, c, true);
+            if (v & 2) m.mask.set(r, c + 1, true);
         });
     }
 }
@@ -335,7 +331,7 @@ inline MedialDiagram medial_diagram(OccupancyGrid grid, const MedialOptions& opt
     m.grid = std::move(grid);
     m.options = options;
     m.bits = OccupancyBits(m.grid);
-    ::dvoronoi::detail::assign_prefaulted(m.mask, m.grid.size());
+    m.mask = PixelMask(m.grid.rows, m.grid.cols);
     const int k_rows = std::max(1, std::min(options.workers, m.grid.rows));
     run_team(k_rows, [&](int k) {
         const auto r0 = static_cast<std::int32_t>(static_cast<std::int64_t>(m.grid.rows) * k / k_rows);

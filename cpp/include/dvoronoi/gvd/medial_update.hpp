@@ -102,7 +102,7 @@ public:
             w |= bit;
             const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
             const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
-            m_.mask[i] = on_diagram(g_, f_, rule, join, r, c) ? 1 : 0;
+            m_.mask.set(r, c, on_diagram(g_, f_, rule, join, r, c));
             ++stats.mask_checks;
         };
         for (std::size_t i : touched_) {

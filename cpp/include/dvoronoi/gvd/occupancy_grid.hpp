@@ -105,6 +105,68 @@ private:
     std::vector<std::uint64_t> w_;
 };
 
+/// A set of pixels as bits (a diagram: 1/8 byte a pixel). Every row starts a new 64-bit word, so
+/// threads that write different rows never share a word.
+class PixelMask {
+public:
+    PixelMask() = default;
+    PixelMask(std::int32_t rows, std::int32_t cols)
+        : rows_(rows), cols_(cols), stride_((static_cast<std::size_t>(cols) + 63) / 64),
+          w_(stride_ * static_cast<std::size_t>(rows), 0) {}
+
+    bool operator()(std::int32_t r, std::int32_t c) const {
+        return (w_[static_cast<std::size_t>(r) * stride_ + static_cast<std::size_t>(c) / 64] >> (c % 64)) & 1;
+    }
+    /// By row-major pixel index r * cols + c.
+    bool operator[](std::size_t i) const {
+        return (*this)(static_cast<std::int32_t>(i / static_cast<std::size_t>(cols_)), static_cast<std::int32_t>(i % static_cast<std::size_t>(cols_)));
+    }
+    void set(std::int32_t r, std::int32_t c, bool v) {
+        std::uint64_t& w = w_[static_cast<std::size_t>(r) * stride_ + static_cast<std::size_t>(c) / 64];
+        const std::uint64_t m = std::uint64_t{1} << (c % 64);
+        w = v ? (w | m) : (w & ~m);
+    }
+    void set(std::size_t i, bool v) {
+        set(static_cast<std::int32_t>(i / static_cast<std::size_t>(cols_)), static_cast<std::int32_t>(i % static_cast<std::size_t>(cols_)), v);
+    }
+    /// Rows [r0, r1) emptied.
+    void clear_rows(std::int32_t r0, std::int32_t r1) {
+        std::fill(w_.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(r0) * stride_),
+                  w_.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(r1) * stride_), std::uint64_t{0});
+    }
+    std::size_t count() const {
+        std::size_t n = 0;
+        for (std::uint64_t w : w_) {
+#if defined(__GNUC__) || defined(__clang__)
+            n += static_cast<std::size_t>(__builtin_popcountll(w));
+#else
+            for (; w; w &= w - 1) ++n;
+#endif
+        }
+        return n;
+    }
+    /// Row-major 0/1 bytes.
+    std::vector<std::uint8_t> bytes() const {
+        std::vector<std::uint8_t> out(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(cols_));
+        for (std::int32_t r = 0; r < rows_; ++r)
+            for (std::int32_t c = 0; c < cols_; ++c) out[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)] = (*this)(r, c);
+        return out;
+    }
+    /// The words of rows [r0, r1) (for sending whole rows, e.g. MPI).
+    std::uint64_t* row_words(std::int32_t r) { return w_.data() + static_cast<std::size_t>(r) * stride_; }
+    const std::uint64_t* row_words(std::int32_t r) const { return w_.data() + static_cast<std::size_t>(r) * stride_; }
+    std::size_t words_per_row() const { return stride_; }
+    std::int32_t rows() const { return rows_; }
+    std::int32_t cols() const { return cols_; }
+    bool operator==(const PixelMask& o) const { return rows_ == o.rows_ && cols_ == o.cols_ && w_ == o.w_; }
+    bool operator!=(const PixelMask& o) const { return !(*this == o); }
+
+private:
+    std::int32_t rows_ = 0, cols_ = 0;
+    std::size_t stride_ = 0;
+    std::vector<std::uint64_t> w_;
+};
+
 /// Checks sizes, resolution and origin; names the argument.
 inline void check_grid(const OccupancyGrid& g) {
     if (g.rows < 1 || g.cols < 1)

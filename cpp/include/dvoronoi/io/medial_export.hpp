@@ -33,7 +33,7 @@ inline nlohmann::json medial_to_json(const gvd::MedialDiagram& m, double robot_r
          bl = json::array();
     for (std::int32_t r = 0; r < g.rows; ++r)
         for (std::int32_t c = 0; c < g.cols; ++c)
-            if (m.mask[g.at(r, c)]) {
+            if (m.mask(r, c)) {
                 const Vec2 p = g.center(r, c);
                 const double d = m.clearance(r, c);
                 rows.push_back(r);
@@ -84,8 +84,8 @@ inline void write_medial_svg(std::ostream& os, const gvd::MedialDiagram& m, doub
         os << "</g>\n";
     };
     runs("#424242", "occupied", [&](std::int32_t r, std::int32_t c) { return g.occ(r, c); });
-    runs("#1e78b4", "diagram", [&](std::int32_t r, std::int32_t c) { return m.mask[g.at(r, c)] && m.clearance(r, c) > robot_radius; });
-    runs("#f4a6a6", "blocked", [&](std::int32_t r, std::int32_t c) { return m.mask[g.at(r, c)] && m.clearance(r, c) <= robot_radius; });
+    runs("#1e78b4", "diagram", [&](std::int32_t r, std::int32_t c) { return m.mask(r, c) && m.clearance(r, c) > robot_radius; });
+    runs("#f4a6a6", "blocked", [&](std::int32_t r, std::int32_t c) { return m.mask(r, c) && m.clearance(r, c) <= robot_radius; });
     if (path.size() >= 2) {
         os << "<polyline id=\"path\" fill=\"none\" stroke=\"#2e7d32\" stroke-width=\"" << num(std::max(2.0 * res, 0.004 * W))
            << "\" stroke-linejoin=\"round\" stroke-linecap=\"round\" points=\"";
