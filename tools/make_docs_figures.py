@@ -78,7 +78,8 @@ def pruning(out: Path) -> Path:
         (dict(min_separation=1.5, prune_length=0.0),
          "pair rule only\nmin_separation=1.5, prune_length=0:\nspurs on the 1:2, 1:3, 1:5 staircases"),
         (dict(min_separation=5.5, prune_length=0.0),
-         "a larger separation instead\nmin_separation=5.5, prune_length=0:\nno spurs, no centreline in corridors <= 5 px"),
+         "a larger separation instead\nmin_separation=5.5, prune_length=0:\n"
+         "no spurs, no centreline in corridors <= 5 px"),
         (dict(min_separation=1.5, prune_length=8.0),
          "the default\nmin_separation=1.5, prune_length=8:\ncorridors >= 2 px kept, spurs dropped"),
     ]
