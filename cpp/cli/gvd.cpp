@@ -38,7 +38,8 @@ struct GvdCliOptions {
     bool quiet = false;
     // occupancy maps
     std::string diagram = "medial";
-    double resolution = 0.0;  // 0: from the YAML, else 1
+    double resolution = 1.0;  // images without YAML
+    bool resolution_given = false;
     std::vector<double> origin;
     std::string unknown = "occupied";
     double min_separation = 1.5, prune_length = 8.0;
@@ -51,15 +52,21 @@ bool is_map_file(const std::string& path) {
 
 int run_map(const GvdCliOptions& o) {
     if (o.diagram != "medial")
-        throw UsageError("--diagram: the CLI draws the medial diagram of map files; for the labelled diagram convert "
-                         "the map to obstacles (Python: dv.obstacles_from_occupancy_grid)");
+        throw UsageError("--diagram: the CLI draws the medial diagram of map files; for the labelled diagram use "
+                         "Python's dv.grid_voronoi(map, diagram=\"labels\")");
+    if (o.grid != 0 || o.mode != "cooperative" || o.no_visibility)
+        throw UsageError("--grid, --mode and --no-visibility are for obstacle files: a map's diagram grid is its pixels");
+    if (o.resolution_given && !(o.resolution > 0.0))
+        throw UsageError("--resolution: must be a positive number (map units per pixel), got " + show(o.resolution));
+    const std::string ext = lower_extension(o.obstacles);
+    if ((ext == ".yaml" || ext == ".yml") && (o.resolution_given || !o.origin.empty()))
+        throw UsageError("--resolution/--origin: a map_server YAML brings its own resolution and origin");
     if (o.workers < 0) throw UsageError("--workers: must be 0 (all cores) or positive, got " + std::to_string(o.workers));
     if (!std::isfinite(o.robot_radius) || o.robot_radius < 0.0)
         throw UsageError("--robot-radius: must be a finite number >= 0, got " + show(o.robot_radius));
     if (!o.path.empty() && o.path.size() != 4) throw UsageError("--path: expects SX SY GX GY");
     for (double v : o.path)
         if (!std::isfinite(v)) throw UsageError("--path: coordinates must be finite");
-    if (o.resolution < 0.0 || !std::isfinite(o.resolution)) throw UsageError("--resolution: must be a positive number (map units per pixel)");
     if (!o.origin.empty() && o.origin.size() != 2) throw UsageError("--origin: expects X Y");
     const bool to_stdout = o.output.empty() || o.output == "-";
     if (!to_stdout && lower_extension(o.output) != ".json")
@@ -68,7 +75,7 @@ int run_map(const GvdCliOptions& o) {
 
     io::MapReadOptions ro;
     ro.unknown_occupied = o.unknown == "occupied";
-    if (o.resolution > 0.0) ro.resolution = o.resolution;
+    if (o.resolution_given) ro.resolution = o.resolution;
     if (!o.origin.empty()) ro.origin = Vec2(o.origin[0], o.origin[1]);
     const io::LoadedMap map = io::read_occupancy_map(o.obstacles, ro);
     std::unique_ptr<io::AtomicFile> out, svg;
@@ -99,8 +106,10 @@ int run_map(const GvdCliOptions& o) {
         std::fprintf(stderr, "gvd: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d worker(s), %.3f s\n",
                      m.grid.rows, m.grid.cols, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", mo.workers, seconds);
         if (n == 0)
-            std::fprintf(stderr, "gvd: warning: no diagram pixel: no passage of the map is 2 or more pixels wide with walls "
-                                 "apart by more than --min-separation %.3g pixels\n", o.min_separation);
+            std::fprintf(stderr, "gvd: warning: no diagram pixel: no two neighbouring free pixels have nearest walls more than "
+                                 "--min-separation %.3g pixels apart that are not joined by walls within --prune-length %.3g "
+                                 "pixels (the free space is under 2 pixels wide, or only small pockets)\n",
+                         o.min_separation, o.prune_length);
     }
     return deliver(
         out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
@@ -173,7 +182,8 @@ Command add_gvd(CLI::App& parent) {
     sub->add_option("-g,--grid", o->grid, "obstacle files: cells along the longer side of the working area");
     sub->add_option("-w,--workers", o->workers, "worker threads (map files: 0 = all cores); same diagram for any count")->capture_default_str();
     sub->add_option("--diagram", o->diagram, "map files: the diagram's definition (medial)")->check(CLI::IsMember({"medial", "labels"}))->capture_default_str();
-    sub->add_option("--resolution", o->resolution, "map files without YAML: map units per pixel (default 1)");
+    sub->add_option("--resolution", o->resolution, "map files without YAML: map units per pixel (default 1)")
+        ->each([o](const std::string&) { o->resolution_given = true; });
     sub->add_option("--origin", o->origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
     sub->add_option("--unknown", o->unknown, "map files: unknown pixels count as occupied or free")->check(CLI::IsMember({"occupied", "free"}))->capture_default_str();
     sub->add_option("--min-separation", o->min_separation, "medial diagram: nearest points of a pair farther apart than this (pixels)")->capture_default_str();

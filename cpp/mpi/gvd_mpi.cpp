@@ -56,7 +56,8 @@ struct Args {
     bool no_visibility = false;
     std::string output, svg;
     // map files, as `dvoronoi gvd MAP`
-    double resolution = 0.0;  // 0: from the YAML, else 1
+    double resolution = 1.0;  // images without YAML
+    bool resolution_given = false;
     std::vector<double> origin;
     std::string unknown = "occupied";
     double min_separation = 1.5, prune_length = 8.0;
@@ -265,8 +266,11 @@ int run_map(const Args& a, int rank, int size) {
     // throw together.
     if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
         throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
-    if (a.resolution < 0.0 || !std::isfinite(a.resolution))
-        throw InputError("--resolution: must be a positive number (map units per pixel)");
+    if (a.resolution_given && !(a.resolution > 0.0 && std::isfinite(a.resolution)))
+        throw InputError("--resolution: must be a positive number (map units per pixel), got " + show(a.resolution));
+    const std::string ext = io::detail::lower_ext(a.input);
+    if ((ext == ".yaml" || ext == ".yml") && (a.resolution_given || !a.origin.empty()))
+        throw InputError("--resolution/--origin: a map_server YAML brings its own resolution and origin");
     if (!a.origin.empty() && a.origin.size() != 2) throw InputError("--origin: expects X Y");
     if (!std::isfinite(a.min_separation) || a.min_separation < 1.0)
         throw InputError("--min-separation: must be a finite number >= 1 (pixels), got " + show(a.min_separation));
@@ -284,7 +288,7 @@ int run_map(const Args& a, int rank, int size) {
     // Rank 0 reads the map and opens the outputs (an unwritable output fails before any work).
     io::MapReadOptions ro;
     ro.unknown_occupied = a.unknown == "occupied";
-    if (a.resolution > 0.0) ro.resolution = a.resolution;
+    if (a.resolution_given) ro.resolution = a.resolution;
     if (!a.origin.empty()) ro.origin = Vec2(a.origin[0], a.origin[1]);
     io::LoadedMap map;
     std::unique_ptr<io::AtomicFile> out, svg;
@@ -374,8 +378,10 @@ int run_map(const Args& a, int rank, int size) {
     std::fprintf(stderr, "dvoronoi_gvd_mpi: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d ranks, %.3f s\n",
                  H, W, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", size, seconds);
     if (n == 0)
-        std::fprintf(stderr, "dvoronoi_gvd_mpi: warning: no diagram pixel: no passage of the map is 2 or more pixels wide "
-                             "with walls apart by more than --min-separation %.3g pixels\n", a.min_separation);
+        std::fprintf(stderr, "dvoronoi_gvd_mpi: warning: no diagram pixel: no two neighbouring free pixels have nearest walls "
+                             "more than --min-separation %.3g pixels apart that are not joined by walls within --prune-length "
+                             "%.3g pixels (the free space is under 2 pixels wide, or only small pockets)\n",
+                     a.min_separation, a.prune_length);
     // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
     if (svg) io::write_medial_svg(svg->stream(), m, a.robot_radius);
     const std::string doc = io::medial_to_json(m, a.robot_radius).dump();
@@ -409,7 +415,8 @@ int main(int argc, char** argv) {
     app.add_option("-m,--mode", a.mode, "cooperative or independent")->check(CLI::IsMember({"cooperative", "independent"}));
     app.add_option("-r,--robot-radius", a.robot_radius, "robot radius (map units): diagram cells or pixels this close to an obstacle are blocked");
     app.add_flag("--no-visibility", a.no_visibility, "turn the paper's edge visibility test off");
-    app.add_option("--resolution", a.resolution, "map files without YAML: map units per pixel (default 1)");
+    app.add_option("--resolution", a.resolution, "map files without YAML: map units per pixel (default 1)")
+        ->each([&a](const std::string&) { a.resolution_given = true; });
     app.add_option("--origin", a.origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
     app.add_option("--unknown", a.unknown, "map files: unknown pixels count as occupied or free")->check(CLI::IsMember({"occupied", "free"}))->capture_default_str();
     app.add_option("--min-separation", a.min_separation, "medial diagram: nearest points of a pair farther apart than this (pixels)")->capture_default_str();

@@ -373,10 +373,9 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
             raise ValueError("cells: an occupancy grid's diagram grid is its pixel grid; do not pass cells=")
         grid = as_occupancy_grid(obstacles, resolution, origin, unknown, occupied_thresh)
         if diagram in (None, "medial"):
-            return medial_voronoi(grid, robot_radius, n_workers, min_separation, prune_length)
+            return medial_voronoi(grid, robot_radius, n_workers, min_separation, prune_length, occupied_thresh, unknown)
         H, W = grid.shape
-        doc = obstacles_from_occupancy_grid(grid.occupied.astype(np.float64), grid.resolution, grid.origin,
-                                            occupied_thresh=0.5)
+        doc = obstacles_from_occupancy_grid(grid)
         return grid_voronoi(doc, cells=max(H, W), robot_radius=robot_radius, workers=n_workers, mode=mode,
                             visibility=visibility, diagram="labels")
     if diagram == "medial":
@@ -403,50 +402,6 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
 
 # -- occupancy grids ------------------------------------------------------------------------------
 
-def _read_pgm(path: Path) -> np.ndarray:
-    """A binary (P5) or ASCII (P2) PGM image as a 2-d uint array (row 0 at the top)."""
-    data = path.read_bytes()
-    tokens = []
-    pos = 0
-    while len(tokens) < 4:
-        while pos < len(data) and data[pos:pos + 1].isspace():
-            pos += 1
-        if data[pos:pos + 1] == b"#":
-            while pos < len(data) and data[pos:pos + 1] not in (b"\n", b"\r"):
-                pos += 1
-            continue
-        start = pos
-        while pos < len(data) and not data[pos:pos + 1].isspace():
-            pos += 1
-        tokens.append(data[start:pos])
-    magic = tokens[0]
-    w, h, maxval = int(tokens[1]), int(tokens[2]), int(tokens[3])
-    if magic == b"P5":
-        dtype = np.uint8 if maxval < 256 else np.dtype(">u2")
-        px = np.frombuffer(data, dtype=dtype, count=w * h, offset=pos + 1)
-    elif magic == b"P2":
-        px = np.array(data[pos:].split()[: w * h], dtype=np.int64)
-    else:
-        raise ValueError(f"{path}: not a PGM image (magic {magic!r})")
-    if px.size != w * h:
-        raise ValueError(f"{path}: truncated PGM image ({px.size} of {w * h} pixels)")
-    return px.reshape(h, w).astype(np.float64) / maxval
-
-
-def _read_image(path: Path) -> np.ndarray:
-    """Grey levels in [0, 1] (row 0 at the top)."""
-    if path.suffix.lower() == ".pgm":
-        return _read_pgm(path)
-    import matplotlib.image as mpimg
-
-    img = np.asarray(mpimg.imread(path), dtype=np.float64)
-    if img.dtype.kind in "ui" or img.max() > 1.0:
-        img = img / 255.0
-    if img.ndim == 3:
-        img = img[..., :3].mean(axis=2)
-    return img
-
-
 def _rectangles(mask: np.ndarray) -> list:
     """Cover a boolean region by axis-aligned rectangles: row runs, merged downwards while a run of
     the next row has the same extent. Returns (row0, row1, col0, col1) half-open."""
@@ -467,51 +422,41 @@ def _rectangles(mask: np.ndarray) -> list:
     return rects
 
 
-def obstacles_from_occupancy_grid(source: Union[PathLike, np.ndarray], resolution: Optional[float] = None,
-                                  origin: Sequence[float] = (0.0, 0.0), occupied_thresh: float = 0.65,
+def obstacles_from_occupancy_grid(source: Any, resolution: Optional[float] = None,
+                                  origin: Optional[Sequence[float]] = None, occupied_thresh: float = 0.65,
                                   negate: bool = False) -> Dict[str, Any]:
-    """Obstacles from an occupancy-grid map (ROS map_server): each connected occupied region (8-connected)
-    becomes one obstacle (a ``union`` of rectangles, one label), the map's extent the working area.
+    """Obstacles from an occupancy-grid map: each connected occupied region (8-connected) becomes one
+    obstacle (a ``union`` of rectangles, one label), the map's extent the working area — the paper's
+    labelled diagram (``diagram="labels"``) of a map.
 
-    `source` is a map_server YAML file (``image``, ``resolution``, ``origin``, ``negate``,
-    ``occupied_thresh``), an image file (PGM or PNG; then give `resolution`), or a 2-d array of
-    occupancy probabilities in [0, 1] (row 0 at the top, as in the image). A pixel is occupied when
-    its probability ``(1 - grey)`` (``grey`` with ``negate``) exceeds `occupied_thresh`.
-    Obstacles are numbered in the order scipy.ndimage.label finds the regions (the first occupied
-    pixel in the image's row-major order, top row first). Returns the document :func:`grid_voronoi` takes.
+    `source` is a map file read as :meth:`OccupancyGrid.load` reads it (map_server YAML with its own
+    resolution and origin, PGM or PNG with `resolution` (default 1) and `origin`, MovingAI ``.map``;
+    `occupied_thresh` and `negate` for images), an :class:`OccupancyGrid`, or a 2-d array of occupancy
+    probabilities in [0, 1] (row 0 at the top, as in the image; occupied above `occupied_thresh`) with
+    `resolution`. Obstacles are numbered in the order scipy.ndimage.label finds the regions (the
+    first occupied pixel in the image's row-major order, top row first). Returns the document
+    :func:`grid_voronoi` takes.
     """
     from scipy import ndimage
 
-    if isinstance(source, np.ndarray):
-        occ = np.asarray(source, dtype=np.float64)
+    from .occupancy import OccupancyGrid
+
+    if isinstance(source, OccupancyGrid):
+        grid = source
+    elif isinstance(source, np.ndarray):
         if resolution is None:
             raise ValueError("resolution: required with an array")
+        grid = OccupancyGrid(np.asarray(source, dtype=np.float64), resolution, (0.0, 0.0) if origin is None else origin,
+                             occupied_thresh=occupied_thresh)
     else:
-        path = Path(os.fspath(source))
-        if path.suffix.lower() in (".yaml", ".yml"):
-            import yaml
-
-            meta = yaml.safe_load(path.read_text())
-            for key in ("image", "resolution"):
-                if key not in meta:
-                    raise ValueError(f"{path}: missing field '{key}'")
-            resolution = float(meta["resolution"])
-            origin = meta.get("origin", [0.0, 0.0, 0.0])[:2]
-            negate = bool(meta.get("negate", 0))
-            occupied_thresh = float(meta.get("occupied_thresh", occupied_thresh))
-            path = path.parent / meta["image"]
-        elif resolution is None:
-            raise ValueError("resolution: required with an image file (or give the map's YAML)")
-        grey = _read_image(path)
-        occ = grey if negate else 1.0 - grey
-    if occ.ndim != 2:
-        raise ValueError(f"occupancy grid must be 2-d, got shape {occ.shape}")
-    res = float(resolution)
-    if not np.isfinite(res) or res <= 0:
-        raise ValueError(f"resolution must be a positive finite number, got {resolution}")
+        grid = OccupancyGrid.load(source, resolution=resolution, origin=origin, occupied_thresh=occupied_thresh,
+                                  negate=negate)
+    occ = grid.occupied
+    res = grid.resolution
+    origin = grid.origin
     rows, cols = occ.shape
     ox, oy = float(origin[0]), float(origin[1])
-    labels, n = ndimage.label(occ > occupied_thresh, structure=np.ones((3, 3), bool))
+    labels, n = ndimage.label(occ, structure=np.ones((3, 3), bool))
     obstacles = []
     for region, sl in enumerate(ndimage.find_objects(labels), start=1):
         sub = labels[sl] == region

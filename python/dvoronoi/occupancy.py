@@ -125,9 +125,12 @@ class OccupancyGrid:
         a MovingAI ``.map`` (``.`` and ``G`` free). Errors name the file (and line)."""
         if unknown not in ("occupied", "free"):
             raise ValueError(f'unknown must be "occupied" or "free", got {unknown!r}')
+        path = os.fspath(path)
+        if path.lower().endswith((".yaml", ".yml")) and (resolution is not None or origin is not None):
+            raise ValueError(f"{path}: a map_server YAML brings its own resolution and origin; do not pass "
+                             "resolution= or origin=")
         res = 1.0 if resolution is None else _positive(resolution, "resolution")
         ox, oy = (0.0, 0.0) if origin is None else _origin(origin)
-        path = os.fspath(path)
         try:
             occ, res, org, n_unknown, _image = _core._load_occupancy_map(
                 path, unknown == "occupied", res, ox, oy, float(occupied_thresh), float(free_thresh), bool(negate))
@@ -139,6 +142,18 @@ class OccupancyGrid:
         g.origin = (float(org[0]), float(org[1]))
         g.unknown_pixels = int(n_unknown)
         return g
+
+    @classmethod
+    def from_ros(cls, data: Any, width: int, height: int, resolution: float, origin: Sequence[float], *,
+                 occupied_thresh: float = 0.65, unknown: str = "occupied") -> "OccupancyGrid":
+        """From a ROS ``nav_msgs/OccupancyGrid`` message's fields (``msg.data``, ``msg.info.width``,
+        ``msg.info.height``, ``msg.info.resolution``, ``(msg.info.origin.position.x, .y)``): its data
+        starts at the origin cell, the map's bottom row, so the rows are flipped to put row 0 at the top."""
+        a = np.asarray(data, dtype=np.int8)
+        if a.size != int(width) * int(height):
+            raise ValueError(f"data has {a.size} values for a {width} x {height} map")
+        return cls(np.flipud(a.reshape(int(height), int(width))), resolution, origin,
+                   occupied_thresh=occupied_thresh, unknown=unknown)
 
     @property
     def shape(self) -> Tuple[int, int]:
@@ -304,8 +319,8 @@ class OccupancyVoronoi:
         OccupancyGrid) and recompute only what the change can affect. Returns what was touched."""
         if isinstance(new_occupancy, OccupancyGrid):
             occ = new_occupancy.occupied
-        else:
-            occ = _occupied(new_occupancy, 0.65, "occupied")
+        else:  # read as the map was: the build's threshold and unknown rule
+            occ = _occupied(new_occupancy, self.options.get("occupied_thresh", 0.65), self.options.get("unknown", "occupied"))
         if occ.shape != self.shape:
             raise ValueError(f"new_occupancy must have the map's shape {self.shape}, got {occ.shape}")
         return self._after_update(self._core.update(np.ascontiguousarray(occ, dtype=np.uint8)))
@@ -364,15 +379,16 @@ class OccupancyVoronoi:
         return None
 
     def plot(self, ax: "Optional[matplotlib.axes.Axes]" = None, path: Optional[np.ndarray] = None,
-             clearance: bool = False, **kwargs: Any) -> "matplotlib.axes.Axes":
+             clearance: bool = False, figsize: Optional[Tuple[float, float]] = None) -> "matplotlib.axes.Axes":
         """Occupied pixels (dark grey), diagram pixels (blue; blocked ones light red), an optional path
-        (green); with ``clearance=True`` the clearance map underneath. Returns the axes."""
+        (green); with ``clearance=True`` the clearance map underneath. Returns the axes (a new figure of
+        `figsize` when `ax` is None)."""
         import matplotlib.pyplot as plt
         from matplotlib.colors import ListedColormap
 
         if ax is None:
             H, W = self.shape
-            side = kwargs.pop("figsize", None) or (7.0, max(2.0, 7.0 * H / W))
+            side = figsize or (7.0, max(2.0, 7.0 * H / W))
             _, ax = plt.subplots(figsize=side)
         extent = self.grid.extent
         if clearance:
@@ -398,10 +414,11 @@ class OccupancyVoronoi:
     # -- pickling: the map and the options; the diagram is rebuilt (exactly the same) -------------
     def __getstate__(self) -> Dict[str, Any]:
         return {"occupied": self.grid.occupied, "resolution": self.resolution, "origin": self.origin,
-                "robot_radius": self.robot_radius, "options": self.options}
+                "unknown_pixels": self.grid.unknown_pixels, "robot_radius": self.robot_radius, "options": self.options}
 
     def __setstate__(self, state: Dict[str, Any]) -> None:
         grid = OccupancyGrid(state["occupied"], state["resolution"], state["origin"])
+        grid.unknown_pixels = int(state.get("unknown_pixels", 0))
         o = state["options"]
         core = _core._medial_build(np.ascontiguousarray(grid.occupied, dtype=np.uint8), grid.resolution,
                                    grid.origin[0], grid.origin[1], o["min_separation"], o["prune_length"],
@@ -415,12 +432,13 @@ class OccupancyVoronoi:
 
 
 def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_separation: float,
-                   prune_length: float) -> OccupancyVoronoi:
+                   prune_length: float, occupied_thresh: float = 0.65, unknown: str = "occupied") -> OccupancyVoronoi:
     own = OccupancyGrid.__new__(OccupancyGrid)  # the result's own copy: updates never touch the caller's grid
     own.occupied, own.resolution, own.origin = grid.occupied.copy(), grid.resolution, grid.origin
     own.unknown_pixels = grid.unknown_pixels
     grid = own
-    options = {"min_separation": float(min_separation), "prune_length": float(prune_length), "workers": int(workers)}
+    options = {"min_separation": float(min_separation), "prune_length": float(prune_length), "workers": int(workers),
+               "occupied_thresh": float(occupied_thresh), "unknown": unknown}
     try:
         core = _core._medial_build(np.ascontiguousarray(grid.occupied, dtype=np.uint8), grid.resolution,
                                    grid.origin[0], grid.origin[1], options["min_separation"],

@@ -468,3 +468,79 @@ def test_cli_map_files_write_the_python_json(tmp_path):
     assert svg.read_text() == gv.to_svg()
     bad = subprocess.run([CLI, "gvd", str(tmp_path / "nope.map")], capture_output=True, text=True)
     assert bad.returncode != 0 and "nope.map: cannot open file" in bad.stderr
+
+
+# -- the review's findings -------------------------------------------------------------------------
+
+def test_update_reads_arrays_as_the_build_did():
+    ros = np.zeros((12, 14), np.int8)
+    ros[3:6, 3:6] = -1
+    gv = dv.grid_voronoi(ros, unknown="free")
+    assert not gv.grid.occupied.any()
+    gv.update(ros)
+    assert not gv.grid.occupied.any()
+    probs = np.full((10, 10), 0.1)
+    probs[4, 4] = 0.55
+    gv = dv.grid_voronoi(probs, occupied_thresh=0.5)
+    gv.update(probs)
+    assert gv.grid.occupied[4, 4] and gv.grid.occupied.sum() == 1
+
+
+def test_yaml_brings_its_own_resolution_and_origin(tmp_path):
+    write_pgm(tmp_path / "m.pgm", np.full((5, 6), 254, np.uint8))
+    (tmp_path / "m.yaml").write_text("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n")
+    with pytest.raises(ValueError, match="brings its own resolution"):
+        dv.OccupancyGrid.load(tmp_path / "m.yaml", resolution=0.5)
+    with pytest.raises(ValueError, match="brings its own resolution"):
+        dv.grid_voronoi(tmp_path / "m.yaml", origin=(1, 1))
+    (tmp_path / "s.yaml").write_text("image: m.pgm\nresolution: 0.1\nmode: scale\n")
+    with pytest.raises(ValueError, match=r"s.yaml:3: mode: 'scale' is not supported"):
+        dv.OccupancyGrid.load(tmp_path / "s.yaml")
+
+
+def test_ros_message_rows_start_at_the_bottom():
+    data = np.zeros((4, 5), np.int8)
+    data[0, :] = 100   # the message's first row: the map's bottom row
+    g = dv.OccupancyGrid.from_ros(data.ravel().tolist(), 5, 4, 0.05, (1.0, 2.0))
+    assert g.occupied[3].all() and not g.occupied[:3].any()
+    with pytest.raises(ValueError, match="19 values for a 5 x 4 map"):
+        dv.OccupancyGrid.from_ros(data.ravel()[:19], 5, 4, 0.05, (0, 0))
+
+
+@pytest.mark.skipif(not _core._has_png, reason="built without libpng")
+def test_png_colours_are_averaged_as_map_server_does(tmp_path):
+    import matplotlib.image as mpimg
+    rgba = np.ones((2, 3, 4))
+    rgba[0, 0, :3] = (0, 1, 0)        # green: mean 1/3, occupancy 2/3 > 0.65: occupied
+    rgba[0, 1, :3] = (1, 0, 0)        # red: the same
+    rgba[0, 2, 3] = 0.0               # transparent white: alpha ignored, free
+    rgba[1, 0, :3] = 0.0              # black: occupied
+    mpimg.imsave(tmp_path / "c.png", rgba)
+    g = dv.OccupancyGrid.load(tmp_path / "c.png")
+    assert g.occupied.tolist() == [[True, True, False], [True, False, False]]
+
+
+def test_labelled_diagram_of_a_file_reads_it_as_the_medial_one(tmp_path):
+    img = np.full((20, 30), 254, np.uint8)
+    img[5:9, 5:9] = 205    # unknown: occupied by default
+    img[12:15, 20:25] = 0
+    write_pgm(tmp_path / "u.pgm", img)
+    (tmp_path / "u.yaml").write_text("image: u.pgm\nresolution: 0.5\norigin: [0, 0, 0]\n")
+    doc = dv.obstacles_from_occupancy_grid(tmp_path / "u.yaml")
+    assert len(doc["obstacles"]) == 2
+    assert np.array_equal(dv.OccupancyGrid.load(tmp_path / "u.yaml").occupied, (img == 0) | (img == 205))
+
+
+def test_movingai_unknown_character_is_an_error(tmp_path):
+    (tmp_path / "x.map").write_text("type octile\nheight 1\nwidth 3\nmap\n.x.\n")
+    with pytest.raises(ValueError, match=r"x.map:5: column 2: unknown map character"):
+        dv.OccupancyGrid.load(tmp_path / "x.map")
+
+
+@pytest.mark.skipif(not CLI, reason="DVORONOI_CLI not set")
+def test_cli_refuses_obstacle_options_and_bad_resolution_for_maps(tmp_path):
+    (tmp_path / "a.map").write_text("type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n")
+    for args, msg in ((["--grid", "8"], "for obstacle files"), (["--resolution", "0"], "--resolution: must be a positive"),
+                      (["--diagram", "labels"], 'diagram="labels"')):
+        p = subprocess.run([CLI, "gvd", str(tmp_path / "a.map"), *args], capture_output=True, text=True)
+        assert p.returncode == 2 and msg in p.stderr, p.stderr

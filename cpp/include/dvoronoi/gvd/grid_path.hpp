@@ -13,7 +13,9 @@
 // Costs keep the path on the diagram where it serves: a step onto a diagram pixel costs its length,
 // a step elsewhere `off_diagram_cost` times that. The pixel path is then straightened where a
 // straight segment is exactly clear (segment_clear below), runs of diagram pixels only among
-// themselves, so the path still follows the diagram.
+// themselves, so the path still follows the diagram. Segment tests are conservative: squared
+// distances in doubles are compared with a relative margin of 1e-12 toward "not clear", so a
+// returned segment is never within r, at the price of refusing one that clears r by less.
 #pragma once
 
 #include "dvoronoi/gvd/medial_diagram.hpp"
@@ -38,8 +40,8 @@ struct GridPath {
 namespace detail {
 
 /// Clear by more than r: squared distances compared with a relative margin of 1e-12 toward
-/// "not clear", so a rounded comparison never calls a touching segment clear.
-inline bool clearer_than(double sq_px, double r_px) { return sq_px > r_px * r_px * (1.0 + 1e-12) + 0.0; }
+/// "not clear", so a rounded comparison never calls a touching segment clear (conservative).
+inline bool clearer_than(double sq_px, double r_px) { return sq_px > r_px * r_px * (1.0 + 1e-12); }
 
 /// Squared distance (pixel units) from segment pq to the axis-parallel box [x0, x1] x [y0, y1]
 /// (0 when they meet).

@@ -1,10 +1,11 @@
 // Occupancy-grid map files: ROS map_server YAML (with its PGM or PNG image), PGM (P2/P5), PNG and the
 // MovingAI benchmark `.map` text format (SPEC "Grid diagram on occupancy grids").
 //
-// Grey images follow map_server's trinary rule: with v the grey level scaled to [0, 1] (colours
-// averaged), the occupancy probability is p = 1 - v (p = v with `negate`); p > occupied_thresh is
+// Grey images follow map_server's trinary rule: with v the grey level scaled to [0, 1] (the mean of
+// the colour channels, alpha ignored), the occupancy probability is p = 1 - v (p = v with `negate`); p > occupied_thresh is
 // occupied, p < free_thresh free, anything between unknown. Unknown pixels count as occupied unless
-// the caller says otherwise. MovingAI maps: `.` and `G` free, every other character blocked.
+// the caller says otherwise. MovingAI maps: `.` and `G` free, `@ O T S W` blocked, any other character
+// an error naming the line and column.
 //
 // Errors: InputError whose message starts with `FILE:` (and `LINE:` for text formats). PNG needs
 // libpng: the CLI and the Python module are built with it when CMake finds it
@@ -149,14 +150,17 @@ inline std::vector<double> read_png(const std::string& path, std::int32_t& h, st
     if (!png_image_begin_read_from_memory(&img, data.data(), data.size()))
         throw InputError(path + ": not a readable PNG image (" + img.message + ")");
     check_size(path, img.width, img.height);
-    img.format = PNG_FORMAT_GRAY;  // libpng converts colour to grey (and drops alpha)
+    // As map_server reads images: the mean of the colour channels as stored, alpha ignored (libpng's
+    // own grey conversion would weight by luminance and composite alpha onto black).
+    img.format = PNG_FORMAT_RGBA;
     std::vector<unsigned char> px(PNG_IMAGE_SIZE(img));
     if (!png_image_finish_read(&img, nullptr, px.data(), 0, nullptr))
         throw InputError(path + ": cannot decode PNG image (" + img.message + ")");
     w = static_cast<std::int32_t>(img.width);
     h = static_cast<std::int32_t>(img.height);
-    std::vector<double> grey(px.size());
-    for (std::size_t i = 0; i < px.size(); ++i) grey[i] = px[i] / 255.0;
+    std::vector<double> grey(px.size() / 4);
+    for (std::size_t i = 0; i < grey.size(); ++i)
+        grey[i] = (px[4 * i] + px[4 * i + 1] + px[4 * i + 2]) / (3.0 * 255.0);
     return grey;
 }
 #endif
@@ -200,8 +204,13 @@ inline LoadedMap read_movingai(const std::string& path, const MapReadOptions& o)
         strip(line);
         if (static_cast<long long>(line.size()) != W)
             fail("row " + std::to_string(r) + " has " + std::to_string(line.size()) + " characters, expected " + std::to_string(W));
-        for (std::int32_t c = 0; c < W; ++c)
-            out.grid.occupied[out.grid.at(r, c)] = line[static_cast<std::size_t>(c)] == '.' || line[static_cast<std::size_t>(c)] == 'G' ? 0 : 1;
+        for (std::int32_t c = 0; c < W; ++c) {
+            const char ch = line[static_cast<std::size_t>(c)];
+            if (std::strchr(".G@OTSW", ch) == nullptr || ch == '\0')
+                fail("column " + std::to_string(c + 1) + ": unknown map character (code " +
+                     std::to_string(static_cast<int>(static_cast<unsigned char>(ch))) + "); expected one of . G @ O T S W");
+            out.grid.occupied[out.grid.at(r, c)] = ch == '.' || ch == 'G' ? 0 : 1;
+        }
     }
     while (std::getline(in, line)) {
         ++lineno;
@@ -212,7 +221,7 @@ inline LoadedMap read_movingai(const std::string& path, const MapReadOptions& o)
 }
 
 /// map_server's YAML: `image`, `resolution`, `origin: [x, y, yaw]`, `negate`, `occupied_thresh`,
-/// `free_thresh`, `mode` (trinary or scale; raw is refused). A line-based reader of that flat schema.
+/// `free_thresh`, `mode` (trinary; scale and raw are refused). A line-based reader of that flat schema.
 inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
     std::istringstream in(read_bytes(path));
     std::string line, image;
@@ -267,7 +276,8 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
             if (v < 0.0 || v > 1.0) fail(key + ": expected a number in [0, 1], got '" + val + "'");
             (key == "occupied_thresh" ? o.occupied_thresh : o.free_thresh) = v;
         } else if (key == "mode") {
-            if (val != "trinary" && val != "scale") fail("mode: '" + val + "' is not supported (trinary or scale)");
+            // scale and raw give in-between pixels probabilities, not "unknown": no occupied/free rule here
+            if (val != "trinary") fail("mode: '" + val + "' is not supported (trinary); convert the map or give the array");
         }  // other keys: ignored, as map_server does
     }
     lineno = 0;
