@@ -71,3 +71,25 @@ def test_no_snippet_reads_outside_the_repository():
     for path in (PAGE, README):
         assert "../shared" not in path.read_text(encoding="utf-8")
     assert os.path.exists(ROOT / "docs" / "spec.md")
+
+
+CPP_FENCE = re.compile(r"^```cpp[ \t]*\n(.*?)^```[ \t]*$", re.DOTALL | re.MULTILINE)
+
+
+def test_page_cpp_example_compiles_and_runs(tmp_path):
+    """The page's C++ example against the headers of this tree (needs g++ and Eigen, as the build does)."""
+    import shutil
+    import subprocess
+
+    eigen = Path("/usr/include/eigen3")
+    if shutil.which("g++") is None or not eigen.is_dir():
+        pytest.skip("g++ or Eigen not installed")
+    blocks = CPP_FENCE.findall(PAGE.read_text(encoding="utf-8"))
+    assert blocks, "the page shows the C++ API"
+    src = tmp_path / "example.cpp"
+    src.write_text(blocks[0])
+    exe = tmp_path / "example"
+    subprocess.run(["g++", "-std=c++17", "-O1", f"-I{ROOT / 'cpp' / 'include'}", f"-I{eigen}", str(src), "-o", str(exe),
+                    "-pthread"], check=True, capture_output=True)
+    out = subprocess.run([str(exe)], cwd=ROOT, check=True, capture_output=True, text=True).stdout
+    assert "5556 diagram pixels" in out and "path: " in out and "nearest points changed" in out
