@@ -32,8 +32,9 @@ gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, 
     g.cols = static_cast<std::int32_t>(occ.shape(1));
     g.resolution = resolution;
     g.origin = Vec2(ox, oy);
-    g.occupied.assign(occ.data(), occ.data() + occ.size());
-    for (auto& v : g.occupied) v = v ? 1 : 0;
+    g.occupied.resize(static_cast<std::size_t>(occ.size()));
+    const std::uint8_t* in = occ.data();
+    for (std::size_t i = 0; i < g.occupied.size(); ++i) g.occupied[i] = in[i] != 0;  // any nonzero byte is occupied
     return g;
 }
 
@@ -81,9 +82,8 @@ void bind_gvd_occupancy(py::module_& m) {
         .def_property_readonly("count", [](const gvd::MedialDiagram& d) { return d.count(); })
         .def_property_readonly("mask", [](const gvd::MedialDiagram& d) {
             py::array_t<bool> a({static_cast<py::ssize_t>(d.grid.rows), static_cast<py::ssize_t>(d.grid.cols)});
-            bool* out = a.mutable_data();
-            for (std::int32_t r = 0; r < d.grid.rows; ++r)
-                for (std::int32_t c = 0; c < d.grid.cols; ++c) out[d.grid.at(r, c)] = d.mask(r, c);
+            static_assert(sizeof(bool) == 1, "numpy bools are bytes");
+            d.mask.to_bytes(reinterpret_cast<std::uint8_t*>(a.mutable_data()));
             return a;
         })
         .def_property_readonly("occupancy", [](const gvd::MedialDiagram& d) { return bool_image(d.grid.occupied, d.grid.rows, d.grid.cols); })

@@ -3,6 +3,7 @@
 // `dvoronoi gvd MAP.{yaml,pgm,png,map}`: the medial diagram of an occupancy grid (SPEC "Grid diagram
 // on occupancy grids"), with clearance and an optional path for a disk robot.
 #include "common.hpp"
+#include "map_options.hpp"
 
 #include "dvoronoi/gvd/grid_path.hpp"
 #include "dvoronoi/io/medial_export.hpp"
@@ -36,18 +37,29 @@ struct GvdCliOptions {
     std::string output;
     std::string svg;
     bool quiet = false;
-    // occupancy maps
     std::string diagram = "medial";
-    double resolution = 1.0;  // images without YAML
-    bool resolution_given = false;
-    std::vector<double> origin;
-    std::string unknown = "occupied";
-    double min_separation = 1.5, prune_length = 8.0;
+    cli_maps::MapOptions map;  // occupancy maps
 };
 
-bool is_map_file(const std::string& path) {
-    const std::string e = lower_extension(path);
-    return e == ".yaml" || e == ".yml" || e == ".pgm" || e == ".png" || e == ".map";
+using cli_maps::is_map_file;
+
+/// Checks shared by both inputs; returns whether the JSON goes to stdout.
+bool check_common(const GvdCliOptions& o) {
+    if (o.workers < 0) throw UsageError("--workers: must be 0 (all cores) or positive, got " + std::to_string(o.workers));
+    if (!std::isfinite(o.robot_radius) || o.robot_radius < 0.0)
+        throw UsageError("--robot-radius: must be a finite number >= 0, got " + show(o.robot_radius));
+    if (!o.path.empty() && o.path.size() != 4) throw UsageError("--path: expects SX SY GX GY");
+    for (double v : o.path)
+        if (!std::isfinite(v)) throw UsageError("--path: coordinates must be finite");
+    const bool to_stdout = o.output.empty() || o.output == "-";
+    if (!to_stdout && lower_extension(o.output) != ".json")
+        throw UsageError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
+    if (!to_stdout && !o.svg.empty() && o.output == o.svg) throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
+    return to_stdout;
+}
+
+int workers_of(const GvdCliOptions& o) {
+    return o.workers == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : o.workers;
 }
 
 int run_map(const GvdCliOptions& o) {
@@ -56,36 +68,15 @@ int run_map(const GvdCliOptions& o) {
                          "Python's dv.grid_voronoi(map, diagram=\"labels\")");
     if (o.grid != 0 || o.mode != "cooperative" || o.no_visibility)
         throw UsageError("--grid, --mode and --no-visibility are for obstacle files: a map's diagram grid is its pixels");
-    if (o.resolution_given && !(o.resolution > 0.0))
-        throw UsageError("--resolution: must be a positive number (map units per pixel), got " + show(o.resolution));
-    const std::string ext = lower_extension(o.obstacles);
-    if ((ext == ".yaml" || ext == ".yml") && (o.resolution_given || !o.origin.empty()))
-        throw UsageError("--resolution/--origin: a map_server YAML brings its own resolution and origin");
-    if (o.workers < 0) throw UsageError("--workers: must be 0 (all cores) or positive, got " + std::to_string(o.workers));
-    if (!std::isfinite(o.robot_radius) || o.robot_radius < 0.0)
-        throw UsageError("--robot-radius: must be a finite number >= 0, got " + show(o.robot_radius));
-    if (!o.path.empty() && o.path.size() != 4) throw UsageError("--path: expects SX SY GX GY");
-    for (double v : o.path)
-        if (!std::isfinite(v)) throw UsageError("--path: coordinates must be finite");
-    if (!o.origin.empty() && o.origin.size() != 2) throw UsageError("--origin: expects X Y");
-    const bool to_stdout = o.output.empty() || o.output == "-";
-    if (!to_stdout && lower_extension(o.output) != ".json")
-        throw UsageError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
-    if (!to_stdout && !o.svg.empty() && o.output == o.svg) throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
-
-    io::MapReadOptions ro;
-    ro.unknown_occupied = o.unknown == "occupied";
-    if (o.resolution_given) ro.resolution = o.resolution;
-    if (!o.origin.empty()) ro.origin = Vec2(o.origin[0], o.origin[1]);
+    o.map.check(o.obstacles);
+    const bool to_stdout = check_common(o);
+    const io::MapReadOptions ro = o.map.read_options();
     const io::LoadedMap map = io::read_occupancy_map(o.obstacles, ro);
     std::unique_ptr<io::AtomicFile> out, svg;
     if (!to_stdout) out = open_output(o.output, "-o/--output");
     if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
 
-    gvd::MedialOptions mo;
-    mo.min_separation = o.min_separation;
-    mo.prune_length = o.prune_length;
-    mo.workers = o.workers == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : o.workers;
+    const gvd::MedialOptions mo = o.map.medial(workers_of(o));
     const auto t0 = std::chrono::steady_clock::now();
     const gvd::MedialDiagram m = gvd::medial_diagram(map.grid, mo);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -105,11 +96,7 @@ int run_map(const GvdCliOptions& o) {
     if (!o.quiet) {
         std::fprintf(stderr, "gvd: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d worker(s), %.3f s\n",
                      m.grid.rows, m.grid.cols, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", mo.workers, seconds);
-        if (n == 0)
-            std::fprintf(stderr, "gvd: warning: no diagram pixel: no two neighbouring free pixels have nearest walls more than "
-                                 "--min-separation %.3g pixels apart that are not joined by walls within --prune-length %.3g "
-                                 "pixels (the free space is under 2 pixels wide, or only small pockets)\n",
-                         o.min_separation, o.prune_length);
+        if (n == 0) o.map.warn_empty("gvd");
     }
     return deliver(
         out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
@@ -119,16 +106,7 @@ int run_map(const GvdCliOptions& o) {
 int run_gvd(const GvdCliOptions& o) {
     if (is_map_file(o.obstacles)) return run_map(o);
     if (o.grid < 1) throw UsageError("--grid: required for obstacle files, at least 1, got " + std::to_string(o.grid));
-    if (o.workers < 0) throw UsageError("--workers: must be 0 (all cores) or positive, got " + std::to_string(o.workers));
-    if (!std::isfinite(o.robot_radius) || o.robot_radius < 0.0)
-        throw UsageError("--robot-radius: must be a finite number >= 0, got " + show(o.robot_radius));
-    if (!o.path.empty() && o.path.size() != 4) throw UsageError("--path: expects SX SY GX GY");
-    for (double v : o.path)
-        if (!std::isfinite(v)) throw UsageError("--path: coordinates must be finite");
-    const bool to_stdout = o.output.empty() || o.output == "-";
-    if (!to_stdout && lower_extension(o.output) != ".json")
-        throw UsageError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
-    if (!to_stdout && !o.svg.empty() && o.output == o.svg) throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
+    const bool to_stdout = check_common(o);
 
     const io::ObstacleFile file = io::read_obstacles(o.obstacles);
     std::unique_ptr<io::AtomicFile> out, svg;
@@ -137,7 +115,7 @@ int run_gvd(const GvdCliOptions& o) {
 
     gvd::GvdOptions opt;
     opt.resolution = o.grid;
-    opt.workers = o.workers == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : o.workers;
+    opt.workers = workers_of(o);
     opt.mode = o.mode == "independent" ? gvd::SliceMode::Independent : gvd::SliceMode::Cooperative;
     opt.robot_radius = o.robot_radius;
     opt.visibility = !o.no_visibility;
@@ -182,12 +160,7 @@ Command add_gvd(CLI::App& parent) {
     sub->add_option("-g,--grid", o->grid, "obstacle files: cells along the longer side of the working area");
     sub->add_option("-w,--workers", o->workers, "worker threads (map files: 0 = all cores); same diagram for any count")->capture_default_str();
     sub->add_option("--diagram", o->diagram, "map files: the diagram's definition (medial)")->check(CLI::IsMember({"medial", "labels"}))->capture_default_str();
-    sub->add_option("--resolution", o->resolution, "map files without YAML: map units per pixel (default 1)")
-        ->each([o](const std::string&) { o->resolution_given = true; });
-    sub->add_option("--origin", o->origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
-    sub->add_option("--unknown", o->unknown, "map files: unknown pixels count as occupied or free")->check(CLI::IsMember({"occupied", "free"}))->capture_default_str();
-    sub->add_option("--min-separation", o->min_separation, "medial diagram: nearest points of a pair farther apart than this (pixels)")->capture_default_str();
-    sub->add_option("--prune-length", o->prune_length, "medial diagram: pairs whose nearest points are this close and joined by walls are dropped (pixels)")->capture_default_str();
+o->map.add_to(*sub);
     sub->add_option("-m,--mode", o->mode, "slice approach: cooperative (each border scanned once, seeds sent "
                                           "to the left neighbour) or independent (no communication)")
         ->check(CLI::IsMember({"cooperative", "independent"}))

@@ -23,6 +23,7 @@
 // The diagram is identical for every K (and both approaches).
 //
 // Exit codes as the CLI: 0 success, 2 bad command line or input (rank 0 prints the message), 1 other.
+#include "../cli/map_options.hpp"
 #include "dvoronoi/gvd/grid_voronoi.hpp"
 #include "dvoronoi/io/atomic_write.hpp"
 #include "dvoronoi/io/gvd_json.hpp"
@@ -55,18 +56,10 @@ struct Args {
     double robot_radius = 0.0;
     bool no_visibility = false;
     std::string output, svg;
-    // map files, as `dvoronoi gvd MAP`
-    double resolution = 1.0;  // images without YAML
-    bool resolution_given = false;
-    std::vector<double> origin;
-    std::string unknown = "occupied";
-    double min_separation = 1.5, prune_length = 8.0;
+    cli_maps::MapOptions map;  // map files, as `dvoronoi gvd MAP`
 };
 
-bool is_map_file(const std::string& path) {
-    const std::string e = io::detail::lower_ext(path);
-    return e == ".yaml" || e == ".yml" || e == ".pgm" || e == ".png" || e == ".map";
-}
+using cli_maps::is_map_file;
 
 std::string show(double v) {
     std::ostringstream s;
@@ -266,30 +259,15 @@ int run_map(const Args& a, int rank, int size) {
     // throw together.
     if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
         throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
-    if (a.resolution_given && !(a.resolution > 0.0 && std::isfinite(a.resolution)))
-        throw InputError("--resolution: must be a positive number (map units per pixel), got " + show(a.resolution));
-    const std::string ext = io::detail::lower_ext(a.input);
-    if ((ext == ".yaml" || ext == ".yml") && (a.resolution_given || !a.origin.empty()))
-        throw InputError("--resolution/--origin: a map_server YAML brings its own resolution and origin");
-    if (!a.origin.empty() && a.origin.size() != 2) throw InputError("--origin: expects X Y");
-    if (!std::isfinite(a.min_separation) || a.min_separation < 1.0)
-        throw InputError("--min-separation: must be a finite number >= 1 (pixels), got " + show(a.min_separation));
-    if (!std::isfinite(a.prune_length) || a.prune_length < 0.0 || a.prune_length > 256.0)
-        throw InputError("--prune-length: must be a finite number in [0, 256] (pixels), got " + show(a.prune_length));
+    a.map.check(a.input);
     const bool to_stdout = a.output.empty() || a.output == "-";
     if (!to_stdout && io::detail::lower_ext(a.output) != ".json")
         throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
     if (!to_stdout && !a.svg.empty() && a.output == a.svg) throw InputError("--svg: same file as -o/--output ('" + a.svg + "')");
-    gvd::MedialOptions mo;
-    mo.min_separation = a.min_separation;
-    mo.prune_length = a.prune_length;
-    gvd::check_medial_options(mo);
+    const gvd::MedialOptions mo = a.map.medial(1);
 
     // Rank 0 reads the map and opens the outputs (an unwritable output fails before any work).
-    io::MapReadOptions ro;
-    ro.unknown_occupied = a.unknown == "occupied";
-    if (a.resolution_given) ro.resolution = a.resolution;
-    if (!a.origin.empty()) ro.origin = Vec2(a.origin[0], a.origin[1]);
+    const io::MapReadOptions ro = a.map.read_options();
     io::LoadedMap map;
     std::unique_ptr<io::AtomicFile> out, svg;
     int ok = 1;
@@ -377,11 +355,7 @@ int run_map(const Args& a, int rank, int size) {
     const std::size_t n = m.count();
     std::fprintf(stderr, "dvoronoi_gvd_mpi: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d ranks, %.3f s\n",
                  H, W, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", size, seconds);
-    if (n == 0)
-        std::fprintf(stderr, "dvoronoi_gvd_mpi: warning: no diagram pixel: no two neighbouring free pixels have nearest walls "
-                             "more than --min-separation %.3g pixels apart that are not joined by walls within --prune-length "
-                             "%.3g pixels (the free space is under 2 pixels wide, or only small pockets)\n",
-                     a.min_separation, a.prune_length);
+    if (n == 0) a.map.warn_empty("dvoronoi_gvd_mpi");
     // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
     if (svg) io::write_medial_svg(svg->stream(), m, a.robot_radius);
     const std::string doc = io::medial_to_json(m, a.robot_radius).dump();
@@ -415,12 +389,7 @@ int main(int argc, char** argv) {
     app.add_option("-m,--mode", a.mode, "cooperative or independent")->check(CLI::IsMember({"cooperative", "independent"}));
     app.add_option("-r,--robot-radius", a.robot_radius, "robot radius (map units): diagram cells or pixels this close to an obstacle are blocked");
     app.add_flag("--no-visibility", a.no_visibility, "turn the paper's edge visibility test off");
-    app.add_option("--resolution", a.resolution, "map files without YAML: map units per pixel (default 1)")
-        ->each([&a](const std::string&) { a.resolution_given = true; });
-    app.add_option("--origin", a.origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
-    app.add_option("--unknown", a.unknown, "map files: unknown pixels count as occupied or free")->check(CLI::IsMember({"occupied", "free"}))->capture_default_str();
-    app.add_option("--min-separation", a.min_separation, "medial diagram: nearest points of a pair farther apart than this (pixels)")->capture_default_str();
-    app.add_option("--prune-length", a.prune_length, "medial diagram: pairs whose nearest points are this close and joined by walls are dropped (pixels)")->capture_default_str();
+    a.map.add_to(app);
     app.add_option("-o,--output", a.output, "output JSON file (default: stdout)");
     app.add_option("--svg", a.svg, "also draw the diagram into this SVG file");
     int code = 0;

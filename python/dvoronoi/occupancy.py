@@ -183,6 +183,11 @@ class OccupancyGrid:
                 and np.array_equal(self.occupied, other.occupied))
 
 
+def _as_bytes(occupied: np.ndarray) -> np.ndarray:
+    """A bool array as contiguous bytes for the core, without a copy when it is contiguous already."""
+    return np.ascontiguousarray(occupied, dtype=bool).view(np.uint8)
+
+
 def as_occupancy_grid(source: Any, resolution: Optional[float], origin: Optional[Sequence[float]], unknown: str,
                       occupied_thresh: float) -> OccupancyGrid:
     """An OccupancyGrid from a grid, a map file path or an array."""
@@ -323,7 +328,7 @@ class OccupancyVoronoi:
             occ = _occupied(new_occupancy, self.options.get("occupied_thresh", 0.65), self.options.get("unknown", "occupied"))
         if occ.shape != self.shape:
             raise ValueError(f"new_occupancy must have the map's shape {self.shape}, got {occ.shape}")
-        return self._after_update(self._core.update(np.ascontiguousarray(occ, dtype=np.uint8)))
+        return self._after_update(self._core.update(_as_bytes(occ)))
 
     def set_occupied(self, pixels: Any) -> Dict[str, Any]:
         """Mark pixels occupied: ``(row, col)`` pairs or an H x W bool mask."""
@@ -420,9 +425,8 @@ class OccupancyVoronoi:
         grid = OccupancyGrid(state["occupied"], state["resolution"], state["origin"])
         grid.unknown_pixels = int(state.get("unknown_pixels", 0))
         o = state["options"]
-        core = _core._medial_build(np.ascontiguousarray(grid.occupied, dtype=np.uint8), grid.resolution,
-                                   grid.origin[0], grid.origin[1], o["min_separation"], o["prune_length"],
-                                   o["workers"])
+        core = _core._medial_build(_as_bytes(grid.occupied), grid.resolution, grid.origin[0], grid.origin[1],
+                                   o["min_separation"], o["prune_length"], o["workers"])
         self.__init__(core, grid, state["robot_radius"], o)  # type: ignore[misc]
 
     def __repr__(self) -> str:
@@ -433,19 +437,20 @@ class OccupancyVoronoi:
 
 def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_separation: float,
                    prune_length: float, occupied_thresh: float = 0.65, unknown: str = "occupied") -> OccupancyVoronoi:
-    own = OccupancyGrid.__new__(OccupancyGrid)  # the result's own copy: updates never touch the caller's grid
-    own.occupied, own.resolution, own.origin = grid.occupied.copy(), grid.resolution, grid.origin
+    # The result's own grid object (its occupancy is read back from the core when asked for, so updates
+    # never touch the caller's grid and the caller's later edits never reach the result).
+    own = OccupancyGrid.__new__(OccupancyGrid)
+    own.occupied, own.resolution, own.origin = None, grid.resolution, grid.origin
     own.unknown_pixels = grid.unknown_pixels
-    grid = own
+    source, grid = grid, own
     options = {"min_separation": float(min_separation), "prune_length": float(prune_length), "workers": int(workers),
                "occupied_thresh": float(occupied_thresh), "unknown": unknown}
     try:
-        core = _core._medial_build(np.ascontiguousarray(grid.occupied, dtype=np.uint8), grid.resolution,
-                                   grid.origin[0], grid.origin[1], options["min_separation"],
-                                   options["prune_length"], options["workers"])
+        core = _core._medial_build(_as_bytes(source.occupied), grid.resolution, grid.origin[0], grid.origin[1],
+                                   options["min_separation"], options["prune_length"], options["workers"])
     except ValueError as e:
         raise ValueError(str(e)) from None
-    if core.count == 0 and not grid.occupied.all():
+    if core.count == 0 and not source.occupied.all():
         warnings.warn(f"no diagram pixel: no two neighbouring free pixels have nearest walls more than "
                       f"min_separation={min_separation} pixels apart that are not joined by walls within "
                       f"prune_length={prune_length} pixels (the free space is under 2 pixels wide, or only "

@@ -108,9 +108,6 @@ public:
         // edges ca .. cb+1; edge e lies between columns e-1 and e
         const std::size_t m = static_cast<std::size_t>(cb - ca + 2);
         if (hA_.size() < m) { hA_.resize(m); he_.resize(m); hy_.resize(m); }
-        std::int64_t* hA = hA_.data();
-        std::int32_t* he = he_.data();
-        std::int32_t* hy = hy_.data();
         std::size_t top = 0;
         std::int64_t vprev = 0;
         std::int32_t yprev = 0;
@@ -128,20 +125,7 @@ public:
             vprev = vcur;
             yprev = ycur;
             has_prev = has_cur;
-            // Lower envelope of (X - 2e)^2 + off, e ascending. Edge q is dropped when the next edge u
-            // overtakes it no later than q overtakes its predecessor p (crossings at
-            // X = (A_q - A_p) / (4 (e_q - e_p)), A = off + 4e^2): exact integer cross-multiplication.
-            const std::int64_t Au = off + 4 * std::int64_t{e} * e;
-            while (top >= 2) {
-                const std::int64_t Aq = hA[top - 1], Ap = hA[top - 2];
-                const std::int64_t eq = he[top - 1], ep = he[top - 2];
-                if ((Au - Aq) * (eq - ep) <= (Aq - Ap) * (e - eq)) --top;
-                else break;
-            }
-            hA[top] = Au;
-            he[top] = e;
-            hy[top] = y;
-            ++top;
+            push_edge(top, e, off, y);
         }
         top_ = top;
         k_ = 0;
@@ -165,23 +149,8 @@ public:
             cv[x - s] = (2 * a - 1) * (2 * a - 1);
             cy[x - s] = k > 0 ? Y_ + 1 - 2 * k : Y_ - 1 - 2 * k;  // free pixels: k != 0
         }
-        std::int64_t* hA = hA_.data();
-        std::int32_t* he = he_.data();
-        std::int32_t* hy = hy_.data();
         std::size_t top = 0;
-        auto push = [&](std::int32_t e, std::int64_t off, std::int32_t y) {
-            const std::int64_t Au = off + 4 * std::int64_t{e} * e;
-            while (top >= 2) {
-                const std::int64_t Aq = hA[top - 1], Ap = hA[top - 2];
-                const std::int64_t eq = he[top - 1], ep = he[top - 2];
-                if ((Au - Aq) * (eq - ep) <= (Aq - Ap) * (e - eq)) --top;
-                else break;
-            }
-            hA[top] = Au;
-            he[top] = e;
-            hy[top] = y;
-            ++top;
-        };
+        auto push = [&](std::int32_t e, std::int64_t off, std::int32_t y) { push_edge(top, e, off, y); };
         push(s, 0, Y_);  // the occupied (or outside) pixel left of the run, in this row
         for (std::int32_t e = s + 1; e <= t; ++e) {
             const std::int64_t a = cv[e - 1 - s], b = cv[e - s];
@@ -242,6 +211,26 @@ public:
         return c;
     }
 private:
+    /// Adds edge e's parabola (X - 2e)^2 + off to the lower envelope (edges come in ascending order).
+    /// Edge q is dropped when the new edge u overtakes it no later than q overtakes its predecessor p
+    /// (crossings at X = (A_q - A_p) / (4 (e_q - e_p)), A = off + 4e^2): exact integer
+    /// cross-multiplication, no division.
+    void push_edge(std::size_t& top, std::int32_t e, std::int64_t off, std::int32_t y) {
+        std::int64_t* hA = hA_.data();
+        std::int32_t* he = he_.data();
+        const std::int64_t Au = off + 4 * std::int64_t{e} * e;
+        while (top >= 2) {
+            const std::int64_t Aq = hA[top - 1], Ap = hA[top - 2];
+            const std::int64_t eq = he[top - 1], ep = he[top - 2];
+            if ((Au - Aq) * (eq - ep) <= (Aq - Ap) * (e - eq)) --top;
+            else break;
+        }
+        hA[top] = Au;
+        he[top] = e;
+        hy_[top] = y;
+        ++top;
+    }
+
     std::int64_t V(std::int32_t c) const {
         if (c < 0 || c >= W_) return 0;
         const std::int64_t k = std::abs(static_cast<std::int32_t>(vg_[c]));

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -145,11 +146,22 @@ public:
         }
         return n;
     }
-    /// Row-major 0/1 bytes.
+    /// Row-major 0/1 bytes into `out` (rows x cols), eight pixels at a time.
+    void to_bytes(std::uint8_t* out) const {
+        for (std::int32_t r = 0; r < rows_; ++r) {
+            const std::uint64_t* w = row_words(r);
+            std::uint8_t* o = out + static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_);
+            std::int32_t c = 0;
+            for (; c + 8 <= cols_; c += 8) {  // c % 8 == 0: the 8 bits lie in one word
+                const std::uint64_t spread = spread_table()[(w[c / 64] >> (c % 64)) & 0xff];
+                std::memcpy(o + c, &spread, 8);
+            }
+            for (; c < cols_; ++c) o[c] = (*this)(r, c);
+        }
+    }
     std::vector<std::uint8_t> bytes() const {
         std::vector<std::uint8_t> out(static_cast<std::size_t>(rows_) * static_cast<std::size_t>(cols_));
-        for (std::int32_t r = 0; r < rows_; ++r)
-            for (std::int32_t c = 0; c < cols_; ++c) out[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_) + static_cast<std::size_t>(c)] = (*this)(r, c);
+        to_bytes(out.data());
         return out;
     }
     /// The words of rows [r0, r1) (for sending whole rows, e.g. MPI).
@@ -162,6 +174,20 @@ public:
     bool operator!=(const PixelMask& o) const { return !(*this == o); }
 
 private:
+    /// Byte k of entry b is bit k of b: eight pixels' bits to eight 0/1 bytes (little-endian memory order).
+    static const std::uint64_t* spread_table() {
+        static const auto table = [] {
+            std::vector<std::uint64_t> t(256);
+            for (unsigned b = 0; b < 256; ++b) {
+                std::uint8_t bytes[8];
+                for (unsigned k = 0; k < 8; ++k) bytes[k] = static_cast<std::uint8_t>((b >> k) & 1);
+                std::memcpy(&t[b], bytes, 8);
+            }
+            return t;
+        }();
+        return table.data();
+    }
+
     std::int32_t rows_ = 0, cols_ = 0;
     std::size_t stride_ = 0;
     std::vector<std::uint64_t> w_;

@@ -1,0 +1,89 @@
+// The map options of `dvoronoi gvd MAP` and `dvoronoi_gvd_mpi MAP` (one set of flags, checks and
+// messages for both programs): how a map file is read and the medial diagram's parameters.
+#pragma once
+
+#include "dvoronoi/gvd/medial_diagram.hpp"
+#include "dvoronoi/io/occupancy_map.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dvoronoi::cli_maps {
+
+inline bool is_map_file(const std::string& path) {
+    const std::string e = io::detail::lower_ext(path);
+    return e == ".yaml" || e == ".yml" || e == ".pgm" || e == ".png" || e == ".map";
+}
+
+struct MapOptions {
+    double resolution = 1.0;  // images without YAML
+    bool resolution_given = false;
+    std::vector<double> origin;
+    std::string unknown = "occupied";
+    double min_separation = 1.5, prune_length = 8.0;
+
+    /// Registers --resolution, --origin, --unknown, --min-separation and --prune-length on `app`.
+    void add_to(CLI::App& app) {
+        app.add_option("--resolution", resolution, "map files without YAML: map units per pixel (default 1)")
+            ->each([this](const std::string&) { resolution_given = true; });
+        app.add_option("--origin", origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
+        app.add_option("--unknown", unknown, "map files: unknown pixels count as occupied or free")
+            ->check(CLI::IsMember({"occupied", "free"}))
+            ->capture_default_str();
+        app.add_option("--min-separation", min_separation,
+                       "medial diagram: nearest points of a pair farther apart than this (pixels)")->capture_default_str();
+        app.add_option("--prune-length", prune_length,
+                       "medial diagram: pairs whose nearest points are this close and joined by walls are dropped (pixels)")
+            ->capture_default_str();
+    }
+
+    /// \throws InputError naming the option.
+    void check(const std::string& input) const {
+        auto num = [](double v) {
+            char buf[64];
+            std::snprintf(buf, sizeof buf, "%.17g", v);
+            return std::string(buf);
+        };
+        if (resolution_given && !(resolution > 0.0 && std::isfinite(resolution)))
+            throw InputError("--resolution: must be a positive number (map units per pixel), got " + num(resolution));
+        const std::string ext = io::detail::lower_ext(input);
+        if ((ext == ".yaml" || ext == ".yml") && (resolution_given || !origin.empty()))
+            throw InputError("--resolution/--origin: a map_server YAML brings its own resolution and origin");
+        if (!origin.empty() && origin.size() != 2) throw InputError("--origin: expects X Y");
+        if (!std::isfinite(min_separation) || min_separation < 1.0)
+            throw InputError("--min-separation: must be a finite number >= 1 (pixels), got " + num(min_separation));
+        if (!std::isfinite(prune_length) || prune_length < 0.0 || prune_length > 256.0)
+            throw InputError("--prune-length: must be a finite number in [0, 256] (pixels), got " + num(prune_length));
+    }
+
+    io::MapReadOptions read_options() const {
+        io::MapReadOptions ro;
+        ro.unknown_occupied = unknown == "occupied";
+        if (resolution_given) ro.resolution = resolution;
+        if (!origin.empty()) ro.origin = Vec2(origin[0], origin[1]);
+        return ro;
+    }
+
+    gvd::MedialOptions medial(int workers) const {
+        gvd::MedialOptions mo;
+        mo.min_separation = min_separation;
+        mo.prune_length = prune_length;
+        mo.workers = workers;
+        return mo;
+    }
+
+    /// The warning when a map gives no diagram pixel.
+    void warn_empty(const char* program) const {
+        std::fprintf(stderr, "%s: warning: no diagram pixel: no two neighbouring free pixels have nearest walls more than "
+                             "--min-separation %.3g pixels apart that are not joined by walls within --prune-length %.3g "
+                             "pixels (the free space is under 2 pixels wide, or only small pockets)\n",
+                     program, min_separation, prune_length);
+    }
+};
+
+}  // namespace dvoronoi::cli_maps
