@@ -330,7 +330,7 @@ inline MedialDiagram medial_diagram(OccupancyGrid grid, const MedialOptions& opt
     m.features = feature_transform(grid, options.workers);
     m.grid = std::move(grid);
     m.options = options;
-    m.bits = OccupancyBits(m.grid);
+    m.bits = OccupancyBits(m.grid, options.workers);
     m.mask = PixelMask(m.grid.rows, m.grid.cols);
     const int k_rows = std::max(1, std::min(options.workers, m.grid.rows));
     run_team(k_rows, [&](int k) {

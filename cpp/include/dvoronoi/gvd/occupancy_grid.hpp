@@ -12,6 +12,7 @@
 #pragma once
 
 #include "dvoronoi/core/types.hpp"
+#include "dvoronoi/gvd/team.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -62,27 +63,19 @@ struct OccupancyGrid {
 class OccupancyBits {
 public:
     OccupancyBits() = default;
-    explicit OccupancyBits(const OccupancyGrid& g)
+    /// The bits of `g`, its rows split over `workers` threads (rows never share a word).
+    explicit OccupancyBits(const OccupancyGrid& g, int workers = 1)
         : rows_(g.rows), cols_(g.cols), stride_((static_cast<std::size_t>(g.cols) + 2 + 63) / 64 + 1),
           w_(stride_ * (static_cast<std::size_t>(g.rows) + 2), 0) {
         for (std::size_t k = 0; k < stride_; ++k) {  // the outside rows
             w_[k] = ~std::uint64_t{0};
             w_[(static_cast<std::size_t>(rows_) + 1) * stride_ + k] = ~std::uint64_t{0};
         }
-        for (std::int32_t j = 0; j < rows_; ++j) {
-            const std::uint8_t* o = &g.occupied[g.at(rows_ - 1 - j, 0)];
-            std::uint64_t* w = &w_[static_cast<std::size_t>(j + 1) * stride_];
-            for (std::int32_t c0 = 0; c0 < cols_; c0 += 64) {  // 64 bytes to one word, then into place
-                const std::int32_t n = std::min(64, cols_ - c0);
-                std::uint64_t m = 0;
-                for (std::int32_t k = 0; k < n; ++k) m |= static_cast<std::uint64_t>(o[c0 + k] != 0) << k;
-                const std::size_t bit = static_cast<std::size_t>(c0) + 1;
-                w[bit / 64] |= m << (bit % 64);
-                if (bit % 64 != 0) w[bit / 64 + 1] |= m >> (64 - bit % 64);
-            }
-            put(j, -1, true);
-            put(j, cols_, true);
-        }
+        const int team = std::max(1, std::min(workers, rows_));
+        run_team(team, [&](int t) {
+            fill_rows(g, static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * t / team),
+                      static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * (t + 1) / team));
+        });
     }
     void put(std::int32_t j, std::int32_t c, bool v) {
         const std::size_t bit = static_cast<std::size_t>(c + 1);
@@ -101,6 +94,24 @@ public:
     bool empty() const { return w_.empty(); }
 
 private:
+    /// Square rows j in [j0, j1) from the occupancy bytes.
+    void fill_rows(const OccupancyGrid& g, std::int32_t j0, std::int32_t j1) {
+        for (std::int32_t j = j0; j < j1; ++j) {
+            const std::uint8_t* o = &g.occupied[g.at(rows_ - 1 - j, 0)];
+            std::uint64_t* w = &w_[static_cast<std::size_t>(j + 1) * stride_];
+            for (std::int32_t c0 = 0; c0 < cols_; c0 += 64) {  // 64 bytes to one word, then into place
+                const std::int32_t n = std::min(64, cols_ - c0);
+                std::uint64_t m = 0;
+                for (std::int32_t k = 0; k < n; ++k) m |= static_cast<std::uint64_t>(o[c0 + k] != 0) << k;
+                const std::size_t bit = static_cast<std::size_t>(c0) + 1;
+                w[bit / 64] |= m << (bit % 64);
+                if (bit % 64 != 0) w[bit / 64 + 1] |= m >> (64 - bit % 64);
+            }
+            put(j, -1, true);
+            put(j, cols_, true);
+        }
+    }
+
     std::int32_t rows_ = 0, cols_ = 0;
     std::size_t stride_ = 0;
     std::vector<std::uint64_t> w_;
