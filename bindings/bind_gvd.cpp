@@ -7,6 +7,7 @@
 #include "dvoronoi/gvd/brute_force.hpp"
 #include "dvoronoi/gvd/grid_voronoi.hpp"
 #include "dvoronoi/gvd/path.hpp"
+#include "dvoronoi/gvd/rasterize.hpp"
 #include "dvoronoi/io/gvd_json.hpp"
 #include "dvoronoi/io/gvd_svg.hpp"
 #include "dvoronoi/io/obstacles_json.hpp"
@@ -149,6 +150,19 @@ void bind_gvd(py::module_& m) {
             }
             return out;
         })
+        .def("rasterize", [](const PyScene& s, std::int64_t cells) {
+            gvd::OccupancyGrid g;
+            try {
+                py::gil_scoped_release release;
+                g = gvd::rasterize(s.file.scene, cells);
+            } catch (const dvoronoi::InputError& e) {
+                throw py::value_error(e.what());
+            }
+            py::array_t<bool> occ({static_cast<py::ssize_t>(g.rows), static_cast<py::ssize_t>(g.cols)});
+            std::copy(g.occupied.begin(), g.occupied.end(), reinterpret_cast<std::uint8_t*>(occ.mutable_data()));
+            return py::make_tuple(occ, g.resolution, py::make_tuple(g.origin.x(), g.origin.y()));
+        }, py::arg("cells"), "The scene on `cells` pixels along the area's longer side (gvd/rasterize.hpp): "
+                             "(occupancy H x W bool, resolution, origin).")
         .def("nearest", [](const PyScene& s, py::handle p) {
             const Vec2 q = point_arg(p, "point");
             const gvd::Nearest n = gvd::nearest_brute_force(s.file.scene, q, true);

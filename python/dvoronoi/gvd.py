@@ -339,7 +339,10 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
 
     **Obstacle documents** (list of shape dicts, ``{"area": ..., "obstacles": [...]}``, a JSON path,
     or a scene from :func:`load_obstacles`): the paper's labelled diagram (Mendes et al.), traced by
-    slice workers. Returns a :class:`GridVoronoi`.
+    slice workers (a :class:`GridVoronoi`); with ``diagram="medial"`` the document is drawn on `cells`
+    pixels along the area's longer side (a pixel is occupied when its square meets an obstacle or
+    leaves the working area) and gets the occupancy grids' medial diagram (an
+    :class:`OccupancyVoronoi`), which separates the parts of one non-convex obstacle.
 
     Parameters
     ----------
@@ -378,9 +381,6 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         doc = obstacles_from_occupancy_grid(grid)
         return grid_voronoi(doc, cells=max(H, W), robot_radius=robot_radius, workers=n_workers, mode=mode,
                             visibility=visibility, diagram="labels")
-    if diagram == "medial":
-        raise ValueError('diagram="medial" is computed on occupancy grids; pass the map (array, OccupancyGrid or '
-                         'map file) instead of obstacles, or use diagram="labels"')
     if cells is not None and resolution is not None:
         raise ValueError("pass cells= only (resolution= is its deprecated name for obstacle documents)")
     if resolution is not None:
@@ -396,6 +396,12 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
     if mode not in ("cooperative", "independent"):
         raise ValueError(f'mode must be "cooperative" or "independent", got {mode!r}')
     scene = load_obstacles(obstacles, area)
+    if diagram == "medial":
+        # the document on the pixel grid: a pixel is occupied when it meets an obstacle or leaves the area
+        from .occupancy import OccupancyGrid, medial_voronoi
+
+        occ, res, org = scene.rasterize(int(cells))
+        return medial_voronoi(OccupancyGrid(occ, res, org), robot_radius, n_workers, min_separation, prune_length)
     core = _core._gvd_run(scene, int(cells), robot_radius, n_workers, mode, bool(visibility))
     return GridVoronoi(core, scene)
 

@@ -221,8 +221,6 @@ def test_bad_arguments_name_themselves():
                           ({"unknown": "maybe"}, "unknown"), ({"area": (0, 0, 1, 1)}, "area"), ({"cells": 10}, "cells")]:
         with pytest.raises(ValueError, match=match):
             dv.grid_voronoi(occ, **kwargs)
-    with pytest.raises(ValueError, match='diagram="medial"'):
-        dv.grid_voronoi([{"type": "point", "position": [1, 1]}], area=(0, 0, 2, 2), diagram="medial")
     with pytest.deprecated_call():
         dv.grid_voronoi([{"type": "point", "position": [1, 1]}], area=(0, 0, 2, 2), resolution=16)
 
@@ -544,3 +542,25 @@ def test_cli_refuses_obstacle_options_and_bad_resolution_for_maps(tmp_path):
                       (["--diagram", "labels"], 'diagram="labels"')):
         p = subprocess.run([CLI, "gvd", str(tmp_path / "a.map"), *args], capture_output=True, text=True)
         assert p.returncode == 2 and msg in p.stderr, p.stderr
+
+
+def test_medial_diagram_of_an_obstacle_document():
+    from shapely.geometry import LineString, Polygon
+    u = [[20, 10], [80, 10], [80, 70], [60, 70], [60, 30], [40, 30], [40, 70], [20, 70]]
+    doc = {"area": {"box": [0, 0, 100, 100]}, "obstacles": [{"type": "polygon", "vertices": u}]}
+    gv = dv.grid_voronoi(doc, cells=200, diagram="medial", robot_radius=2.0)
+    assert isinstance(gv, dv.OccupancyVoronoi) and gv.shape == (200, 200)
+    assert gv.resolution == pytest.approx(0.5) and gv.origin == (0.0, 0.0)
+    # the pixels meeting the U are occupied (every clearance is measured from a superset of it), and
+    # the diagram is the occupancy grid's
+    assert np.array_equal(gv.diagram_mask, dv.grid_voronoi(gv.grid, workers=1).diagram_mask)
+    # the corridor between the arms has its centreline (x = 50) from y = 42 up to its open top
+    rows = [gv.shape[0] - 1 - int(y / 0.5) for y in np.arange(42, 66, 0.5)]
+    cols = [int(49.5 / 0.5), int(50.0 / 0.5)]
+    assert all(gv.diagram_mask[r, cols].any() for r in rows)
+    # the labelled diagram has nothing inside the U: one obstacle, one label
+    labels = dv.grid_voronoi(doc, cells=200)
+    inside = (labels.cells[:, 0] > 84) & (labels.cells[:, 0] < 116) & (labels.cells[:, 1] > 64) & (labels.cells[:, 1] < 136)
+    assert not inside.any()
+    route = gv.path((50, 60), (50, 90))
+    assert len(route) >= 2 and LineString(route).distance(Polygon(u)) > 2.0
