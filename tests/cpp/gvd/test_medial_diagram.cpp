@@ -53,6 +53,19 @@ TEST_CASE("the diagram is exactly the brute-force oracle's, for every worker cou
         }
 }
 
+TEST_CASE("long pruning lengths: boxes wider than 64 squares take the square-by-square search") {
+    OccupancyGrid g(90, 100);
+    scenes::fill(g, 20, 24, 10, 90);  // two long walls joined far away, a hall, a pillar
+    scenes::fill(g, 60, 64, 10, 90);
+    scenes::fill(g, 20, 64, 86, 90);
+    scenes::fill(g, 40, 45, 40, 45);
+    for (double prune : {70.0, 256.0}) {
+        MedialOptions o;
+        o.prune_length = prune;
+        REQUIRE(medial_diagram(g, o).mask.bytes() == brute_force_medial(g, o));
+    }
+}
+
 TEST_CASE("every corridor at least 2 pixels wide has a centreline within one pixel of its middle") {
     const int length = 20, top = 6;
     const OccupancyGrid g = scenes::corridors(length);
