@@ -119,6 +119,10 @@ public:
             std::int64_t vcur = 0;
             std::int32_t ycur = 0;
             if (has_cur) { vcur = V(e); ycur = yv(e); }
+            if (has_prev && has_cur && vprev == vcur) {  // never the nearest: see flat_edge
+                yprev = ycur;
+                continue;
+            }
             // the nearer column's square; equal: the lower nearest point
             if (has_prev && (!has_cur || vprev < vcur || (vprev == vcur && yprev <= ycur))) { off = vprev; y = yprev; }
             else { off = vcur; y = ycur; }
@@ -140,21 +144,20 @@ public:
         ca_ = s - 1;
         cb_ = t + 1;
         const std::size_t m = static_cast<std::size_t>(t - s + 3);  // edges s .. t+1, one spare
-        if (hA_.size() < m) { hA_.resize(m); he_.resize(m); hy_.resize(m); cv_.resize(m); cy_.resize(m); }
-        std::int64_t* cv = cv_.data();  // V and y of columns s .. t at index x - s
-        std::int32_t* cy = cy_.data();
-        for (std::int32_t x = s; x <= t; ++x) {
-            const std::int32_t k = vg_[x];
-            const std::int64_t a = k < 0 ? -k : k;
-            cv[x - s] = (2 * a - 1) * (2 * a - 1);
-            cy[x - s] = k > 0 ? Y_ + 1 - 2 * k : Y_ - 1 - 2 * k;  // free pixels: k != 0
+        if (hA_.size() < m) { hA_.resize(m); he_.resize(m); hy_.resize(m); cv_.resize(m); }
+        std::int32_t* cv = cv_.data();  // V of columns s .. t at index x - s (< 2^31: sides <= 16383)
+        const std::int16_t* vg = vg_ + s;
+        for (std::int32_t i = 0; i <= t - s; ++i) {
+            const std::int32_t k = vg[i], a = k < 0 ? -k : k;
+            cv[i] = (2 * a - 1) * (2 * a - 1);
         }
         std::size_t top = 0;
         auto push = [&](std::int32_t e, std::int64_t off, std::int32_t y) { push_edge(top, e, off, y); };
         push(s, 0, Y_);  // the occupied (or outside) pixel left of the run, in this row
         for (std::int32_t e = s + 1; e <= t; ++e) {
             const std::int64_t a = cv[e - 1 - s], b = cv[e - s];
-            const std::int32_t ya = cy[e - 1 - s], yb = cy[e - s];
+            if (a == b) continue;  // never the nearest: see flat_edge
+            const std::int32_t ya = feature_y(Y_, vg_[e - 1]), yb = feature_y(Y_, vg_[e]);
             const bool left = a < b || (a == b && ya <= yb);  // the nearer square; equal: the lower point
             push(e, left ? a : b, left ? ya : yb);
         }
@@ -179,7 +182,7 @@ public:
         const std::int64_t e = he_[k], sq = best + X * X;
         const std::int64_t own = cv_[static_cast<std::size_t>(x - run_s_)];
         // the pixel's own column (dx = 0) wins ties against edges to its right only
-        if (own < sq || (own == sq && 2 * e > X)) return {own, static_cast<std::int32_t>(X), cy_[static_cast<std::size_t>(x - run_s_)]};
+        if (own < sq || (own == sq && 2 * e > X)) return {own, static_cast<std::int32_t>(X), feature_y(Y_, vg_[x])};
         return {sq, static_cast<std::int32_t>(2 * e), hy_[k]};
     }
 
@@ -211,6 +214,11 @@ public:
         return c;
     }
 private:
+    // flat_edge: an edge between two columns with the same V is never the nearest candidate, so it is
+    // left out of the envelope (in a room with a flat floor, most edges). With V(e-1) = V(e) = C its
+    // offset is C; at pixels e-1 and e the own columns give C < C + 1; left of e-1 edge e-1 is nearer
+    // with an offset <= C, right of e edge e+1 likewise: strictly smaller everywhere, ties included.
+
     /// Adds edge e's parabola (X - 2e)^2 + off to the lower envelope (edges come in ascending order).
     /// Edge q is dropped when the new edge u overtakes it no later than q overtakes its predecessor p
     /// (crossings at X = (A_q - A_p) / (4 (e_q - e_p)), A = off + 4e^2): exact integer
@@ -242,8 +250,7 @@ private:
     const std::int16_t* vg_ = nullptr;
     std::vector<std::int64_t> hA_;  // envelope: A = offset + 4e^2, edge e, nearest point's y
     std::vector<std::int32_t> he_, hy_;
-    std::vector<std::int64_t> cv_;  // build_run: the run's columns' V and nearest y
-    std::vector<std::int32_t> cy_;
+    std::vector<std::int32_t> cv_;  // build_run: the run's columns' V
     std::size_t top_ = 0, k_ = 0;
     std::int32_t run_s_ = 0;
 };

@@ -18,6 +18,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <string>
 #include <vector>
 
@@ -102,7 +106,16 @@ private:
             for (std::int32_t c0 = 0; c0 < cols_; c0 += 64) {  // 64 bytes to one word, then into place
                 const std::int32_t n = std::min(64, cols_ - c0);
                 std::uint64_t m = 0;
-                for (std::int32_t k = 0; k < n; ++k) m |= static_cast<std::uint64_t>(o[c0 + k] != 0) << k;
+                std::int32_t k = 0;
+#if defined(__SSE2__)
+                // sixteen bytes at a time: compare with zero, gather the sign bits (pmovmskb)
+                for (; k + 16 <= n; k += 16) {
+                    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(o + c0 + k));
+                    const auto zero = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128())));
+                    m |= static_cast<std::uint64_t>(~zero & 0xffffu) << k;
+                }
+#endif
+                for (; k < n; ++k) m |= static_cast<std::uint64_t>(o[c0 + k] != 0) << k;
                 const std::size_t bit = static_cast<std::size_t>(c0) + 1;
                 w[bit / 64] |= m << (bit % 64);
                 if (bit % 64 != 0) w[bit / 64 + 1] |= m >> (64 - bit % 64);
