@@ -286,24 +286,34 @@ inline void row_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t r, RowE
 
 }  // namespace detail
 
-/// The nearest-point transform of `g` with `workers` threads (same result for any count).
-/// \throws InputError for a grid check_grid rejects.
-/// \note O(rows x cols); 6 bytes per pixel.
-inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
-    check_grid(g);
-    FeatureMap f;
-    f.rows = g.rows;
-    f.cols = g.cols;
-    // filled in order: pages mapped in bulk, not one fault each (core/pages.hpp)
-    ::dvoronoi::detail::assign_prefaulted(f.vgap, g.size());
-    ::dvoronoi::detail::assign_prefaulted(f.fx, g.size());
-    ::dvoronoi::detail::assign_prefaulted(f.fy, g.size());
+/// Pass 1 over all columns with up to `workers` threads (into `f`, already sized).
+inline void column_passes(const OccupancyGrid& g, FeatureMap& f, int workers) {
     const int k_cols = std::max(1, std::min(workers, g.cols / 64 > 0 ? g.cols / 64 : 1));
     run_team(k_cols, [&](int k) {
         const auto c0 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.cols) * k / k_cols);
         const auto c1 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.cols) * (k + 1) / k_cols);
         detail::column_pass(g, f, c0, c1);
     });
+}
+
+/// An empty map of g's size, its arrays mapped in bulk (they are filled in order; core/pages.hpp).
+inline FeatureMap feature_map_for(const OccupancyGrid& g) {
+    FeatureMap f;
+    f.rows = g.rows;
+    f.cols = g.cols;
+    ::dvoronoi::detail::assign_prefaulted(f.vgap, g.size());
+    ::dvoronoi::detail::assign_prefaulted(f.fx, g.size());
+    ::dvoronoi::detail::assign_prefaulted(f.fy, g.size());
+    return f;
+}
+
+/// The nearest-point transform of `g` with `workers` threads (same result for any count).
+/// \throws InputError for a grid check_grid rejects.
+/// \note O(rows x cols); 6 bytes per pixel.
+inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
+    check_grid(g);
+    FeatureMap f = feature_map_for(g);
+    column_passes(g, f, workers);
     const int k_rows = std::max(1, std::min(workers, g.rows));
     run_team(k_rows, [&](int k) {
         detail::RowEnvelope env;

@@ -288,58 +288,75 @@ inline std::int64_t largest_sq(const FeatureMap& f, std::int32_t r0, std::int32_
 /// first over whole rows (branch-free, vectorised), and only separated pairs get the full rule. The
 /// vertical pairs across the band's edges are judged by both bands, each marking its own row only,
 /// so threads never write the same row.
-inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) {
-    const PairRule rule(m.options);
-    BoxJoin join(&m.bits);
-    const OccupancyGrid& g = m.grid;
-    const FeatureMap& f = m.features;
-    const std::int32_t W = g.cols;
-    const std::int32_t sep2 = static_cast<std::int32_t>(std::min<std::int64_t>(rule.sep2, INT32_MAX));
-    std::vector<std::uint8_t> flag(static_cast<std::size_t>(W) + 8, 0);
-    m.mask.clear_rows(r0, r1);
-    // 1: p is marked, 2: q is marked (both on a tie), 0: the pair does not separate
-    auto judge = [&](std::int32_t pr, std::int32_t pc, std::int32_t qr, std::int32_t qc) -> int {
-        const std::size_t i = f.at(pr, pc), j = f.at(qr, qc);
-        if (g.occupied[i] || g.occupied[j]) return 0;
-        const std::int32_t ax = f.fx[i], ay = f.fy[i], bx = f.fx[j], by = f.fy[j];
-        const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
-        if (d2 <= rule.sep2) return 0;
-        const std::int64_t px = 2 * pc + 1, py = 2 * (g.rows - 1 - pr) + 1, qx = 2 * qc + 1, qy = 2 * (g.rows - 1 - qr) + 1;
-        auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
-        const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay), sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
-        if (d2 <= rule.prune2 && join(g, ax, ay, bx, by)) return 0;
-        return (sp <= sq_ ? 1 : 0) | (sq_ <= sp ? 2 : 0);
-    };
-    // visit the columns whose flag is set, eight at a time past the empty stretches
-    auto each_flagged = [&](std::int32_t n, auto&& fn) {  // columns [0, n)
-        for (std::int32_t c = 0; c < n; c += 8) {
-            std::uint64_t word;
-            std::memcpy(&word, &flag[static_cast<std::size_t>(c)], 8);
-            if (word == 0) continue;
-            for (std::int32_t d = c; d < std::min(n, c + 8); ++d)
-                if (flag[static_cast<std::size_t>(d)]) fn(d);
-        }
-    };
-    for (std::int32_t r = std::max(0, r0 - 1); r < r1; ++r) {
-        if (r + 1 < g.rows) {  // vertical pairs (r, c), (r + 1, c)
-            separated(&f.fx[f.at(r, 0)], &f.fy[f.at(r, 0)], &f.fx[f.at(r + 1, 0)], &f.fy[f.at(r + 1, 0)], W, sep2,
-                      flag.data());
-            each_flagged(W, [&](std::int32_t c) {
-                const int v = judge(r, c, r + 1, c);
-                if ((v & 1) && r >= r0) m.mask.set(r, c, true);
-                if ((v & 2) && r + 1 < r1) m.mask.set(r + 1, c, true);
+class RowMarker {
+public:
+    explicit RowMarker(MedialDiagram& m)
+        : m_(m), rule_(m.options), join_(&m.bits), flag_(static_cast<std::size_t>(m.grid.cols) + 8, 0) {}
+
+    /// Marks rows [r0, r1): reads the nearest points of rows r0-1 .. r1.
+    void mark(std::int32_t r0, std::int32_t r1) {
+        MedialDiagram& m = m_;
+        const PairRule& rule = rule_;
+        BoxJoin& join = join_;
+        const OccupancyGrid& g = m.grid;
+        const FeatureMap& f = m.features;
+        const std::int32_t W = g.cols;
+        const std::int32_t sep2 = static_cast<std::int32_t>(std::min<std::int64_t>(rule.sep2, INT32_MAX));
+        std::vector<std::uint8_t>& flag = flag_;
+        m.mask.clear_rows(r0, r1);
+        // 1: p is marked, 2: q is marked (both on a tie), 0: the pair does not separate
+        auto judge = [&](std::int32_t pr, std::int32_t pc, std::int32_t qr, std::int32_t qc) -> int {
+            const std::size_t i = f.at(pr, pc), j = f.at(qr, qc);
+            if (g.occupied[i] || g.occupied[j]) return 0;
+            const std::int32_t ax = f.fx[i], ay = f.fy[i], bx = f.fx[j], by = f.fy[j];
+            const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
+            if (d2 <= rule.sep2) return 0;
+            const std::int64_t px = 2 * pc + 1, py = 2 * (g.rows - 1 - pr) + 1, qx = 2 * qc + 1, qy = 2 * (g.rows - 1 - qr) + 1;
+            auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
+            const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay), sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
+            if (d2 <= rule.prune2 && join(g, ax, ay, bx, by)) return 0;
+            return (sp <= sq_ ? 1 : 0) | (sq_ <= sp ? 2 : 0);
+        };
+        // visit the columns whose flag is set, eight at a time past the empty stretches
+        auto each_flagged = [&](std::int32_t n, auto&& fn) {  // columns [0, n)
+            for (std::int32_t c = 0; c < n; c += 8) {
+                std::uint64_t word;
+                std::memcpy(&word, &flag[static_cast<std::size_t>(c)], 8);
+                if (word == 0) continue;
+                for (std::int32_t d = c; d < std::min(n, c + 8); ++d)
+                    if (flag[static_cast<std::size_t>(d)]) fn(d);
+            }
+        };
+        for (std::int32_t r = std::max(0, r0 - 1); r < r1; ++r) {
+            if (r + 1 < g.rows) {  // vertical pairs (r, c), (r + 1, c)
+                separated(&f.fx[f.at(r, 0)], &f.fy[f.at(r, 0)], &f.fx[f.at(r + 1, 0)], &f.fy[f.at(r + 1, 0)], W, sep2,
+                          flag.data());
+                each_flagged(W, [&](std::int32_t c) {
+                    const int v = judge(r, c, r + 1, c);
+                    if ((v & 1) && r >= r0) m.mask.set(r, c, true);
+                    if ((v & 2) && r + 1 < r1) m.mask.set(r + 1, c, true);
+                });
+            }
+            if (r < r0) continue;
+            const std::int16_t *x = &f.fx[f.at(r, 0)], *y = &f.fy[f.at(r, 0)];
+            separated(x, y, x + 1, y + 1, W - 1, sep2, flag.data());  // horizontal pairs (r, c), (r, c + 1)
+            each_flagged(W - 1, [&](std::int32_t c) {
+                const int v = judge(r, c, r, c + 1);
+                if (v & 1) m.mask.set(r, c, true);
+                if (v & 2) m.mask.set(r, c + 1, true);
             });
         }
-        if (r < r0) continue;
-        const std::int16_t *x = &f.fx[f.at(r, 0)], *y = &f.fy[f.at(r, 0)];
-        separated(x, y, x + 1, y + 1, W - 1, sep2, flag.data());  // horizontal pairs (r, c), (r, c + 1)
-        each_flagged(W - 1, [&](std::int32_t c) {
-            const int v = judge(r, c, r, c + 1);
-            if (v & 1) m.mask.set(r, c, true);
-            if (v & 2) m.mask.set(r, c + 1, true);
-        });
     }
-}
+
+private:
+    MedialDiagram& m_;
+    PairRule rule_;
+    BoxJoin join_;
+    std::vector<std::uint8_t> flag_;
+};
+
+/// Marks rows [r0, r1) of `m.mask` (reads the nearest points of rows r0-1 .. r1).
+inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) { RowMarker(m).mark(r0, r1); }
 
 }  // namespace detail
 
@@ -355,6 +372,8 @@ inline MedialDiagram medial_diagram(OccupancyGrid grid, const MedialOptions& opt
     m.options = options;
     m.bits = OccupancyBits(m.grid, options.workers);
     m.mask = PixelMask(m.grid.rows, m.grid.cols);
+    // (Marking each row while pass 2 still has its neighbours in cache was measured: no faster, as
+    // the bands' vertical pairs are then judged twice.)
     const int k_rows = std::max(1, std::min(options.workers, m.grid.rows));
     run_team(k_rows, [&](int k) {
         const auto r0 = static_cast<std::int32_t>(static_cast<std::int64_t>(m.grid.rows) * k / k_rows);

@@ -1,5 +1,5 @@
-// A team of threads for the grid diagram's slice workers: fn(k) for k = 0..count-1, one thread each
-// (the calling thread alone when count is 1, so one worker never pays for a thread).
+// A team of threads for the grid diagram's workers: fn(k) for k = 0..count-1, one thread each (the
+// calling thread alone when count is 1, so one worker never pays for a thread).
 #pragma once
 
 #include <thread>
