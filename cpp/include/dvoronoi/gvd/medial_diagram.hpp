@@ -83,8 +83,8 @@ public:
         if (nw > 64) return flood_fill(g, sa, na, sb, nb);
         // Bit-parallel flood fill: one 64-bit word per square row of the box, grown through the 3 x 3
         // neighbourhood and masked by the occupied squares until it stops growing.
-        occ_.assign(static_cast<std::size_t>(nh), 0);
-        reach_.assign(static_cast<std::size_t>(nh), 0);
+        if (occ_.size() < static_cast<std::size_t>(nh)) { occ_.resize(static_cast<std::size_t>(nh)); reach_.resize(static_cast<std::size_t>(nh)); }
+        std::fill(reach_.begin(), reach_.begin() + nh, std::uint64_t{0});
         for (std::int32_t j = j0_; j <= j1_; ++j) {
             if (bits_) {
                 occ_[static_cast<std::size_t>(j - j0_)] = bits_->row(j, c0_, nw);
@@ -102,6 +102,11 @@ public:
             occ_[static_cast<std::size_t>(j - j0_)] = bits;
         }
         for (int i = 0; i < na; i += 2) reach_[static_cast<std::size_t>(sa[i + 1] - j0_)] |= std::uint64_t{1} << (sa[i] - c0_);
+        auto reached = [&] {
+            for (int k = 0; k < nb; k += 2)
+                if (reach_[static_cast<std::size_t>(sb[k + 1] - j0_)] >> (sb[k] - c0_) & 1) return true;
+            return false;
+        };
         for (bool grew = true; grew;) {
             grew = false;
             for (int pass = 0; pass < 2; ++pass)  // downward, then upward: a path is found in few rounds
@@ -118,8 +123,7 @@ public:
                         grew = true;
                     }
                 }
-            for (int k = 0; k < nb; k += 2)
-                if (reach_[static_cast<std::size_t>(sb[k + 1] - j0_)] >> (sb[k] - c0_) & 1) return true;
+            if (reached()) return true;  // most joins are found in the first round
         }
         return false;
     }
