@@ -6,7 +6,7 @@
 // half-plane clipping of a box, rounded to double once per vertex, intersected with the disk by the
 // standard triangle-sector decomposition.
 //
-// Definitions (SPEC.md, "Agents, cells, neighbours"):
+// Definitions (docs/spec.md, "Agents, cells, neighbours"):
 //  - i, j are Voronoi neighbours when V_i ∩ V_j is a segment of positive length (a Delaunay edge
 //    whose two incident faces have distinct circumcentres, a hull edge, or consecutive points of a
 //    collinear input);

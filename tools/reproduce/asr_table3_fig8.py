@@ -10,7 +10,7 @@ ASR+BS; the two cost the same at L = 4, ASR+BS wins above that density (smaller 
 
 Here: the four routes are timed in C++ by tools/reproduce/asr_timing (build it with
 ``cmake -S . -B build -DDVORONOI_BUILD_BENCHMARKS=ON && cmake --build build --target asr_timing``),
-each sensor computing its cell of radius R = r/2 from the sensors within r (SPEC.md), every time the
+each sensor computing its cell of radius R = r/2 from the sensors within r (docs/spec.md), every time the
 best of 3 runs of the whole configuration; asr_timing checks that the four routes give the same
 cells. This script writes out/asr_table3.csv, out/asr_figure8.csv, out/asr_figure8.png and prints the
 table and the crossover side next to the paper's.

@@ -4,7 +4,7 @@
 //   asr_timing table3  [--configs 100] [--seed S]   30 sensors uniform in 3 x 3, sensing range r = 1
 //   asr_timing figure8 [--configs 100] [--seed S]   500 sensors in L x L, L = 1..15, r = 1
 //
-// The paper's sensing range r is the neighbourhood; our cell radius is R = r/2 (SPEC.md). Every
+// The paper's sensing range r is the neighbourhood; our cell radius is R = r/2 (docs/spec.md). Every
 // sensor computes its R-limited cell from the sensors within r, by
 //   EVT      exact tessellation (our exact Delaunay) of the sensor and those neighbours, cell
 //            extracted and cut by the disk;

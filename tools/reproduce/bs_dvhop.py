@@ -13,7 +13,7 @@ need to transmit their positions to their neighbours once").
 Here: ``dv.network.simulate("bs", points, 20, anchor_fraction=0.3)`` (C++ simulator: anchors flood
 their positions with hop counts - a node passes on every improvement, in a random asynchronous order -,
 then their hop sizes - passed on once -, least-squares multilateration, then one position message per
-link). Our cell radius is R = r / 2 = 10 (SPEC.md). One network (the paper's figures) is written per
+link). Our cell radius is R = r / 2 = 10 (docs/spec.md). One network (the paper's figures) is written per
 node to the CSV and drawn; --networks more networks give the summary (mean position error and
 transmissions per node, anchors vs normal nodes).
 

@@ -9,7 +9,7 @@ configurations, for BS and RCVC; log-log plot of time vs density. The paper's cl
 BS's time at moderate density ("tens of neighbours in the sensing range"), about the same at low
 density, and up to 70x at the highest density.
 
-Here: the paper's r is the neighbourhood, so our cell radius is R = r / 2 (SPEC.md). Both methods are
+Here: the paper's r is the neighbourhood, so our cell radius is R = r / 2 (docs/spec.md). Both methods are
 timed through ``dv.limited_cells(points, R, method, threads=1)`` - one call for all 500 sensors, each
 sensor's cell computed from the sensors within r = 2R, exactly as the paper's per-sensor computation
 (the grid index that finds them is shared by both methods). Each time is the best of --repeat runs;

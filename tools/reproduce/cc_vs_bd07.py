@@ -14,7 +14,7 @@ Here: the same setting through ``dv.network.batch`` (the C++ simulator, one thre
 Networks are drawn (points and bars) until Theorem 2's condition holds - the rejected draws are
 counted - and the same 1000 networks serve both error rates (paired comparison). CC runs with both
 Section 2.3 optimisations and GPSR routing, as in the paper; BD07's region is the 100 x 100 square.
-Each try over a link is one transmission (a multi-hop message costs one per hop; SPEC.md). The CSV has
+Each try over a link is one transmission (a multi-hop message costs one per hop; docs/spec.md). The CSV has
 the mean, standard deviation and 95% confidence half-width of the total per algorithm, the mean per
 message type (CC's "discovery": route discoveries where GPSR cannot deliver, because obstacles can
 leave the Gabriel subgraph non-planar; BD07's probes still go by GPSR alone, so it can lose replies),

@@ -2,7 +2,7 @@
 """The complexity experiment of Guruprasad & Dasgupta (IROS 2012), "Distributed Voronoi partitioning for
 multi-robot systems with limited range sensors", Section VI and Fig. 8.
 
-Paper: 25 random robots, sensor range R from 10 to 225 (their R is our cell radius R; SPEC.md); for each
+Paper: 25 random robots, sensor range R from 10 to 225 (their R is our cell radius R; docs/spec.md); for each
 R every robot's range-constrained cell is computed and two ratios are averaged over the 25 robots:
 
   (a) M / (N log N), M = |P_i^{2R}| the robots within 2R (the input of RCVC), N = 25: RCVC's work
