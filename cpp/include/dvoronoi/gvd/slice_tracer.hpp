@@ -105,6 +105,15 @@ public:
         brow_.resize(static_cast<std::size_t>(grid.ny) + 1);
         for (std::int32_t j = 0; j <= grid.ny; ++j) brow_[static_cast<std::size_t>(j)] = index.bucket_row(grid.corner(0, j).y());
         cap_ = 2.0 * grid.h + 4.0 * margin_;
+        if (scene.area_is_box) {  // cell_in_area's test on a box, split by axis
+            const Box& b = scene.box;
+            col_in_box_.resize(static_cast<std::size_t>(c1 - c0));
+            for (std::int32_t i = c0; i < c1; ++i)
+                col_in_box_[static_cast<std::size_t>(i - c0)] = grid.corner(i, 0).x() < b.x1 && grid.corner(i + 1, 0).x() > b.x0;
+            row_in_box_.resize(static_cast<std::size_t>(grid.ny));
+            for (std::int32_t j = 0; j < grid.ny; ++j)
+                row_in_box_[static_cast<std::size_t>(j)] = grid.corner(0, j).y() < b.y1 && grid.corner(0, j + 1).y() > b.y0;
+        }
         // Rightmost point of each part: its column is the part's key for the walks.
         rcol_.resize(scene.parts.size());
         rrow_.resize(scene.parts.size());
@@ -165,7 +174,7 @@ public:
     bool seed(std::int32_t i, std::int32_t j) {
         if (i < c0_ || i >= c1_ || j < 0 || j >= grid_.ny) return false;
         if (index_of_.get(i, j) >= 0) return false;
-        if (!cell_in_area(*scene_, grid_, i, j)) return false;
+        if (!in_area(i, j)) return false;
         if (!open_cell(i, j)) return false;
         add(i, j, pieces_++);
         trace();
@@ -399,10 +408,17 @@ private:
         waiting_.push_back(static_cast<std::uint32_t>(k));
     }
 
+    /// cell_in_area for a cell of this slice (c0 <= i < c1, 0 <= j < ny); on a box area from the
+    /// column's and the row's overlap with the box, computed once.
+    bool in_area(std::int32_t i, std::int32_t j) const {
+        if (!scene_->area_is_box) return cell_in_area(*scene_, grid_, i, j);
+        return col_in_box_[static_cast<std::size_t>(i - c0_)] && row_in_box_[static_cast<std::size_t>(j)];
+    }
+
     /// Is cell (i, j) in this slice and the working area, and not queued before?
     bool fresh(std::int32_t i, std::int32_t j) {
         if (i < c0_ || i >= c1_ || j < 0 || j >= grid_.ny) return false;
-        return index_of_.get(i, j) < 0 && cell_in_area(*scene_, grid_, i, j);
+        return index_of_.get(i, j) < 0 && in_area(i, j);
     }
 
     /// Walks right along row j from cell (i, j) to the slice's end: seeds the first cell with an
@@ -423,7 +439,7 @@ private:
         for (; i < c1_; ++i) {
             ++seeds_.walk_cells;
             if (index_of_.get(i, j) >= 0) return;  // reached a traced piece
-            if (!cell_in_area(*scene_, grid_, i, j)) return;
+            if (!in_area(i, j)) return;
             if (open_cell(i, j)) {
                 if (seed(i, j)) ++seeds_.walk_seeds;
                 return;
@@ -556,6 +572,7 @@ private:
     std::size_t walked_nodes_ = 0;     // nodes_ before this index have had their piece walked from
     std::vector<std::int64_t> rcol_, rrow_;  // per part: cell of its rightmost point
     std::vector<int> bcol_, brow_;           // per corner column / row: its bucket column / row (-1 outside)
+    std::vector<std::uint8_t> col_in_box_, row_in_box_;  // box areas: per cell column / row, overlaps the box
     SeedCounts seeds_;
     // Cells queued and not yet taken, taken last-in first-out: the trace then follows one branch of
     // the diagram at a time, so consecutive cells share corner tiles, obstacle buckets and the
