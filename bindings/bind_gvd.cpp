@@ -206,6 +206,12 @@ void bind_gvd(py::module_& m) {
             d["edge_evaluations"] = s.edge_evaluations;
             d["traced_cells"] = s.traced_cells;
             d["discarded_cells"] = s.discarded_cells;
+            d["bridged_cells"] = s.bridged_cells;
+            d["obstacle_walks"] = s.obstacle_walks;
+            d["walk_cells"] = s.walk_cells;
+            d["walk_seeds"] = s.walk_seeds;
+            d["contact_seeds"] = s.contact_seeds;
+            d["boundary_seeds"] = s.boundary_seeds;
             d["border_lines_scanned"] = s.border_lines_scanned;
             d["peak_worker_bytes"] = s.peak_worker_bytes;
             d["worker_seconds"] = s.worker_seconds;

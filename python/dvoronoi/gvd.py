@@ -1,6 +1,12 @@
 """Grid Voronoi diagram of obstacles for path planning (Mendes, Aude, Pinto & Aude), traced by
 slice-parallel workers.
 
+The diagram is exactly the set of cells of the working area whose corners carry two or more labels,
+isolated pieces included (loops around islands, slivers thinner than a cell): the workers trace
+from the area's corners as the paper does, and also from every obstacle (a walk right from its
+rightmost point, and where obstacles of different labels meet), so nothing depends on the area's
+corners being reachable — on real maps they lie inside walls.
+
 >>> import dvoronoi as dv
 >>> obstacles = [{"type": "circle", "center": [30, 40], "radius": 8},
 ...              {"type": "polygon", "vertices": [[60, 10], [80, 10], [70, 35]]},
@@ -88,7 +94,8 @@ def load_obstacles(obstacles: Any, area: Any = None) -> "_core._GvdScene":
 class GridVoronoi(Result):
     """The grid Voronoi diagram (see :func:`grid_voronoi`).
 
-    Per traced cell ``k`` (cells sorted by row, then column): ``cells[k] = (col, row)``,
+    Exactly the cells of the working area whose corners carry two or more labels, for every worker
+    count and slice approach. Per cell ``k`` (cells sorted by row, then column): ``cells[k] = (col, row)``,
     ``centers[k]``, ``labels[k]`` (nearest obstacle of the corners bottom-left, bottom-right,
     top-right, top-left), ``clearance[k]`` (smallest corner distance to its nearest obstacle) and
     ``blocked[k]`` (``clearance <= robot_radius``). ``vertices`` are the cells with three or more
@@ -339,10 +346,15 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
 
     **Obstacle documents** (list of shape dicts, ``{"area": ..., "obstacles": [...]}``, a JSON path,
     or a scene from :func:`load_obstacles`): the paper's labelled diagram (Mendes et al.), traced by
-    slice workers (a :class:`GridVoronoi`); with ``diagram="medial"`` the document is drawn on `cells`
-    pixels along the area's longer side (a pixel is occupied when its square meets an obstacle or
-    leaves the working area) and gets the occupancy grids' medial diagram (an
-    :class:`OccupancyVoronoi`), which separates the parts of one non-convex obstacle.
+    slice workers from the area's corners and from every obstacle: every cell whose corners carry two
+    or more labels, isolated pieces included. Returns a :class:`GridVoronoi`; its ``stats`` count the
+    work (``corners_labelled``, ``traced_cells``, ``bridged_cells`` explored beside the diagram,
+    ``obstacle_walks``/``walk_cells``/``walk_seeds``, ``contact_seeds``, ``boundary_seeds``,
+    ``border_lines_scanned``; ``discarded_cells`` is 0: every worker traces exactly its cells). With
+    ``diagram="medial"`` the document is drawn on `cells` pixels along the area's longer side (a pixel
+    is occupied when its square meets an obstacle or leaves the working area) and gets the occupancy
+    grids' medial diagram (an :class:`OccupancyVoronoi`), which separates the parts of one non-convex
+    obstacle.
 
     Parameters
     ----------

@@ -90,4 +90,62 @@ inline std::vector<Obstacle> mixed_shapes() {
     };
 }
 
+/// A closed square ring of wall thickness t: one obstacle (a union of four rectangles).
+inline Obstacle ring(double x0, double y0, double x1, double y1, double t) {
+    auto rect = [](double a, double b, double c, double d) {
+        return Shape::polygon({Vec2(a, b), Vec2(c, b), Vec2(c, d), Vec2(a, d)});
+    };
+    return Obstacle(std::vector<Shape>{rect(x0, y0, x1, y0 + t), rect(x0, y1 - t, x1, y1), rect(x0, y0, x0 + t, y1),
+                                       rect(x1 - t, y0, x1, y1)});
+}
+
+/// Random obstacles of every kind with no separation: overlapping, crossing or outside the area's
+/// boundary, C-shaped rings (non-convex), unions; `count` of them.
+inline std::vector<Obstacle> random_clutter(std::mt19937& rng, int count) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Obstacle> out;
+    for (int k = 0; k < count; ++k) {
+        const Vec2 c(-5 + 110 * u(rng), -5 + 110 * u(rng));
+        switch (static_cast<int>(u(rng) * 6)) {
+            case 0: out.emplace_back(Shape::point(c)); break;
+            case 1: out.emplace_back(Shape::circle(c, 0.5 + 11.5 * u(rng))); break;
+            case 2: out.emplace_back(Shape::segment(c, c + Vec2(-15 + 30 * u(rng), -15 + 30 * u(rng)))); break;
+            case 3: out.emplace_back(ngon(c, 1 + 11 * u(rng), 3 + static_cast<int>(u(rng) * 5), u(rng) * 6.28)); break;
+            case 4: {  // nearly closed C-shaped ring
+                const double r = 5 + 15 * u(rng), w = 0.5 + 2.5 * u(rng), gap = 0.02 + 0.78 * u(rng), a0 = 6.28 * u(rng);
+                std::vector<Vec2> v;
+                for (int t = 0; t <= 24; ++t) {
+                    const double a = a0 + gap + (2 * M_PI - 2 * gap) * t / 24;
+                    v.emplace_back(c.x() + r * std::cos(a), c.y() + r * std::sin(a));
+                }
+                for (int t = 24; t >= 0; --t) {
+                    const double a = a0 + gap + (2 * M_PI - 2 * gap) * t / 24;
+                    v.emplace_back(c.x() + (r - w) * std::cos(a), c.y() + (r - w) * std::sin(a));
+                }
+                out.emplace_back(Shape::polygon(v));
+                break;
+            }
+            default:
+                out.emplace_back(std::vector<Shape>{Shape::circle(c, 0.5 + 4.5 * u(rng)),
+                                                    Shape::point(c + Vec2(-3 + 6 * u(rng), -3 + 6 * u(rng)))});
+        }
+    }
+    return out;
+}
+
+/// Points just off discs (1e-6 .. 1e-2 away): behind each point a needle of its region thinner than
+/// a cell, whose grid corners are surrounded by the disc's label.
+inline std::vector<Obstacle> needles(unsigned seed, int count) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Obstacle> out;
+    for (int k = 0; k < count; ++k) {
+        const Vec2 c(20 + 60 * u(rng), 20 + 60 * u(rng));
+        const double r = 3 + 7 * u(rng), a = 2 * M_PI * u(rng), eps = std::pow(10.0, -6 + 4 * u(rng));
+        out.emplace_back(Shape::circle(c, r));
+        out.emplace_back(Shape::point(c + (r + eps) * Vec2(std::cos(a), std::sin(a))));
+    }
+    return out;
+}
+
 }  // namespace gvd_test

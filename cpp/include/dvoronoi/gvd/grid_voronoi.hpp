@@ -4,15 +4,21 @@
 //   Scene scene = make_scene(obstacles, box_area(0, 0, 10, 10));
 //   GridVoronoi r = grid_voronoi(scene, {/*resolution*/ 1024, /*robot_radius*/ 0.2, /*workers*/ 2});
 //
-// The area's bounding box is cut into vertical slices of whole columns, one per worker. Each worker
-// traces its slice (slice_tracer.hpp) from the area corners in it and from the label changes on its
-// border lines. Section 3's two approaches differ in who scans a border line:
+// The result is exactly the set of cells the definition marks (cells of the working area whose
+// corners carry two or more labels), isolated pieces included, for every worker count and both
+// approaches. The area's bounding box is cut into vertical slices of whole columns, one per worker.
+// Each worker traces its slice (slice_tracer.hpp) from the area's corners (the paper's seeds), from
+// the obstacles (walks right from each obstacle's rightmost point and from each traced piece, and
+// the places where obstacles of different labels meet: added, because on real maps the area's
+// corners lie inside walls and loops around islands touch none of them), from the cells the area's
+// boundary cuts, and from the border lines. Section 3's two approaches differ in who scans a
+// border line:
 //  - Independent: both neighbours scan it (no communication, the line is labelled twice).
-//  - Cooperative: the right worker scans it and sends the rows of the label changes to the left one,
-//    which puts the cells beside them in its queue once its own queue is empty.
-// The slices' components are then joined (slice_merge.hpp), so the result equals the single-worker
-// diagram cell for cell, for every worker count and both approaches. The MPI executable
-// dvoronoi_gvd_mpi runs the same per-slice function (run_slice) with messages instead of futures.
+//  - Cooperative: the right worker scans it and sends the rows where it may be crossed to the left
+//    one, which puts the cells beside them in its queue once its own queue is empty.
+// Each slice finds exactly its own cells of the diagram, so the join (slice_merge.hpp) keeps every
+// traced cell. The MPI executable dvoronoi_gvd_mpi runs the same per-slice function (run_slice)
+// with messages instead of futures.
 #pragma once
 
 #include "dvoronoi/gvd/obstacle_index.hpp"
@@ -54,19 +60,28 @@ struct BorderChannel {
     std::function<std::vector<std::int32_t>()> receive_right;          ///< rows found on my right line
 };
 
-/// One slice worker's whole job (Sections 2 and 3): seeds, border scans, tracing, components.
+/// One slice worker's whole job (Sections 2 and 3): seeds, border scans, tracing.
 /// Returns its summary for the join; `tracer` holds the traced cells.
 inline SliceSummary run_slice(SliceTracer& tracer, int k, int workers, SliceMode mode,
                               const BorderChannel& channel, std::uint64_t& lines_scanned) {
     const std::int32_t left = tracer.c0(), right = tracer.c1();
-    tracer.seed_area_corners();
     std::vector<std::int32_t> rows_left, rows_right;
-    if (k > 0) {  // both approaches scan the left line; cooperative ones then share it
+    if (k > 0) {  // both approaches scan the left line; cooperative ones then share it (first: the
+                  // left neighbour waits for it)
         rows_left = tracer.scan_line(left);
         ++lines_scanned;
-        for (std::int32_t j : rows_left) tracer.seed(left, j);
         if (mode == SliceMode::Cooperative) channel.send_left(rows_left);
+        for (std::int32_t j : rows_left) tracer.seed(left, j);
     }
+    // Section 2: the working area's corners are Voronoi vertices.
+    tracer.seed_area_corners();
+    tracer.seed_area_boundary();  // added: cells the area's boundary cuts (slice_tracer.hpp)
+    // Added (issue 19): seeds from the obstacles themselves. On real maps the area's corners lie
+    // inside walls and the loops around islands touch no corner; sub-cell slivers leave cells joined
+    // to nothing. Walks right from every obstacle's rightmost point, and the places where obstacles
+    // of different labels meet, find every other piece (slice_tracer.hpp says why).
+    tracer.seed_contacts();
+    tracer.seed_obstacle_walks();
     if (k + 1 < workers && mode == SliceMode::Independent) {
         rows_right = tracer.scan_line(right);
         ++lines_scanned;
@@ -78,9 +93,11 @@ inline SliceSummary run_slice(SliceTracer& tracer, int k, int workers, SliceMode
         for (std::int32_t j : rows_right) tracer.seed(right - 1, j);
         tracer.trace();
     }
+    // Added: a walk from the rightmost cell of every traced piece reaches the piece enclosing it.
+    while (tracer.walk_from_new_pieces()) tracer.trace();
     SliceSummary s;
-    // A lone worker traced everything from the area's corners: one anchored whole, nothing to join.
-    s.n_components = workers == 1 ? tracer.single_component() : tracer.label_components();
+    // Every slice traced exactly its part of the diagram (slice_tracer.hpp): one anchored whole.
+    s.n_components = tracer.single_component();
     s.anchored = tracer.anchored();
     for (std::int32_t j : rows_left) s.left_links.push_back(tracer.component_at(left, j));
     for (std::int32_t j : rows_right) s.right_links.push_back(tracer.component_at(right - 1, j));
@@ -158,6 +175,12 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         st.part_evaluations += c.counters.part_evaluations;
         st.edge_evaluations += c.counters.edge_evaluations;
         st.traced_cells += tracers[uk].size();
+        st.bridged_cells += tracers[uk].explored() - tracers[uk].size();
+        st.obstacle_walks += tracers[uk].seed_counts().walks;
+        st.walk_cells += tracers[uk].seed_counts().walk_cells;
+        st.walk_seeds += tracers[uk].seed_counts().walk_seeds;
+        st.contact_seeds += tracers[uk].seed_counts().contact_seeds;
+        st.boundary_seeds += tracers[uk].seed_counts().boundary_seeds;
         st.border_lines_scanned += lines[uk];
         st.peak_worker_bytes = std::max<std::uint64_t>(st.peak_worker_bytes, tracers[uk].memory_bytes());
     }

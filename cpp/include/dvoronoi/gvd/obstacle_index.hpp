@@ -152,6 +152,158 @@ public:
         return best;
     }
 
+    /// nearest(p), and how much farther than it the nearest part of another label is (Euclidean
+    /// distances, capped at `cap`; `cap` when there is none within it). The other labels looked at
+    /// are the candidates of p's bucket (every part that can be nearest or tie somewhere in that
+    /// closed bucket), or every part when p lies outside the bucket grid (`global` is then true).
+    /// The nearest obstacle is exactly nearest(p)'s.
+    Nearest nearest_gap(const Vec2& p, double cap, QueryContext& ctx, double& gap, bool& global) const {
+        std::size_t b;
+        if (!bucket_of(p, b)) {
+            const Nearest n = nearest(p, ctx);
+            gap = global_gap(p, n, cap, ctx);
+            global = true;
+            return n;
+        }
+        ++ctx.queries;
+        global = false;
+        // The two nearest labels: (best) and the nearest part of any other label (second).
+        Nearest best;
+        double second = std::numeric_limits<double>::infinity();
+        double limit = std::numeric_limits<double>::infinity();  // (best + cap)^2, padded: farther parts neither win nor count
+        auto improve = [&](double d, std::int32_t label, std::uint32_t pi) {
+            best = Nearest{label, d, static_cast<std::int32_t>(pi)};
+            const double reach = std::sqrt(d) + cap;
+            limit = reach * reach * (1.0 + 1e-12) + 1e-300;
+        };
+        auto look = [&](std::uint32_t pi) {
+            const ConvexPart& part = scene_->parts[pi];
+            if (part.box.sq_distance(p) > limit) return;
+            const double d = sq_distance(*scene_, part, p, visibility_, &ctx.counters);
+            if (part.label == best.label) {
+                if (d < best.sq) improve(d, part.label, pi);
+            } else if (d < best.sq || (d == best.sq && part.label < best.label)) {
+                second = best.sq;  // the old best's label is now "another label" (inf when unset)
+                improve(d, part.label, pi);
+            } else {
+                second = std::min(second, d);
+            }
+        };
+        if (ctx.hint >= 0) look(static_cast<std::uint32_t>(ctx.hint));
+        for (std::uint32_t k = cand_start_[b]; k < cand_start_[b + 1]; ++k) {
+            const std::uint32_t pi = cand_items_[k];
+            if (static_cast<std::int32_t>(pi) != ctx.hint) look(pi);
+        }
+        ctx.hint = best.part;
+        gap = std::min(cap, std::sqrt(second) - std::sqrt(best.sq));
+        return best;
+    }
+
+    /// The closed bucket holding p, as nearest() finds it; false when p lies outside the bucket grid.
+    bool bucket_of(const Vec2& p, std::size_t& b) const {
+        const int bi = bucket_column(p.x()), bj = bucket_row(p.y());
+        if (bi < 0 || bj < 0) return false;
+        b = bucket(bi, bj);
+        return true;
+    }
+    /// The column (row) of buckets whose closed range holds x (y) as nearest() finds it, -1 when x
+    /// (y) lies outside the bucket grid. A point is in the bucket (column, row) when both are >= 0.
+    int bucket_column(double x) const {
+        const int bi = bx(x);
+        const double lx = x0_ + bi * cell_;
+        return x >= lx && x <= lx + cell_ ? bi : -1;
+    }
+    int bucket_row(double y) const {
+        const int bj = by(y);
+        const double ly = y0_ + bj * cell_;
+        return y >= ly && y <= ly + cell_ ? bj : -1;
+    }
+
+    /// Side of a bucket, and the absolute tolerance (1e-9 of the coordinates' magnitude) the index
+    /// pads its boxes with.
+    double bucket_size() const { return cell_; }
+    double tolerance() const { return eps_; }
+
+    /// How much farther than `n` (p's nearest) the nearest candidate of bucket b with another label
+    /// is, capped at `cap`.
+    double bucket_gap(const Vec2& p, const Nearest& n, std::size_t b, double cap, QueryContext& ctx) const {
+        const double d1 = std::sqrt(n.sq), reach = d1 + cap;
+        double second = std::numeric_limits<double>::infinity();
+        for (std::uint32_t k = cand_start_[b]; k < cand_start_[b + 1]; ++k) {
+            const ConvexPart& part = scene_->parts[cand_items_[k]];
+            if (part.label == n.label) continue;
+            if (part.box.sq_distance(p) > reach * reach * (1.0 + 1e-12) + 1e-300) continue;
+            second = std::min(second, sq_distance(*scene_, part, p, visibility_, &ctx.counters));
+        }
+        return std::min(cap, std::sqrt(second) - d1);
+    }
+
+    /// The same over every part (square rings of buckets out to the capped reach).
+    double global_gap(const Vec2& p, const Nearest& n, double cap, QueryContext& ctx) const {
+        next_stamp(ctx);
+        const double d1 = std::sqrt(n.sq), reach = d1 + cap;
+        double second = std::numeric_limits<double>::infinity();
+        const int ci = bx(p.x()), cj = by(p.y());
+        const int max_ring = std::max({ci, nx_ - 1 - ci, cj, ny_ - 1 - cj});
+        for (int r = 0; r <= max_ring; ++r) {
+            const int i0 = ci - r, i1 = ci + r, j0 = cj - r, j1 = cj + r;
+            for (int j = std::max(j0, 0); j <= std::min(j1, ny_ - 1); ++j)
+                for (int i = std::max(i0, 0); i <= std::min(i1, nx_ - 1); ++i) {
+                    if (j != j0 && j != j1 && i != i0 && i != i1) {  // interior of the ring: jump to its right side
+                        if (i1 > nx_ - 1) break;
+                        i = i1;
+                    }
+                    const std::size_t bk = bucket(i, j);
+                    for (std::uint32_t k = start_[bk]; k < start_[bk + 1]; ++k) {
+                        const std::uint32_t pi = items_[k];
+                        if (ctx.stamp[pi] == ctx.current) continue;
+                        ctx.stamp[pi] = ctx.current;
+                        const ConvexPart& part = scene_->parts[pi];
+                        if (part.label == n.label) continue;
+                        if (part.box.sq_distance(p) > reach * reach * (1.0 + 1e-12) + 1e-300) continue;
+                        second = std::min(second, sq_distance(*scene_, part, p, visibility_, &ctx.counters));
+                    }
+                }
+            double lb = std::numeric_limits<double>::infinity();
+            if (i0 > 0) lb = std::min(lb, p.x() - (x0_ + i0 * cell_));
+            if (i1 < nx_ - 1) lb = std::min(lb, (x0_ + (i1 + 1) * cell_) - p.x());
+            if (j0 > 0) lb = std::min(lb, p.y() - (y0_ + j0 * cell_));
+            if (j1 < ny_ - 1) lb = std::min(lb, (y0_ + (j1 + 1) * cell_) - p.y());
+            if (lb == std::numeric_limits<double>::infinity()) break;
+            lb -= 2 * eps_;
+            if (lb > 0 && lb > std::min(reach, std::sqrt(second))) break;
+        }
+        return std::min(cap, std::sqrt(second) - d1);
+    }
+
+    /// Calls f(a, b) once for every pair of parts a < b with different labels whose bounding boxes,
+    /// padded by tolerance(), overlap and reach the columns x in [x_lo, x_hi] (found in the buckets
+    /// over those columns). \note O(sum over those buckets of their part count squared).
+    template <class F>
+    void for_each_close_pair(double x_lo, double x_hi, F&& f) const {
+        std::vector<std::uint64_t> pairs;
+        const int i_lo = bx(x_lo), i_hi = bx(x_hi);
+        for (int j = 0; j < ny_; ++j)
+            for (int i = i_lo; i <= i_hi; ++i) {
+                const std::size_t bk = bucket(i, j);
+                for (std::uint32_t s = start_[bk]; s < start_[bk + 1]; ++s)
+                    for (std::uint32_t t = s + 1; t < start_[bk + 1]; ++t) {
+                        std::uint32_t a = items_[s], b = items_[t];
+                        const ConvexPart &pa = scene_->parts[a], &pb = scene_->parts[b];
+                        if (pa.label == pb.label) continue;
+                        if (pa.box.x0 - eps_ > pb.box.x1 + eps_ || pb.box.x0 - eps_ > pa.box.x1 + eps_ ||
+                            pa.box.y0 - eps_ > pb.box.y1 + eps_ || pb.box.y0 - eps_ > pa.box.y1 + eps_)
+                            continue;
+                        if (std::max(pa.box.x0, pb.box.x0) - eps_ > x_hi || std::min(pa.box.x1, pb.box.x1) + eps_ < x_lo) continue;
+                        if (a > b) std::swap(a, b);
+                        pairs.push_back((static_cast<std::uint64_t>(a) << 32) | b);
+                    }
+            }
+        std::sort(pairs.begin(), pairs.end());
+        pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+        for (std::uint64_t ab : pairs) f(static_cast<std::uint32_t>(ab >> 32), static_cast<std::uint32_t>(ab & 0xffffffffu));
+    }
+
     /// Is segment ab farther than `radius` from every obstacle (strictly)? Labels in `ignore` (or -1)
     /// are not considered.
     bool segment_clear(const Vec2& a, const Vec2& b, double radius, QueryContext& ctx) const {

@@ -33,8 +33,14 @@ struct GvdStats {
     std::uint64_t corners_labelled = 0;   ///< nearest-obstacle queries (lazy corner labels)
     std::uint64_t part_evaluations = 0;   ///< convex-part distance evaluations
     std::uint64_t edge_evaluations = 0;   ///< polygon edge / segment distance evaluations
-    std::uint64_t traced_cells = 0;       ///< cells traced before the slices were joined
-    std::uint64_t discarded_cells = 0;    ///< traced from border seeds but not reached from the area corners
+    std::uint64_t traced_cells = 0;       ///< diagram cells traced before the slices were joined
+    std::uint64_t discarded_cells = 0;    ///< traced but not kept: 0 (every slice traces exactly its diagram cells)
+    std::uint64_t bridged_cells = 0;      ///< cells entered across same-label edges a sliver may cross, not on the diagram
+    std::uint64_t obstacle_walks = 0;     ///< walks right from obstacles' rightmost points and from traced pieces
+    std::uint64_t walk_cells = 0;         ///< cells those walks looked at
+    std::uint64_t walk_seeds = 0;         ///< cells the walks queued
+    std::uint64_t contact_seeds = 0;      ///< cells queued where obstacles of different labels meet
+    std::uint64_t boundary_seeds = 0;     ///< cells queued along the area's boundary where it cuts cells
     std::uint64_t border_lines_scanned = 0;
     std::uint64_t peak_worker_bytes = 0;  ///< largest per-worker tracing memory (labels, cells)
     std::vector<double> worker_seconds;   ///< wall time per worker

@@ -1,14 +1,12 @@
-// Joining the slices of the grid Voronoi diagram: which traced components the single-worker run
-// would have reached.
+// Joining the slices of the grid Voronoi diagram: which traced components to keep.
 //
-// A worker traces its slice from the area-corner seeds and from border seeds. Every piece of the
-// diagram the single worker reaches from the area corners crosses into a slice either at an area
-// corner or through a label change on a border line, so the slices together contain all of it. A
-// border seed may also start a piece the single worker never reaches (a fragment cut off by
-// sub-cell features); joining the slices' components across the border lines and keeping those
-// connected to an anchored (area-corner) component gives exactly the single-worker diagram, whatever
-// the number of workers and the approach. The data exchanged is small: per slice, its component
-// count, which are anchored, and the components of the cells beside its two border lines.
+// A worker traces its slice from the area's corners, from the obstacles, from the cells the area's
+// boundary cuts and from border seeds, and finds exactly its own cells of the diagram
+// (slice_tracer.hpp): every component it reports is anchored, and every one is kept. The join stays
+// general — components joined across the border lines to an anchored one are kept, the others
+// dropped — so a slice that reports unanchored components (as the MPI program's protocol allows) is
+// still joined correctly. The data exchanged is small: per slice, its component count, which are
+// anchored, and the components of the cells beside its two border lines.
 #pragma once
 
 #include <algorithm>
