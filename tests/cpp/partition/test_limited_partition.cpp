@@ -228,6 +228,26 @@ TEST_CASE("the radius must lie in [kMinRadius, kMaxRadius]; measures stay finite
     }
 }
 
+TEST_CASE("Chords refuses more than kMaxChordsCandidates agents within 2R, naming the agent; Scan does not") {
+    const Points P = random_points(static_cast<int>(kMaxChordsCandidates) + 100, 5, 1.0);
+    CHECK_THROWS_WITH_AS(limited_cells(P, 1.0, Method::Chords, 2),
+                         doctest::Contains("method \"chords\" (RCVC, quadratic in the agents within 2R) accepts at most 1024"),
+                         RangeError);
+    try {
+        limited_cells(P, 1.0, Method::Chords, 2);
+    } catch (const RangeError& e) {
+        CHECK(std::string(e.what()).rfind("points[", 0) == 0);
+    }
+    CHECK(limited_cells(P, 1.0, Method::Scan, 2).size() == P.rows());
+    // One cell: exactly kMaxChordsCandidates others within 2R is accepted, one more is not.
+    const Points others = P.topRows(static_cast<Index>(kMaxChordsCandidates));
+    CHECK(limited_cell(Vec2(0.5, 0.5), others, 1.0, Method::Chords).candidates ==
+          static_cast<Index>(kMaxChordsCandidates));
+    CHECK_THROWS_AS(limited_cell(Vec2(0.5, 0.5), P.topRows(static_cast<Index>(kMaxChordsCandidates) + 1), 1.0,
+                                 Method::Chords),
+                    RangeError);
+}
+
 TEST_CASE("vertices of nearly parallel bisectors are constructed accurately, not as NaN") {
     // Seen from agent 1, 1e50 away, agents 7 and 9 lie 1.9 apart: their bisectors meet inside the disk
     // (exact), but D_jk = cross(a_7, a_9) rounded to nothing. Before: NaN areas and centroids,

@@ -44,8 +44,8 @@ public:
 };
 
 /// Input outside the documented range, where the answer could not be exact (an exact test that over-
-/// or underflows, a radius whose square or disk area is not a normal double). The message names
-/// the argument.
+/// or underflows, a radius whose square or disk area is not a normal double) or would take
+/// unbounded time (RCVC with more candidates than it accepts). The message names the argument.
 class RangeError : public InputError {
 public:
     using InputError::InputError;

@@ -406,7 +406,8 @@ inline void require_distinct(const GridIndex& index, const Points& pts) {
 /// \throws InputError for a bad radius or non-finite coordinates; CoincidentError for coinciding
 ///         agents (lowest pair named); RangeError for a radius outside [kMinRadius, kMaxRadius], and,
 ///         naming the agent ("points[17]: ..."), for an exact test that over- or underflows
-///         (coordinates far outside the exact range of core/expansion.hpp). The agent named is the first in grid order
+///         (coordinates far outside the exact range of core/expansion.hpp) or a Chords cell with more
+///         than kMaxChordsCandidates agents within 2R. The agent named is the first in grid order
 ///         that fails, whatever the thread count.
 /// \note Scan gives Boundary Scan's cells bit for bit; most are computed by the certified clipping
 ///       filter of cells/certified_clip.hpp (O(m) per agent in a swarm: the nearest agents shrink
