@@ -237,6 +237,23 @@ def test_polygon_bounds_and_single_agent():
         assert cell.area == pytest.approx(part.areas[i], rel=1e-12, abs=1e-16)
 
 
+def test_closed_rings_are_the_same_polygon():
+    # A polygon whose last vertex repeats the first (GeoJSON, shapely) is the open polygon, for
+    # voronoi_cells and voronoi_cell as for coverage.lloyd and the grid diagram. Before: voronoi_cells
+    # refused it ("vertices 4 and 0 coincide") while lloyd accepted it.
+    pts = random_points(3, 60)
+    square = [[0, 0], [1, 0], [1, 1], [0, 1]]
+    want = dv.voronoi_cells(pts, bounds=(0, 0, 1, 1))
+    ring = square + [square[0]]
+    got = dv.voronoi_cells(pts, bounds=ring)
+    np.testing.assert_array_equal(got.areas, want.areas)
+    np.testing.assert_array_equal(got.bounds, want.bounds)
+    np.testing.assert_allclose(dv.voronoi_cells(pts, bounds=ring[::-1]).areas, want.areas, rtol=1e-14)
+    assert dv.voronoi_cell(pts[0], pts[1:], bounds=ring).area == pytest.approx(want.areas[0], rel=1e-14)
+    run = dv.coverage.lloyd(pts, 0.2, steps=3, bounds=square + [square[0]])
+    np.testing.assert_array_equal(run.trajectory, dv.coverage.lloyd(pts, 0.2, steps=3, bounds=square).trajectory)
+
+
 def test_bad_bounds():
     pts = random_points(1, 20)
     with pytest.raises(ValueError, match="bounds.*xmin < xmax"):

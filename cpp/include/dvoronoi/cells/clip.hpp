@@ -43,13 +43,15 @@ public:
     }
 
     /// A convex polygon given by its vertices in order (either orientation; collinear vertices are
-    /// dropped). \throws InputError naming `name` when a coordinate is not finite, fewer than three
-    /// vertices remain, two consecutive vertices coincide, or the polygon is not convex (decided
-    /// with exact orientation tests).
+    /// dropped; a closed ring, its first vertex repeated at the end as GeoJSON and shapely write it,
+    /// is the same polygon). \throws InputError naming `name` when a coordinate is not finite, fewer
+    /// than three vertices remain, two consecutive vertices coincide, or the polygon is not convex
+    /// (decided with exact orientation tests).
     static ConvexRegion polygon(PointsRef pts, const std::string& name = "bounds") {
         detail::require_finite_points(pts, name.c_str());
         std::vector<Vec2> v;
         for (Index k = 0; k < pts.rows(); ++k) v.push_back(pts.row(k).transpose());
+        detail::open_ring(v);
         const std::size_t m = v.size();
         for (std::size_t k = 0; k < m; ++k)
             if (v[k] == v[(k + 1) % m])

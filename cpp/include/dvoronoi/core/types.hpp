@@ -109,6 +109,13 @@ inline void require_finite_radius(double radius, const char* name = "radius") {
                          "its square and its disk's area must be normal doubles");
 }
 
+/// Drops the last vertex of a closed ring (one that repeats the first), so a polygon given as a
+/// closed ring and as an open one are the same.
+template <class Vertices>
+void open_ring(Vertices& v) {
+    if (v.size() > 1 && v.front() == v.back()) v.pop_back();
+}
+
 inline void require_finite_point(const Vec2& p, const std::string& name) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
         throw InputError(name + " has a non-finite coordinate (NaN or inf)");
