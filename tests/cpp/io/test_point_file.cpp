@@ -113,6 +113,19 @@ TEST_CASE("empty input and comment-only input give 0 points") {
     CHECK(parse_point_text("x y\n", "f").points.rows() == 0);  // header only
 }
 
+TEST_CASE("the header line is reported: where it was and what it said") {
+    // The CLI warns about a file whose only content is a header ("hello world": probably the wrong file).
+    const auto only = parse_point_text("# c\nhello world  # greeting\n", "f");
+    CHECK(only.points.rows() == 0);
+    CHECK(only.header_line == 2);
+    CHECK(only.header == "hello world  ");
+    const auto data = parse_point_text("x,y\n1,2\n", "f");
+    CHECK(data.header_line == 1);
+    CHECK(data.points.rows() == 1);
+    CHECK(parse_point_text("1 2\n", "f").header_line == 0);
+    CHECK(parse_point_text("", "f").header_line == 0);
+}
+
 TEST_CASE("quoted input is escaped: a NUL byte or a control byte does not cut or garble the message") {
     // Before: "f.txt:2:3: y value 'a" -- the NUL ended the C string, and the rest of the message.
     const std::string nul = error_of(std::string("1 2\n3 a\0b\n", 10));

@@ -4,7 +4,8 @@
 // Error policy: a malformed file throws dvoronoi::InputError whose message starts with
 // `FILE:LINE:COLUMN:` (1-based line and byte column of the offending token), so editors and terminals
 // can jump to it. `.npy` errors name the file and, for values, the row and column of the array.
-// An empty file (or one with only comments and a header) is valid and gives 0 points.
+// An empty file (or one with only comments and a header) is valid and gives 0 points; PointFile says
+// which line was taken for the header, so a caller can tell "x y" from a wrong file ("hello world").
 #pragma once
 
 #include "dvoronoi/core/types.hpp"
@@ -76,6 +77,8 @@ struct PointFile {
     std::string name;         ///< the file name as given
     Points points;            ///< n x 2, in file order
     std::vector<Index> line;  ///< 1-based line of each point (text files); empty for .npy
+    std::size_t header_line = 0;  ///< 1-based line of the header (text files), 0 = none
+    std::string header;           ///< that line's content (comment removed)
 
     /// "FILE:LINE" for point i of a text file, "FILE (row i)" for an array file.
     std::string where(Index i) const {
@@ -252,6 +255,8 @@ inline PointFile parse_point_text(std::string_view text, const std::string& name
             bool any_number = false;
             for (const detail::Field& f : fields) any_number = any_number || detail::is_number_token(f.text);
             if (!any_number) {  // header line
+                out.header_line = line_no;
+                out.header = std::string(line);
                 if (by_name) {
                     xi = detail::header_index(fields, columns.x_name, name, line_no);
                     yi = detail::header_index(fields, columns.y_name, name, line_no);
