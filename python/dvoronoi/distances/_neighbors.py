@@ -65,6 +65,21 @@ def _edge_list(arr: np.ndarray, n: Optional[int]):
     return int(n), rows, cols, np.ascontiguousarray(arr[:, 2], dtype=np.float64), "edges"
 
 
+_READ_3X3 = ("a (3, 3) array is read as an edge list of three rows 'i j d' unless its diagonal is all "
+             "0 or inf, as a distance matrix's is; pass (rows, cols, values) to give an edge list explicitly")
+
+
+def _edge_list_3x3(arr: np.ndarray) -> bool:
+    """Is this (3, 3) array an edge list? The documented rule: yes unless its diagonal is all 0 or
+    inf. Every distance matrix has such a diagonal; an edge list has it only when its third row's
+    distance is inf (a row that measures nothing) and its first two rows start '0 ...' and '. 0',
+    so a real edge list of three measurements is never taken for a matrix."""
+    if arr.shape != (3, 3):
+        return False
+    d = np.diagonal(arr)
+    return not bool(np.all((d == 0) | np.isposinf(d)))
+
+
 def _dense(mat: np.ndarray, symmetrize: bool):
     n = mat.shape[0]
     diag = np.diagonal(mat)
@@ -126,11 +141,16 @@ def as_distance_graph(distances: Any, *, n: Optional[int] = None, squared: bool 
         if arr.dtype.kind not in "fiu":
             raise TypeError(f"distances must be numeric, got dtype {arr.dtype}")
         arr = arr.astype(np.float64, copy=False)
-        if arr.ndim == 2 and arr.shape[0] == arr.shape[1]:
+        if arr.ndim == 2 and arr.shape[0] == arr.shape[1] and not _edge_list_3x3(arr):
             if n is not None and n != arr.shape[0]:
                 raise ValueError(f"n = {n} does not match the {arr.shape[0]} x {arr.shape[0]} distance matrix")
             nn, rows, cols, vals, label = _dense(arr, symmetrize)
         elif arr.ndim == 2 and arr.shape[1] == 3:
+            if arr.shape[0] == 3:  # read as an edge list by the rule: a mistake names the rule
+                try:
+                    return _core.distance_graph(*_edge_list(arr, n)[:4], bool(squared), bool(symmetrize), "edges")
+                except ValueError as e:
+                    raise ValueError(f"{e} [{_READ_3X3}]") from None
             nn, rows, cols, vals, label = _edge_list(arr, n)
         elif arr.size == 0:
             nn, rows, cols, vals = (0 if n is None else int(n)), np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
@@ -308,8 +328,10 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
           not detect each other, 0 on the diagonal;
         * a ``scipy.sparse`` ``(n, n)`` matrix: stored entries are the measurements (absent = not
           detected);
-        * an edge list: an ``(m, 3)`` array of rows ``i j d`` (not square) or a tuple
-          ``(rows, cols, values)``; a pair may be listed once or in both directions.
+        * an edge list: an ``(m, 3)`` array of rows ``i j d`` or a tuple ``(rows, cols, values)``;
+          a pair may be listed once or in both directions. A ``(3, 3)`` array is read as a distance
+          matrix when its diagonal is all 0 or inf (as every distance matrix's is), else as an edge
+          list of three rows; the tuple form is never ambiguous.
         A pair given in both directions must have one value unless ``symmetrize=True``, which averages
         them, ``e_ij = (sigma_ij + sigma_ji) / 2`` as in the paper (and, for a dense matrix, drops
         pairs detected in one direction only).
