@@ -15,8 +15,9 @@ Algorithms (the simulator is C++: ``cpp/include/dvoronoi/network/``):
     Options: ``cap_adjacency`` / ``adjacency_cap`` and ``forward`` (Section 2.3's optimisations),
     ``routing`` ("gpsr" as in the paper, or "shortest": hop-shortest paths).
 ``"bd07"``
-    Bash & Desnoyers: cells of the bounded region ``bounds`` (default: the points' bounding box),
-    refined by probing cell vertices through GPSR.
+    Bash & Desnoyers: cells of the bounded region ``bounds`` (default: the points' bounding box,
+    widened by 1 where it is flat), refined by probing cell vertices through GPSR. An empty network
+    gives an empty result (``bounds`` None unless given).
 ``"bs"``
     Distributed Boundary Scan: every node sends its position once and computes its limited cell of
     radius ``radius`` (default ``comm_range / 2``). With ``anchors`` (node indices) or
@@ -418,12 +419,13 @@ class Bd07Result(_CellsMixin, _NetworkMixin, CellResult):
     """
 
     def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
-                 obstacles: np.ndarray, bounds: Sequence[float]) -> None:
+                 obstacles: np.ndarray, bounds: Optional[Sequence[float]]) -> None:
         self._init_network(d, points, comm_range, loss, seed, obstacles, "bd07")
         ip, ix = d["neighbors"]
         self.indptr = np.asarray(ip, dtype=np.int64)
         self.indices = np.asarray(ix, dtype=np.int64)
-        self.bounds = tuple(float(b) for b in bounds)
+        #: the region of the run; None for an empty network without bounds
+        self.bounds = None if bounds is None else tuple(float(b) for b in bounds)
         self.radius = float("nan")
         self.probes = int(d["probes"])
         self.condition = bool(d["condition"]) if "condition" in d else None
@@ -657,9 +659,7 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
     if algorithm == "cc":
         return CcResult(d, pts, comm_range, loss, seed, obs, b)
     if algorithm == "bd07":
-        if b is None:
-            b = (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
-        return Bd07Result(d, pts, comm_range, loss, seed, obs, b)
+        return Bd07Result(d, pts, comm_range, loss, seed, obs, d["bounds"])
     return BoundaryScanResult(d, pts, comm_range, loss, seed, obs, anchor_arr)
 
 
