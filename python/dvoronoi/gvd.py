@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core
+from . import _args, _core
 from ._io import PathLike, atomic_write_text
 from ._result import Result
 
@@ -304,12 +304,9 @@ class GridVoronoi(Result):
 
 
 def _workers(workers: Any) -> int:
-    """SPEC: None or -1 = all cores, k >= 1 = k threads."""
-    if workers is None or (not isinstance(workers, bool) and isinstance(workers, (int, np.integer)) and workers == -1):
-        return max(1, os.cpu_count() or 1)
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers must be None or -1 (all cores) or a positive integer, got {workers!r}")
-    return int(workers)
+    """SPEC: None or -1 = all cores, k >= 1 = k threads (checked by _args.workers); the slice team
+    needs the count itself."""
+    return _args.workers(workers) or max(1, os.cpu_count() or 1)
 
 
 def _is_map(source: Any) -> bool:
@@ -359,7 +356,7 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
     Raises ValueError naming the argument, the file and line of a bad map, or the obstacle and field
     of a bad obstacle.
     """
-    robot_radius = float(robot_radius)
+    robot_radius = _args.real(robot_radius, "robot_radius")
     if not np.isfinite(robot_radius) or robot_radius < 0:
         raise ValueError(f"robot_radius must be a finite number >= 0, got {robot_radius}")
     n_workers = _workers(workers)
@@ -391,14 +388,11 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         cells = resolution
     if cells is None:
         cells = 512
-    if isinstance(cells, bool) or not isinstance(cells, (int, np.integer)):
-        raise TypeError(f"cells must be an integer, got {type(cells).__name__}")
-    if cells < 1:
-        raise ValueError(f"cells must be at least 1, got {cells}")
+    cells = _args.integer(cells, "cells", 1, _args.MAX_COUNT)
     if mode not in ("cooperative", "independent"):
         raise ValueError(f'mode must be "cooperative" or "independent", got {mode!r}')
     scene = load_obstacles(obstacles, area)
-    core = _core._gvd_run(scene, int(cells), robot_radius, n_workers, mode, bool(visibility))
+    core = _core._gvd_run(scene, cells, robot_radius, n_workers, mode, bool(visibility))
     return GridVoronoi(core, scene)
 
 

@@ -408,7 +408,7 @@ def test_batch_matches_single_runs():
     nets = [rng.uniform(0, 100, (60, 2)) for _ in range(6)]
     obs = [net.random_bars(rng, 10, 5.0, (0, 0, 100, 100)) for _ in range(6)]
     seeds = list(range(6))
-    out = net.batch("cc", nets, 25.0, 0.2, obs, (0, 0, 100, 100), seeds, threads=2)
+    out = net.batch("cc", nets, 25.0, 0.2, obs, (0, 0, 100, 100), seeds, workers=2)
     for k in range(6):
         one = net.simulate("cc", nets[k], 25.0, loss=0.2, obstacles=obs[k], seed=seeds[k])
         assert out["by_type"][k].tolist() == [one.transmissions_by_type["location"],
@@ -416,7 +416,7 @@ def test_batch_matches_single_runs():
                                               one.transmissions_by_type["discovery"]]
         assert bool(out["condition"][k]) == one.condition
         assert bool(out["exact"][k]) == one.exact
-    b = net.batch("bd07", nets, 25.0, 0.0, [None] * 6, (0, 0, 100, 100), seeds, threads=2)
+    b = net.batch("bd07", nets, 25.0, 0.0, [None] * 6, (0, 0, 100, 100), seeds, workers=2)
     one = net.simulate("bd07", nets[0], 25.0, bounds=(0, 0, 100, 100), seed=0)
     assert b["by_type"][0].sum() == one.total_transmissions
 

@@ -15,7 +15,7 @@ def check(oracle, points: np.ndarray, label: str) -> None:
     want = [set(nb) for nb in exact["voronoi_neighbors"]]
     want_hull = np.asarray(exact["on_hull"], dtype=bool)
     for inner in ("scan", "evt"):
-        part = dv.voronoi_cells(points, inner=inner, threads=2)
+        part = dv.voronoi_cells(points, inner=inner, workers=2)
         got = neighbor_sets(part.indptr, part.indices)
         bad = [i for i in range(len(points)) if got[i] != want[i]]
         assert not bad, f"{label} [{inner}]: neighbours differ at agents {bad[:10]}"
@@ -101,7 +101,7 @@ def test_clipped_areas_match_cgal_and_sum_to_the_box(oracle, seed):
         for box in (box_around(pts, 0.1), box_around(pts, -0.2, shift=(0.05, 0.0)), box_around(pts, 0.0)):
             want = np.asarray(oracle(pts, 1.0, box)["clipped_areas"])
             for inner in ("scan", "evt"):
-                part = dv.voronoi_cells(pts, inner=inner, bounds=box, threads=2)
+                part = dv.voronoi_cells(pts, inner=inner, bounds=box, workers=2)
                 scale = box_area(box)
                 assert np.allclose(part.areas, want, rtol=1e-9, atol=1e-12 * scale), \
                     f"{label} {box} [{inner}]: worst {np.max(np.abs(part.areas - want)):.3g}"

@@ -14,7 +14,7 @@ from typing import Any, Iterator, Optional, Tuple
 
 import numpy as np
 
-from .. import _core
+from .. import _args, _core
 from .._partition import ProgressArg, progress_callback
 from .._result import Result
 
@@ -112,6 +112,8 @@ def as_distance_graph(distances: Any, *, n: Optional[int] = None, squared: bool 
     :func:`neighbors_from_distances` for the accepted forms). Errors name the entry."""
     if isinstance(distances, _core.DistanceGraph):
         return distances
+    if n is not None:
+        n = _args.integer(n, "n", 0, 2**63 - 1)
     label = "distances"
     try:
         import scipy.sparse as sp
@@ -315,8 +317,8 @@ def _mds_layout(graph: "_core.DistanceGraph") -> np.ndarray:
 
 
 def neighbors_from_distances(distances: Any, consistency: bool = True, *, squared: bool = False,
-                             symmetrize: bool = False, n: Optional[int] = None, threads: Optional[int] = None,
-                             progress: ProgressArg = None) -> DistanceNeighbors:
+                             symmetrize: bool = False, n: Optional[int] = None, workers: Optional[int] = None,
+                             progress: ProgressArg = None, threads: Optional[int] = None) -> DistanceNeighbors:
     """Every robot's Voronoi neighbours (Delaunay-path order) and hull flag from measured
     inter-robot distances only, by VORONOI-NEIGHBORS (Elwin, Freeman & Lynch), then, if
     `consistency`, the consistency step that makes the relation symmetric.
@@ -342,8 +344,9 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
         moves an exactly degenerate configuration (see the C++ header distance_predicates.hpp).
     n
         Number of robots for an edge list (default: largest index + 1).
-    threads
-        OpenMP threads, None or 0 = all cores. ``progress``: as in :func:`dvoronoi.limited_cells`.
+    workers
+        Threads: None or -1 = all cores, k >= 1 = k (``threads`` is a deprecated alias, 0 = all
+        cores). ``progress``: as in :func:`dvoronoi.limited_cells`.
 
     With noise-free distances the answer equals the exact Voronoi neighbours and hull flags whenever
     every robot detects its Voronoi neighbours and robots opposite a shared Delaunay edge measure each
@@ -352,8 +355,8 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
 
     Raises ValueError naming the entry for negative, zero, NaN, one-sided or contradictory values.
     """
+    team = _args.workers(workers, threads)
     graph = as_distance_graph(distances, n=n, squared=squared, symmetrize=symmetrize)
-    threads = 0 if threads is None else int(threads)
     with progress_callback(np.empty((len(graph), 2)), progress, "voronoi neighbours") as callback:
-        core = _core.neighbors_from_distances(graph, bool(consistency), threads, callback)
+        core = _core.neighbors_from_distances(graph, bool(consistency), team, callback)
     return DistanceNeighbors(core, graph)
