@@ -152,6 +152,32 @@ inline Vec2 point_arg(py::handle obj, const char* name) {
     return Vec2(x, y);
 }
 
+/// A real number (a Python or numpy number, or anything with __float__ but a bool or a string) as a
+/// double; a TypeError naming `name` otherwise (pybind11's own conversion error would list the call's
+/// arguments, arrays included), a ValueError for an int beyond the range of a double.
+inline double real_arg(py::handle obj, const char* name) {
+    PyObject* o = obj.ptr();
+    if (PyFloat_Check(o)) return PyFloat_AS_DOUBLE(o);
+    if (PyBool_Check(o) || PyUnicode_Check(o) || PyBytes_Check(o) || !PyObject_HasAttrString(o, "__float__"))
+        throw py::type_error(std::string(name) + " must be a real number, got " +
+                             std::string(py::str(py::type::handle_of(obj).attr("__name__"))) + " " +
+                             std::string(py::repr(obj)).substr(0, 60));
+    const double v = PyFloat_AsDouble(o);
+    if (v == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        throw py::value_error(std::string(name) + " is out of the range of a double");
+    }
+    return v;
+}
+
+/// A str as std::string; a TypeError naming `name` otherwise.
+inline std::string str_arg(py::handle obj, const char* name) {
+    if (!PyUnicode_Check(obj.ptr()))
+        throw py::type_error(std::string(name) + " must be a string, got " +
+                             std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
+    return obj.cast<std::string>();
+}
+
 /// A read-only numpy view of `data` (shape, strides in bytes), kept alive by `owner`.
 template <class T>
 py::array view(const T* data, std::vector<py::ssize_t> shape, std::vector<py::ssize_t> strides,

@@ -285,10 +285,11 @@ void bind_cells(py::module_& m) {
 
     m.def(
         "limited_cell",
-        [](py::handle center, py::handle others, double radius, const std::string& method) {
+        [](py::handle center, py::handle others, py::handle radius_obj, py::handle method) {
             const Vec2 c = point_arg(center, "center");
             const PointsArg o = points_arg(others, "others");
-            const Method meth = dvoronoi::parse_method(method);
+            const double radius = real_arg(radius_obj, "radius");
+            const Method meth = dvoronoi::parse_method(str_arg(method, "method"));
             if (o.rows > kReleaseGilAbove) {
                 LimitedCell cell;
                 {
@@ -299,7 +300,7 @@ void bind_cells(py::module_& m) {
             }
             return cell_object(dvoronoi::limited_cell(c, o.ref(), radius, meth));
         },
-        py::arg("center"), py::arg("others"), py::arg("radius"), py::arg("method") = "scan",
+        py::arg("center"), py::arg("others"), py::arg("radius"), py::arg("method") = py::str("scan"),
         kLimitedCellDoc);
 
     // ------------------------------------------------------------------ LimitedPartition

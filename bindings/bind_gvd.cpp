@@ -107,6 +107,25 @@ nlohmann::json to_json(py::handle o) {
     throw NotJson{"", std::string(py::str(py::type::handle_of(o).attr("__name__")))};
 }
 
+/// A document of Python objects as JSON; a TypeError naming `name` and the path of a value json.dumps
+/// would reject.
+nlohmann::json doc_json(py::handle doc, const std::string& name) {
+    try {
+        return to_json(doc);
+    } catch (const NotJson& e) {
+        throw py::type_error(name + (e.path.empty() ? "" : ": " + e.path.substr(e.path[0] == '.' ? 1 : 0)) +
+                             ": object of type " + e.type + " is not JSON serialisable");
+    }
+}
+
+/// The scene of a parsed document (the GIL released while it is checked and compiled).
+std::shared_ptr<PyScene> scene_of(const nlohmann::json& j, const std::string& name) {
+    auto s = std::make_shared<PyScene>();
+    py::gil_scoped_release release;
+    s->file = dvoronoi::io::obstacles_from_json(j, name);
+    return s;
+}
+
 gvd::SliceMode parse_mode(const std::string& m) {
     if (m == "cooperative") return gvd::SliceMode::Cooperative;
     if (m == "independent") return gvd::SliceMode::Independent;
@@ -117,24 +136,17 @@ gvd::SliceMode parse_mode(const std::string& m) {
 
 void bind_gvd(py::module_& m) {
     py::class_<PyScene, std::shared_ptr<PyScene>>(m, "_GvdScene", "Compiled obstacles and working area (private).")
-        .def_static("from_doc", [](py::handle doc, const std::string& name) {
-                 nlohmann::json j;
-                 try {
-                     j = to_json(doc);
-                 } catch (const NotJson& e) {
-                     throw py::type_error(name + (e.path.empty() ? "" : ": " + e.path.substr(e.path[0] == '.' ? 1 : 0)) +
-                                          ": object of type " + e.type + " is not JSON serialisable");
-                 }
-                 auto s = std::make_shared<PyScene>();
-                 try {
-                     py::gil_scoped_release release;
-                     s->file = dvoronoi::io::obstacles_from_json(j, name);
-                 } catch (const dvoronoi::InputError& e) {
-                     throw py::value_error(e.what());
-                 }
-                 return s;
-             },
+        .def_static("from_doc", [](py::handle doc, const std::string& name) { return scene_of(doc_json(doc, name), name); },
              py::arg("doc"), py::arg("name"), "The scene from a document of Python objects (private).")
+        .def_static("from_text",
+             [](const std::string& text, const std::string& name, py::handle area) {
+                 nlohmann::json j = dvoronoi::io::parse_json(text, name);
+                 if (!area.is_none() && j.is_object()) j["area"] = doc_json(area, name);
+                 return scene_of(j, name);
+             },
+             py::arg("text"), py::arg("name"), py::arg("area") = py::none(),
+             "The scene from JSON text (a file's bytes), with `area` (a document value) in place of the "
+             "text's own when given; errors name NAME:LINE:COLUMN (private).")
         .def_property_readonly("n_obstacles", [](const PyScene& s) { return s.file.scene.n_obstacles; })
         .def_property_readonly("n_labels", [](const PyScene& s) { return s.file.scene.n_labels; })
         .def_property_readonly("area", [](const PyScene& s) { return xy_array(s.file.scene.area); })

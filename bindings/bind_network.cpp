@@ -291,6 +291,12 @@ void bind_network(py::module_& m) {
             d["lost"] = r.lost;
             d["delivered"] = r.delivered;
             d["probes"] = r.probes;
+            // The region the run used (the points' bounding box when none was given, widened where it
+            // is flat); None when there is neither a region nor a node to take one from.
+            if (a.has_bounds || net.size() > 0)
+                d["bounds"] = py::make_tuple(a.box.xmin, a.box.ymin, a.box.xmax, a.box.ymax);
+            else
+                d["bounds"] = py::none();
             if (verify) {
                 const auto chk = nw::delaunay_check(net);
                 d["condition"] = chk.condition;

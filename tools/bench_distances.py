@@ -63,7 +63,7 @@ def main(argv=None) -> int:
     print(f"# bench_distances.py ({git_describe()}), load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     print(f"n = {n}, R = {radius:.4g}, mean detected {e.nnz / n:.1f}")
 
-    t1, res1 = best_of(2, lambda: dv.neighbors_from_distances(graph, threads=1))
+    t1, res1 = best_of(2, lambda: dv.neighbors_from_distances(graph, workers=1))
     tall, resall = best_of(2, lambda: dv.neighbors_from_distances(graph))
     assert np.array_equal(res1.indices, resall.indices)
 

@@ -223,8 +223,8 @@ def main(argv=None) -> int:
     # ---- 2. Python, all agents
     pts, R = uniform_points(n, args.k, args.seed)
     print(f"Python comparison, n = {n} ...", file=sys.stderr, flush=True)
-    t_dv1, part = best_of(args.reps, lambda: dv.limited_cells(pts, R, threads=1, progress=False))
-    t_dvall, _ = best_of(args.reps, lambda: dv.limited_cells(pts, R, threads=0, progress=False))
+    t_dv1, part = best_of(args.reps, lambda: dv.limited_cells(pts, R, workers=1, progress=False))
+    t_dvall, _ = best_of(args.reps, lambda: dv.limited_cells(pts, R, workers=None, progress=False))
     t_vor, vor = best_of(args.reps, lambda: scipy_voronoi(pts))
     subset = np.random.default_rng(args.seed + 1).choice(n, size=min(args.subset, n), replace=False)
     t_loop, (loop_areas, _) = best_of(args.reps,

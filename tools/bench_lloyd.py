@@ -155,7 +155,7 @@ def main(argv=None) -> int:
     # ---- 1. dvoronoi, the full run
     t0, c0 = time.perf_counter(), time.process_time()
     run = dv.coverage.lloyd(pts, R, steps=args.steps, bounds=(0, 0, 1, 1), record_every=args.steps,
-                            threads=args.threads or None, progress=False)
+                            workers=args.threads or None, progress=False)
     total, cpu = time.perf_counter() - t0, time.process_time() - c0
     per_step = total / max(args.steps, 1)
     assert np.all(np.diff(run.cost) <= 1e-12 * abs(run.cost[0])), "cost increased"
@@ -163,7 +163,7 @@ def main(argv=None) -> int:
     # the same on one thread (the baselines are single-threaded)
     one_steps = max(1, args.steps // 10)
     t0 = time.perf_counter()
-    dv.coverage.lloyd(pts, R, steps=one_steps, bounds=(0, 0, 1, 1), record_every=one_steps, threads=1,
+    dv.coverage.lloyd(pts, R, steps=one_steps, bounds=(0, 0, 1, 1), record_every=one_steps, workers=1,
                       progress=False)
     per_step_1 = (time.perf_counter() - t0) / one_steps
 
@@ -174,7 +174,7 @@ def main(argv=None) -> int:
     shp_first = shapely_step_vectorized(pts, R, box, args.quad_segs)
     agree = float(np.max(np.linalg.norm(shp_first - first, axis=1))) / R
 
-    lc_t, _ = best_of(3, lambda: dv.limited_cells(pts, R, threads=args.threads or None))
+    lc_t, _ = best_of(3, lambda: dv.limited_cells(pts, R, workers=args.threads or None))
 
     out(f"### Lloyd steps, n = {n:,}")
     out()

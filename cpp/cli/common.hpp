@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -88,24 +89,55 @@ inline std::unique_ptr<io::AtomicFile> open_output(const std::string& path, cons
     }
 }
 
+/// A check for a count option: a whole number in [lo, hi], e.g. "must be a whole number from 0 (all
+/// cores) to 2147483647, got -1". (CLI::NonNegativeNumber printed its range as 0 to DBL_MAX in 300
+/// digits, and accepted 2.5.)
+inline CLI::Validator count_check(long long lo, long long hi, const std::string& lo_means = "") {
+    const std::string range = "a whole number from " + std::to_string(lo) + (lo_means.empty() ? "" : " (" + lo_means + ")") +
+                              " to " + std::to_string(hi);
+    return CLI::Validator(
+        [lo, hi, range](std::string& text) -> std::string {
+            long long v = 0;
+            const char* end = text.data() + text.size();
+            const auto r = std::from_chars(text.data(), end, v);
+            if (r.ec != std::errc() || r.ptr != end || v < lo || v > hi)
+                return "must be " + range + ", got " + io::in_quotes(text);
+            return std::string();
+        },
+        "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]", "count");
+}
+
+/// The check of -t/--threads: 0 = all cores, else that many threads.
+inline CLI::Validator threads_check() { return count_check(0, 2147483647, "all cores"); }
+
 /// The options every point-file command shares: POINTS (required), --columns and -t/--threads.
 inline void add_points_options(CLI::App* sub, std::string& points, std::string& columns, int& threads) {
     sub->add_option("POINTS", points,
                     "point file: 'x y' per line, whitespace- or comma-separated, '#' comments, "
-                    "optional header line; or a numpy .npy array of shape (n, 2); '-' reads stdin")
+                    "optional header line (a first line without a number; a file of only a header "
+                    "has no points, with a warning); or a numpy .npy array of shape (n, 2); '-' reads stdin")
         ->required();
     sub->add_option("--columns", columns,
                     "X,Y: the fields holding x and y, as 0-based indices (e.g. 1,2 for 'id x y') or "
                     "header names (e.g. lon,lat)");
     sub->add_option("-t,--threads", threads, "worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(threads_check())
         ->capture_default_str();
 }
 
 /// Reads the POINTS argument with an optional --columns selection (InputError carries FILE:LINE:COL).
+/// A file whose only content is a header line is valid and has no points (SPEC), but a file of
+/// "hello world" is more likely the wrong file than an empty team: a warning on stderr says which
+/// line was taken for a header.
 inline io::PointFile read_points_argument(const std::string& path, const std::string& columns) {
     const io::Columns cols = columns.empty() ? io::Columns{} : io::parse_columns(columns, "--columns");
-    return io::read_point_file(path, cols);
+    io::PointFile file = io::read_point_file(path, cols);
+    if (file.points.rows() == 0 && file.header_line > 0)
+        std::cerr << "dvoronoi: warning: " << file.name << ":" << file.header_line << ": "
+                  << io::in_quotes(file.header, 60)
+                  << " was read as a header line (none of its fields is a number) and no data line follows: "
+                     "the file has no points\n";
+    return file;
 }
 
 /// Rewrites a CoincidentError in terms of the file: both lines, the later one as the location.

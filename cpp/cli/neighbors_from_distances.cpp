@@ -82,11 +82,11 @@ Command add_neighbors_from_distances(CLI::App& parent) {
         ->required();
     sub->add_option("-o,--output", o->output, "output file: .json or .csv (robot,on_hull,detected,neighbors); default or '-': JSON on stdout");
     sub->add_option("-n,--n", o->n, "number of robots: robots are IDs 0..n-1, those without a line isolated "
-                                     "(default: the IDs in the file)")->check(CLI::NonNegativeNumber);
+                                     "(default: the IDs in the file)")->check(count_check(0, 9223372036854775807LL));
     sub->add_flag("--squared", o->squared, "the values are squared distances (exact decisions for exact squared distances)");
     sub->add_flag("--average", o->average, "average the two directions of a pair, e_ij = (s_ij + s_ji) / 2 (default: they must agree)");
     sub->add_flag("--no-consistency", o->no_consistency, "skip the consistency step (the relation may then be asymmetric)");
-    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber)->capture_default_str();
+    sub->add_option("-t,--threads", o->threads, "worker threads (0 = all cores)")->check(threads_check())->capture_default_str();
     sub->add_flag("-q,--quiet", o->quiet, "no progress counter on stderr");
     return {sub, [o] { return run_distances(*o); }};
 }

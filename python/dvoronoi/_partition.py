@@ -7,7 +7,7 @@ from typing import Any, Callable, Iterator, Optional, Union
 
 import numpy as np
 
-from . import _core
+from . import _args, _core
 from ._result import CellResult
 
 #: From this many agents on, ``limited_cells(progress=None)`` shows a tqdm progress bar.
@@ -164,8 +164,8 @@ def progress_callback(points: Any, progress: ProgressArg, desc: str) -> Iterator
         bar.close()
 
 
-def limited_cells(points: Any, radius: float, method: str = "scan", threads: Optional[int] = None,
-                  progress: ProgressArg = None) -> LimitedPartition:
+def limited_cells(points: Any, radius: float, method: str = "scan", workers: Optional[int] = None,
+                  progress: ProgressArg = None, *, threads: Optional[int] = None) -> LimitedPartition:
     """Every agent's range-limited Voronoi cell ``V_i ∩ B(p_i, radius)``.
 
     Parameters
@@ -174,14 +174,15 @@ def limited_cells(points: Any, radius: float, method: str = "scan", threads: Opt
         Agent positions, any memory layout (C-contiguous float64 is not copied). Empty input gives an
         empty partition; one agent gets the full disk.
     radius : float
-        The cell radius R > 0 (only agents closer than 2R shape a cell).
+        The cell radius R > 0 (only agents closer than 2R shape a cell), between 1e-150 and 1e150.
     method : {"scan", "chords"}
-        Boundary Scan (O(m log m) per agent) or RCVC chords (O(m^2) worst case); same result.
-        With "scan", most cells come from a certified floating-point clipping filter that gives
-        Boundary Scan's cell bit for bit and defers to Boundary Scan whenever a decision is not
-        certain (ties, lattices, cocircular agents).
-    threads : int, optional
-        Worker threads; None or 0 uses every core. The result does not depend on it.
+        Boundary Scan (O(m log m) per agent) or RCVC chords (O(m^2) worst case, so at most 1024
+        agents within 2R of any agent); same result. With "scan", most cells come from a certified
+        floating-point clipping filter that gives Boundary Scan's cell bit for bit and defers to
+        Boundary Scan whenever a decision is not certain (ties, lattices, cocircular agents).
+    workers : int, optional
+        Worker threads: None or -1 uses every core, k >= 1 uses k. The result does not depend on
+        it. (``threads=`` is a deprecated alias, 0 = every core.)
     progress : bool or callable, optional
         None: a tqdm progress bar from ``PROGRESS_BAR_FROM`` (200 000) agents on. True/False: always/never.
         A callable is called as ``progress(done, total)`` instead.
@@ -194,17 +195,24 @@ def limited_cells(points: Any, radius: float, method: str = "scan", threads: Opt
     ------
     ValueError
         A wrong shape, NaN/inf coordinates (the message names the index), a radius that is not
-        positive and finite, an unknown method, or coinciding agents (:class:`CoincidentError`, which
-        names the first pair).
+        positive and finite or outside [1e-150, 1e150], an unknown method, a bad ``workers``,
+        coinciding agents (:class:`CoincidentError`, which names the first pair); outside the exact
+        range (below), naming the agent: ``points[17]: out of the exact range ...``; "chords" with
+        more than 1024 agents within 2R of an agent.
     TypeError
-        Non-numeric input.
+        Non-numeric input (a radius given as a string, too).
 
     Notes
     -----
-    The GIL is released during the computation. Limited-neighbour sets are exact (exact predicates);
-    vertices, areas and centroids carry floating-point rounding.
+    The GIL is released during the computation. Limited-neighbour sets are exact (exact predicates)
+    for every input of finite doubles whose exact tests neither over- nor underflow: always for
+    nonzero coordinate differences between about 1e-45 and 1e45; beyond, an exact test that would
+    lose bits raises ValueError instead of guessing. Vertices, areas and centroids carry
+    floating-point rounding.
     """
-    threads = 0 if threads is None else int(threads)
+    team = _args.workers(workers, threads)
+    radius = _args.real(radius, "radius")
+    method = _args.text(method, "method")
     with progress_callback(points, progress, "limited cells") as callback:
-        core = _core.limited_cells(points, radius, method, threads, callback)
+        core = _core.limited_cells(points, radius, method, team, callback)
     return LimitedPartition(core)

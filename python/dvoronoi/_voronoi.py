@@ -14,7 +14,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from . import _core
+from . import _args, _core
 from ._partition import ProgressArg, progress_callback
 from ._io import PathLike, atomic_write_text
 from ._result import Result
@@ -220,19 +220,24 @@ def voronoi_cell(center: Any, others: Any, inner: str = "scan", bounds: BoundsAr
     tessellation (``inner="evt"``) as the inner step. ``on_hull`` says whether it is unbounded; its
     ``edges`` then run from one ray to the other. With ``bounds`` (a box ``(xmin, ymin, xmax, ymax)``
     or a ``(k, 2)`` convex polygon) the cell is also clipped: ``clipped``, ``area``, ``centroid``."""
-    return _core.voronoi_cell(center, others, inner, bounds)
+    return _core.voronoi_cell(center, others, _args.text(inner, "inner"), bounds)
 
 
 def voronoi_cells(points: Any, method: str = "asr", inner: str = "scan", bounds: BoundsArg = None,
-                  threads: Optional[int] = None, progress: ProgressArg = None) -> VoronoiPartition:
+                  workers: Optional[int] = None, progress: ProgressArg = None, *,
+                  threads: Optional[int] = None) -> VoronoiPartition:
     """Every agent's exact Voronoi cell by Adjust-Sensing-Radius (``method="asr"``, see
     :func:`voronoi_cell`): neighbours, hull flags, the Delaunay graph, and areas/centroids of the
-    cells clipped to ``bounds`` (of the bounded cells when no bounds are given). ``threads`` None or
-    0 uses every core; ``progress`` as in :func:`limited_cells`. Raises ValueError for bad shapes,
-    NaN/inf, coinciding agents, or bounds that are not a box or a convex polygon."""
+    cells clipped to ``bounds`` (a box, or a convex polygon whose ring may be closed: a last vertex
+    equal to the first is dropped; of the bounded cells when no bounds are given). ``workers`` None
+    or -1 uses every core, k >= 1 uses k (``threads`` is a deprecated alias, 0 = every core);
+    ``progress`` as in :func:`limited_cells`. Raises ValueError for bad shapes, NaN/inf, coinciding
+    agents, bounds that are not a box or a convex polygon, or coordinates so far apart in scale that
+    an exact test would over- or underflow (see :func:`limited_cells`)."""
     if method != "asr":
         raise ValueError(f'method must be "asr", got {method!r}')
-    threads = 0 if threads is None else int(threads)
+    team = _args.workers(workers, threads)
+    inner = _args.text(inner, "inner")
     with progress_callback(points, progress, "voronoi cells") as callback:
-        core = _core.voronoi_cells(points, inner, threads, callback, bounds)
+        core = _core.voronoi_cells(points, inner, team, callback, bounds)
     return VoronoiPartition(core, inner)

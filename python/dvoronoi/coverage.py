@@ -45,7 +45,7 @@ from typing import Any, Callable, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core
+from . import _args, _core
 from ._io import PathLike
 from ._result import CellResult
 
@@ -168,11 +168,7 @@ def _check_gain(gain: Any) -> float:
 
 
 def _check_count(value: Any, name: str, minimum: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be an integer, got {value!r}")
-    if value < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {value}")
-    return int(value)
+    return _args.integer(value, name, minimum, _args.MAX_COUNT)
 
 
 # ----------------------------------------------------------------------------------------- cells
@@ -309,15 +305,15 @@ class LloydStepper:
     """
 
     def __init__(self, points: Any, radius: float, density: Any = None, gain: float = 1.0,
-                 bounds: BoundsArg = None, order: int = 8, threads: Optional[int] = None) -> None:
+                 bounds: BoundsArg = None, order: int = 8, workers: Optional[int] = None, *,
+                 threads: Optional[int] = None) -> None:
+        team = _args.workers(workers, threads)
+        radius = _args.real(radius, "radius")
         self.density = _check_density(density)
         self.gain = _check_gain(gain)
-        self.order = _check_count(order, "order", 1)
-        if self.order > 64:
-            raise ValueError(f"order must be <= 64, got {order}")
+        self.order = _args.integer(order, "order", 1, 64)
         self.bounds = as_bounds(bounds)
-        threads = 0 if threads is None else _check_count(threads, "threads", 0)
-        self._core = _core.LloydStepper(points, radius, self.bounds, self.gain, threads)
+        self._core = _core.LloydStepper(points, radius, self.bounds, self.gain, team)
         self._total = None  # Φ(Q) under the density, computed once
 
     @property
@@ -393,13 +389,13 @@ class LloydStepper:
 
 
 def step(points: Any, radius: float, density: Any = None, gain: float = 1.0, bounds: BoundsArg = None,
-         order: int = 8, threads: Optional[int] = None) -> Tuple[np.ndarray, float]:
+         order: int = 8, workers: Optional[int] = None, *, threads: Optional[int] = None) -> Tuple[np.ndarray, float]:
     """One Lloyd step from `points`: returns ``(new_points, cost)``, the cost H at `points`.
 
     For many steps, :class:`LloydStepper` (or :func:`lloyd`) keeps the spatial index between steps.
     """
     s = LloydStepper(points, radius, density=density, gain=gain, bounds=bounds, order=order,
-                     threads=threads)
+                     workers=_args.workers(workers, threads) or None)
     cost = s.step()
     return s.points, cost
 
@@ -447,8 +443,8 @@ class LloydResult(CoverageCells):
 
 def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gain: float = 1.0,
           bounds: BoundsArg = None, order: int = 8, record_every: int = 1,
-          threads: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None
-          ) -> LloydResult:
+          workers: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None, *,
+          threads: Optional[int] = None) -> LloydResult:
     """Run Lloyd's algorithm on limited cells for `steps` steps.
 
     Parameters
@@ -471,8 +467,9 @@ def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gai
         Gauss points per direction of the density quadrature (ignored for uniform density).
     record_every : int
         Positions are recorded every `record_every` steps (and after the last).
-    threads : int, optional
-        Worker threads (None or 0: every core). Results do not depend on it.
+    workers : int, optional
+        Worker threads: None or -1 every core, k >= 1 k threads (``threads`` is a deprecated alias,
+        0 = every core). Results do not depend on it.
     progress : bool or callable, optional
         None: a tqdm bar over the steps from ``PROGRESS_BAR_FROM`` agent-steps on; True/False:
         always/never; a callable is called as ``progress(done_steps, steps)``.
@@ -490,10 +487,11 @@ def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gai
     TypeError
         A density that is not callable, non-integer counts.
     """
+    team = _args.workers(workers, threads)
     steps = _check_count(steps, "steps", 0)
     record_every = _check_count(record_every, "record_every", 1)
     stepper = LloydStepper(points, radius, density=density, gain=gain, bounds=bounds, order=order,
-                           threads=threads)
+                           workers=team or None)
     n = len(stepper)
     frame_steps = np.unique(np.concatenate([np.arange(0, steps + 1, record_every), [steps]])).astype(np.int64)
 

@@ -29,7 +29,6 @@ obstacles (and area edges) whose regions meet obstacle ``i``'s along the traced 
 from __future__ import annotations
 
 import functools
-import json
 import os
 import warnings
 from pathlib import Path
@@ -37,7 +36,7 @@ from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core
+from . import _args, _core
 from ._io import PathLike, atomic_write_text
 from ._result import Result
 
@@ -67,19 +66,21 @@ def _area_json(area: Any) -> Dict[str, Any]:
 
 def load_obstacles(obstacles: Any, area: Any = None) -> "_core._GvdScene":
     """Parse and check obstacles (and area) into a compiled scene; errors name the field
-    (``ValueError: obstacles: obstacles[3].radius: must be a positive finite number, got -1``)."""
+    (``ValueError: obstacles: obstacles[3].radius: must be a positive finite number, got -1``), and
+    for a JSON file the place (``map.json:4:31: duplicate key 'radius' ...``)."""
     if isinstance(obstacles, _core._GvdScene):
         return obstacles
     name = "obstacles"
     if isinstance(obstacles, (str, os.PathLike)):
+        # A file is parsed by the compiled loader the CLI uses: the same messages, FILE:LINE:COLUMN for
+        # invalid JSON, a repeated key or a number beyond the range of a double.
         name = os.fspath(obstacles)
         try:
-            doc = json.loads(Path(name).read_text())
-        except json.JSONDecodeError as e:
-            raise ValueError(f"{name}:{e.lineno}:{e.colno}: invalid JSON: {e.msg}") from None
+            text = Path(name).read_bytes()
         except OSError as e:
             raise ValueError(f"{name}: cannot read file ({e.strerror})") from None
-    elif isinstance(obstacles, dict):
+        return _core._GvdScene.from_text(text, name, None if area is None else _area_json(area))
+    if isinstance(obstacles, dict):
         doc = dict(obstacles)
     else:
         doc = {"obstacles": list(obstacles)}
@@ -310,12 +311,9 @@ class GridVoronoi(Result):
 
 
 def _workers(workers: Any) -> int:
-    """SPEC: None or -1 = all cores, k >= 1 = k threads."""
-    if workers is None or (not isinstance(workers, bool) and isinstance(workers, (int, np.integer)) and workers == -1):
-        return max(1, os.cpu_count() or 1)
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers must be None or -1 (all cores) or a positive integer, got {workers!r}")
-    return int(workers)
+    """SPEC: None or -1 = all cores, k >= 1 = k threads (checked by _args.workers); the slice team
+    needs the count itself."""
+    return _args.workers(workers) or max(1, os.cpu_count() or 1)
 
 
 def _is_map(source: Any) -> bool:
@@ -373,7 +371,7 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
     Raises ValueError naming the argument, the file and line of a bad map, or the obstacle and field
     of a bad obstacle.
     """
-    robot_radius = float(robot_radius)
+    robot_radius = _args.real(robot_radius, "robot_radius")
     if not np.isfinite(robot_radius) or robot_radius < 0:
         raise ValueError(f"robot_radius must be a finite number >= 0, got {robot_radius}")
     n_workers = _workers(workers)
@@ -401,10 +399,7 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         cells = resolution
     if cells is None:
         cells = 512
-    if isinstance(cells, bool) or not isinstance(cells, (int, np.integer)):
-        raise TypeError(f"cells must be an integer, got {type(cells).__name__}")
-    if cells < 1:
-        raise ValueError(f"cells must be at least 1, got {cells}")
+    cells = _args.integer(cells, "cells", 1, _args.MAX_COUNT)
     if mode not in ("cooperative", "independent"):
         raise ValueError(f'mode must be "cooperative" or "independent", got {mode!r}')
     scene = load_obstacles(obstacles, area)
@@ -412,9 +407,9 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         # the document on the pixel grid: a pixel is occupied when it meets an obstacle or leaves the area
         from .occupancy import OccupancyGrid, medial_voronoi
 
-        occ, res, org = scene.rasterize(int(cells))
+        occ, res, org = scene.rasterize(cells)
         return medial_voronoi(OccupancyGrid(occ, res, org), robot_radius, n_workers, min_separation, prune_length)
-    core = _core._gvd_run(scene, int(cells), robot_radius, n_workers, mode, bool(visibility))
+    core = _core._gvd_run(scene, cells, robot_radius, n_workers, mode, bool(visibility))
     return GridVoronoi(core, scene)
 
 

@@ -36,7 +36,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from . import _core
+from . import _args, _core
 from .coverage import (BoundsArg, CoverageCells, _check_count, _check_density, _check_gain, _evaluate,
                        as_bounds, density_moments)
 
@@ -79,18 +79,17 @@ class DistributedLloyd:
 
     def __init__(self, comm: Any, ids: Any, points: Any, radius: float, gain: float = 1.0,
                  bounds: BoundsArg = None, density: Any = None, order: int = 8,
-                 x_range: Optional[Tuple[float, float]] = None, threads: int = 0) -> None:
+                 x_range: Optional[Tuple[float, float]] = None, workers: Optional[int] = None, *,
+                 threads: Optional[int] = None) -> None:
         MPI = _mpi()
         self.comm = comm
         self.size, self.rank = comm.Get_size(), comm.Get_rank()
-        self.radius = float(radius)
-        if not (np.isfinite(self.radius) and self.radius > 0):
-            raise ValueError(f"radius must be a positive finite number, got {radius!r}")
+        self.radius = _args.positive(radius, "radius")
         self.gain = _check_gain(gain)
         self.bounds = as_bounds(bounds)
         self.density = _check_density(density)
         self.order = _check_count(order, "order", 1)
-        self.threads = _check_count(threads, "threads", 0)
+        self.threads = _args.workers(workers, threads)  # the core's count: 0 = all cores
         ids = np.asarray(ids, dtype=np.int64).reshape(-1)
         points = np.asarray(points, dtype=float).reshape(-1, 2)
         if len(ids) != len(points):
@@ -292,7 +291,7 @@ def _check_on_root(comm: Any, root: int, check) -> None:
 
 def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bounds: BoundsArg = None,
           density: Any = None, order: int = 8, record_every: int = 1, comm: Any = None, root: int = 0,
-          threads: int = 0) -> Optional[Dict[str, Any]]:
+          workers: Optional[int] = None, *, threads: Optional[int] = None) -> Optional[Dict[str, Any]]:
     """Lloyd's algorithm on limited cells across the ranks of `comm` (collective).
 
     `points` (n, 2) is read on `root` only. Returns on `root` a dict with ``trajectory`` (frames, n, 2)
@@ -303,6 +302,8 @@ def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bound
     """
     MPI = _mpi()
     comm = MPI.COMM_WORLD if comm is None else comm
+    team = _args.workers(workers, threads)
+    radius = _args.real(radius, "radius")
     steps = _check_count(steps, "steps", 0)
     record_every = _check_count(record_every, "record_every", 1)
 
@@ -313,7 +314,7 @@ def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bound
     _check_on_root(comm, root, validate)
     ids, pts = _scatter_input(comm, points, root)
     run = DistributedLloyd(comm, ids, pts, radius, gain=gain, bounds=bounds, density=density,
-                           order=order, threads=threads)
+                           order=order, workers=team or None)
     frames = [run.gather(root)]
     cost = np.empty(steps + 1)
     halo_bytes, migration_bytes = [], []
@@ -365,14 +366,17 @@ def _assemble_cells(parts: List[Tuple[np.ndarray, Dict[str, np.ndarray]]], radiu
 
 
 def cells(points: Any, radius: float, bounds: BoundsArg = None, comm: Any = None, root: int = 0,
-          threads: int = 0) -> Optional[CoverageCells]:
+          workers: Optional[int] = None, *, threads: Optional[int] = None) -> Optional[CoverageCells]:
     """The clipped limited cells of `points` (read on root) computed across ranks (collective);
-    the assembled :class:`CoverageCells` on root, None elsewhere."""
+    the assembled :class:`CoverageCells` on root, None elsewhere. ``workers``: threads per rank, None
+    or -1 = all cores (``threads`` is a deprecated alias, 0 = all cores)."""
     MPI = _mpi()
     comm = MPI.COMM_WORLD if comm is None else comm
+    team = _args.workers(workers, threads)
+    radius = _args.real(radius, "radius")
     _check_on_root(comm, root, lambda: _core.LloydStepper(points, radius, as_bounds(bounds), 1.0, 1))
     ids, pts = _scatter_input(comm, points, root)
-    run = DistributedLloyd(comm, ids, pts, radius, bounds=bounds, threads=threads)
+    run = DistributedLloyd(comm, ids, pts, radius, bounds=bounds, workers=team or None)
     parts = comm.gather((run.ids, run.cells()), root=root)
     return _assemble_cells(parts, radius, run.bounds) if comm.Get_rank() == root else None
 
@@ -416,7 +420,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     ap.add_argument("--record-every", type=int, default=0,
                     help="gather positions every K steps (default: only first and last)")
     ap.add_argument("-o", "--output", help="write the run summary + final positions as JSON (root)")
-    ap.add_argument("--threads", type=int, default=1, help="OpenMP threads per rank (default 1)")
+    ap.add_argument("--threads", type=int, default=1, help="OpenMP threads per rank (default 1; 0 = all cores)")
     args = ap.parse_args(argv)
     rank, size = comm.Get_rank(), comm.Get_size()
     bounds = args.bounds
@@ -436,7 +440,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     bounds = comm.bcast(bounds, root=0)
     record = args.record_every if args.record_every > 0 else max(args.steps, 1)
     out = lloyd(points, args.radius, steps=args.steps, gain=args.gain, bounds=bounds,
-                record_every=record, comm=comm, threads=args.threads)
+                record_every=record, comm=comm, workers=args.threads or None)
     if rank == 0:
         s = out["stats"]
         print(f"dvoronoi.mpi: {s['agents']} agents on {s['ranks']} ranks, {s['steps']} steps: "

@@ -15,8 +15,9 @@ Algorithms (the simulator is C++: ``cpp/include/dvoronoi/network/``):
     Options: ``cap_adjacency`` / ``adjacency_cap`` and ``forward`` (Section 2.3's optimisations),
     ``routing`` ("gpsr" as in the paper, or "shortest": hop-shortest paths).
 ``"bd07"``
-    Bash & Desnoyers: cells of the bounded region ``bounds`` (default: the points' bounding box),
-    refined by probing cell vertices through GPSR.
+    Bash & Desnoyers: cells of the bounded region ``bounds`` (default: the points' bounding box,
+    widened by 1 where it is flat), refined by probing cell vertices through GPSR. An empty network
+    gives an empty result (``bounds`` None unless given).
 ``"bs"``
     Distributed Boundary Scan: every node sends its position once and computes its limited cell of
     radius ``radius`` (default ``comm_range / 2``). With ``anchors`` (node indices) or
@@ -39,7 +40,7 @@ from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
-from . import _core
+from . import _args, _core
 from ._result import CellResult, Result
 
 __all__ = ["simulate", "BudgetExceeded", "CcResult", "Bd07Result", "BoundaryScanResult", "NetworkCell",
@@ -418,12 +419,13 @@ class Bd07Result(_CellsMixin, _NetworkMixin, CellResult):
     """
 
     def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
-                 obstacles: np.ndarray, bounds: Sequence[float]) -> None:
+                 obstacles: np.ndarray, bounds: Optional[Sequence[float]]) -> None:
         self._init_network(d, points, comm_range, loss, seed, obstacles, "bd07")
         ip, ix = d["neighbors"]
         self.indptr = np.asarray(ip, dtype=np.int64)
         self.indices = np.asarray(ix, dtype=np.int64)
-        self.bounds = tuple(float(b) for b in bounds)
+        #: the region of the run; None for an empty network without bounds
+        self.bounds = None if bounds is None else tuple(float(b) for b in bounds)
         self.radius = float("nan")
         self.probes = int(d["probes"])
         self.condition = bool(d["condition"]) if "condition" in d else None
@@ -622,17 +624,14 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
     if algorithm not in ALGORITHMS:
         raise ValueError(f"algorithm must be one of {ALGORITHMS}, got {algorithm!r}")
     pts = _points(points)
-    comm_range = float(comm_range)
-    if not (math.isfinite(comm_range) and comm_range > 0):
-        raise ValueError(f"comm_range must be a positive finite number, got {comm_range!r}")
-    loss = float(loss)
+    comm_range = _args.positive(comm_range, "comm_range")
+    loss = _args.real(loss, "loss")
     if not 0.0 <= loss < 1.0:
         raise ValueError(f"loss must be a probability in [0, 1), got {loss!r}")
-    seed = int(seed)
-    if seed < 0:
-        raise ValueError(f"seed must be >= 0, got {seed}")
-    if budget is not None and int(budget) <= 0:
-        raise ValueError(f"budget must be a positive number of transmissions, got {budget!r}")
+    seed = _args.seed(seed)
+    budget = 0 if budget is None else _args.integer(budget, "budget", 1, 2**63 - 1)
+    adjacency_cap = _args.integer(adjacency_cap, "adjacency_cap", 0, _args.MAX_COUNT)
+    routing = _args.text(routing, "routing")
     obs = _obstacles(obstacles)
     b = _bounds(bounds)
     anchor_arr = None
@@ -640,33 +639,31 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
         if anchors is not None and anchor_fraction is not None:
             raise ValueError("give anchors or anchor_fraction, not both")
         if anchor_fraction is not None:
-            if not 0.0 < float(anchor_fraction) <= 1.0:
+            anchor_fraction = _args.real(anchor_fraction, "anchor_fraction")
+            if not 0.0 < anchor_fraction <= 1.0:
                 raise ValueError(f"anchor_fraction must be in (0, 1], got {anchor_fraction!r}")
-            k = max(1, int(round(float(anchor_fraction) * len(pts))))
+            k = max(1, int(round(anchor_fraction * len(pts))))
             anchor_arr = np.sort(np.random.default_rng(seed).choice(len(pts), size=k, replace=False))
         elif anchors is not None:
             anchor_arr = np.asarray(anchors, dtype=np.int64).ravel()
-        if radius is not None and not (math.isfinite(float(radius)) and float(radius) > 0):
-            raise ValueError(f"radius must be a positive finite number, got {radius!r}")
+        if radius is not None:
+            radius = _args.positive(radius, "radius")
     elif anchors is not None or anchor_fraction is not None:
         raise ValueError("anchors / anchor_fraction apply to algorithm='bs' only")
     d = _core._network_simulate(algorithm, pts, comm_range, loss, obs if len(obs) else None, b, seed,
-                                int(budget or 0), bool(cap_adjacency), int(adjacency_cap), bool(forward),
-                                str(routing), None if anchor_arr is None else anchor_arr.tolist(),
-                                float(radius or 0.0), bool(verify))
+                                budget, bool(cap_adjacency), adjacency_cap, bool(forward), routing,
+                                None if anchor_arr is None else anchor_arr.tolist(), radius or 0.0, bool(verify))
     if algorithm == "cc":
         return CcResult(d, pts, comm_range, loss, seed, obs, b)
     if algorithm == "bd07":
-        if b is None:
-            b = (float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(pts[:, 1].max()))
-        return Bd07Result(d, pts, comm_range, loss, seed, obs, b)
+        return Bd07Result(d, pts, comm_range, loss, seed, obs, d["bounds"])
     return BoundaryScanResult(d, pts, comm_range, loss, seed, obs, anchor_arr)
 
 
 def links(points: Any, comm_range: float, obstacles: Any = None) -> np.ndarray:
     """The network's links as an ``(E, 2)`` int64 array of pairs ``i < j``."""
     obs = _obstacles(obstacles)
-    d = _core._network_links(_points(points), float(comm_range), obs if len(obs) else None)
+    d = _core._network_links(_points(points), _args.positive(comm_range, "comm_range"), obs if len(obs) else None)
     return np.asarray(d["links"], dtype=np.int64).reshape(-1, 2)
 
 
@@ -674,8 +671,10 @@ def gpsr_route(points: Any, comm_range: float, source: int, target: Any, obstacl
     """GPSR from node `source` to the point `target`: ``(delivered, path)``; ``path[-1]`` is the node
     that received the packet (the node nearest `target` when the planar graph is connected)."""
     obs = _obstacles(obstacles)
-    ok, path = _core._network_gpsr(_points(points), float(comm_range), obs if len(obs) else None, int(source),
-                                   tuple(float(v) for v in target))
+    pts = _points(points)
+    ok, path = _core._network_gpsr(pts, _args.positive(comm_range, "comm_range"), obs if len(obs) else None,
+                                   _args.integer(source, "source", 0, max(len(pts) - 1, 0)),
+                                   tuple(_args.real(v, "target") for v in target))
     return bool(ok), np.asarray(path, dtype=np.int64)
 
 
@@ -690,17 +689,19 @@ def random_bars(rng: np.random.Generator, count: int, length: float, bounds: Seq
 
 
 def batch(algorithm: str, networks: Sequence[Any], comm_range: float, loss: float, obstacles: Sequence[Any],
-          bounds: Sequence[float], seeds: Sequence[int], verify: bool = True, threads: int = 0,
-          progress: Any = None) -> Dict[str, np.ndarray]:
+          bounds: Sequence[float], seeds: Sequence[int], verify: bool = True, workers: Optional[int] = None,
+          progress: Any = None, *, threads: Optional[int] = None) -> Dict[str, np.ndarray]:
     """Run ``cc`` or ``bd07`` on many independent networks in parallel (C++ threads over networks), or
     ``check`` Theorem 2's condition only.
 
     Returns per network: ``by_type`` (transmissions per message type), ``lost``, ``condition``
     (Theorem 2's, when verified or checked) and ``exact`` (CC only: every node's neighbours and hull
     flag exact).
-    ``progress`` is a callable (done, total) called from the calling thread.
+    ``progress`` is a callable (done, total) called from the calling thread. ``workers``: None or -1
+    = all cores, k >= 1 = k threads (``threads`` is a deprecated alias, 0 = all cores).
     """
+    team = _args.workers(workers, threads)
     obs = [o if o is not None and len(o) else None for o in (_obstacles(o) for o in obstacles)]
-    return _core._network_batch(algorithm, [_points(p) for p in networks], float(comm_range), float(loss), obs,
-                                [float(v) for v in bounds], [int(s) for s in seeds], bool(verify), int(threads),
-                                progress)
+    return _core._network_batch(algorithm, [_points(p) for p in networks], _args.positive(comm_range, "comm_range"),
+                                _args.real(loss, "loss"), obs, [_args.real(v, "bounds") for v in bounds],
+                                [_args.seed(v, "seeds") for v in seeds], bool(verify), team, progress)

@@ -38,7 +38,7 @@ def main(out):
     for name, case in CASES.items():
         pts = points_of(case)
         res = dm.lloyd(pts if comm.rank == 0 else None, case["radius"], steps=case["steps"],
-                       gain=case["gain"], bounds=case["bounds"], density=case.get("density"), threads=1)
+                       gain=case["gain"], bounds=case["bounds"], density=case.get("density"), workers=1)
         if comm.rank == 0:
             saved[name + "/trajectory"] = res["trajectory"]
             saved[name + "/cost"] = res["cost"]
@@ -48,7 +48,7 @@ def main(out):
             saved[name + "/halo_bytes"] = np.array(res["stats"]["halo_bytes_per_step"])
     # One partition (no steps) across ranks: dv.mpi.cells.
     pts = np.random.default_rng(5).uniform(0, 3, (1500, 2))
-    cells = dm.cells(pts if comm.rank == 0 else None, 0.08, threads=1)
+    cells = dm.cells(pts if comm.rank == 0 else None, 0.08, workers=1)
     if comm.rank == 0:
         for k in ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "indptr",
                   "indices", "areas", "centroids"):

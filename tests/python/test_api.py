@@ -300,8 +300,8 @@ def test_scan_equals_chords(seed, kind):
 
 def test_threads_do_not_change_the_result():
     pts = random_points(14, 20000)
-    one = dv.limited_cells(pts, 0.006, threads=1)
-    two = dv.limited_cells(pts, 0.006, threads=2)
+    one = dv.limited_cells(pts, 0.006, workers=1)
+    two = dv.limited_cells(pts, 0.006, workers=2)
     every = dv.limited_cells(pts, 0.006)
     for other in (two, every):
         # Threads write their pieces to their own columns, merged afterwards: every array must match.

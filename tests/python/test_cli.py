@@ -277,6 +277,21 @@ def test_empty_file_gives_empty_result(tmp_path):
     assert doc["points"] == [] and doc["cells"] == [] and doc["indptr"] == [0]
 
 
+@pytest.mark.parametrize("text, header", [("hello world\n", "'hello world'"), ("x,y\n# no data yet\n", "'x,y'")])
+def test_header_only_file_warns(tmp_path, text, header):
+    # A file whose only content is a header line is valid and has no points (SPEC), but "hello world"
+    # is more likely the wrong file: before, an empty result came out with exit 0 and not a word.
+    p = tmp_path / "h.txt"
+    p.write_text(text)
+    r = run("cells", p, "-r", "1", "-q")
+    assert r.returncode == 0 and json.loads(r.stdout)["points"] == []
+    assert r.stderr == (f"dvoronoi: warning: {p}:1: {header} was read as a header line (none of its fields is "
+                        "a number) and no data line follows: the file has no points\n")
+    p.write_text(text + "1 2\n")  # with data after it: a header, no warning
+    r = run("cells", p, "-r", "1", "-q")
+    assert r.returncode == 0 and r.stderr == "" and len(json.loads(r.stdout)["points"]) == 1
+
+
 # --- errors: exit code 2, FILE:LINE:COLUMN or the argument, nothing written ----------------------
 
 
@@ -299,6 +314,9 @@ def assert_fails_cleanly(r, tmp_path, *needles, before=()):
         ("0 0\n7\n", ":2:2:", "expected 2 fields"),
         ("0,0\n1,,2\n", ":2:3:", "empty field"),
         ("0 0\n1 1e400\n", ":2:3:", "out of the range"),
+        # Control bytes in a quoted token are escaped (a NUL cut the message short before).
+        ("0 0\n3 a\0b\n", ":2:3:", "y value 'a\\0b' is not a number"),
+        ("0 0\n3 a\x01\x7f\\\n", ":2:3:", "y value 'a\\x01\\x7f\\\\' is not a number"),
     ],
 )
 def test_malformed_point_file(tmp_path, text, where, what):
@@ -343,6 +361,16 @@ def test_missing_points_file_and_unwritable_output(points_file, tmp_path):
     assert r.returncode == 2 and "missing.txt" in r.stderr and "cannot open" in r.stderr
     r = run("cells", points_file, "-r", "1", "-o", tmp_path / "no" / "dir.json")
     assert_fails_cleanly(r, tmp_path, "-o/--output", before={"pts.txt"})
+
+
+@pytest.mark.parametrize("command", [["cells", "-r", "1"], ["voronoi"], ["lloyd", "-r", "1"]])
+@pytest.mark.parametrize("value", ["-1", "2.5", "abc", "99999999999"])
+def test_bad_threads_say_the_range(points_file, tmp_path, command, value):
+    # Before: "--threads: Value -1 not in range 0.000000 to 1797693134862315708...(300 digits)".
+    r = run(command[0], points_file, *command[1:], "--threads", value, "-o", tmp_path / "o.json")
+    assert_fails_cleanly(r, tmp_path, f"--threads: must be a whole number from 0 (all cores) to 2147483647, "
+                                      f"got '{value}'", before={"pts.txt"})
+    assert len(r.stderr) < 200
 
 
 def test_usage_errors_exit_2_and_help_exits_0(points_file):

@@ -327,3 +327,29 @@ def test_bad_input_names_the_entry():
         dv.neighbors_from_distances(np.zeros((4, 5)))
     with pytest.raises(TypeError):
         dv.neighbors_from_distances(np.array([["a", "b"], ["c", "d"]]))
+
+
+def test_three_row_edge_list_is_not_a_matrix():
+    # A (3, 3) array is both an (m, 3) edge list with m = 3 and a square matrix. The documented rule:
+    # a matrix when its diagonal is all 0 or inf (as every distance matrix's is), else an edge list.
+    # Before: three measurements of a triangle were read as a 3 x 3 matrix and refused
+    # ("distances[1, 1] must be 0"), whatever the order of their rows.
+    tri = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    want = dv.neighbors_from_distances(dense_distances(tri))
+    for edges in ([[0, 1, 1.0], [0, 2, 1.0], [1, 2, 2**0.5]],
+                  [[1, 0, 1.0], [2, 0, 1.0], [2, 1, 2**0.5]],
+                  [[0, 1, 1.0], [1, 2, 2**0.5], [0, 2, 1.0]]):
+        got = dv.neighbors_from_distances(np.array(edges))
+        assert [sorted(got.neighbors(i)) for i in range(3)] == [sorted(want.neighbors(i)) for i in range(3)]
+        assert got.on_hull.tolist() == want.on_hull.tolist()
+    # A bad edge list of three rows says how it was read, and how to say it otherwise.
+    with pytest.raises(ValueError, match=r"edges\[1\].*\[a \(3, 3\) array is read as an edge list .* unless its "
+                                         r"diagonal is all 0 or inf.*pass \(rows, cols, values\)"):
+        dv.neighbors_from_distances(np.array([[0, 1, 1.0], [0, 2, -1.0], [1, 2, 2.0]]))
+    with pytest.raises(ValueError, match=r"integers.*\[a \(3, 3\) array is read as an edge list"):
+        dv.neighbors_from_distances(np.array([[0, 1.5, 1.0], [0, 2, 1.0], [1, 2, 2.0]]))
+    # A matrix with a zero diagonal stays a matrix, and its own errors say so.
+    bad = dense_distances(tri)
+    bad[0, 1] += 0.1
+    with pytest.raises(ValueError, match=r"distances\[\d, \d\].*differ"):
+        dv.neighbors_from_distances(bad)

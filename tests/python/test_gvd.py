@@ -613,6 +613,32 @@ def test_bad_arguments_and_files(tmp_path):
         dv.grid_voronoi(bad, cells=16)
 
 
+@pytest.mark.parametrize("text, message", [
+    # A key twice in one object: the parser kept the last one silently.
+    ('{"area": {"box": [0, 0, 1, 1]},\n "obstacles": [{"type": "circle", "center": [0.5, 0.5],\n'
+     '  "radius": 0.1, "radius": 0.2}]}',
+     r"^m\.json:3:18: duplicate key 'radius' in one object \(first at m\.json:3:3\); a key may appear once$"),
+    ('{"area": {"box": [0, 0, 1, 1]}, "obstacles": [], "area": {"box": [0, 0, 2, 2]}}',
+     r"^m\.json:1:50: duplicate key 'area'"),
+    # The same key, once escaped.
+    ('{"area": {"box": [0, 0, 1, 1]}, "obstacles": [{"type": "point", "pos\\u0069tion": [0.5, 0.5], '
+     '"position": [0.2, 0.2]}]}', r"^m\.json:1:94: duplicate key 'position' in one object \(first at m\.json:1:65\)"),
+    # 1e999 was read as inf ("must be finite", no place).
+    ('{"area": {"box": [0, 0, 1, 1]},\n "obstacles": [{"type": "circle", "center": [0.5, 0.5], "radius": 1e999}]}',
+     r"^m\.json:2:67: number '1e999' is beyond the range of a double"),
+    # A NUL byte cut the message short: quoted text is escaped.
+    ('{"area": {"box": [0, 0, 1, 1]}, "obstacles": [{"type": "circ\\u0000le", "center": [0.5, 0.5]}]}',
+     r"^m\.json: obstacles\[0\]\.type: unknown obstacle type 'circ\\0le' \(expected"),
+])
+def test_json_file_errors_name_the_place(tmp_path, monkeypatch, text, message):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "m.json").write_text(text)
+    with pytest.raises(ValueError, match=message):
+        dv.grid_voronoi("m.json", cells=16)
+    with pytest.raises(ValueError, match=message):
+        dv.grid_voronoi("m.json", cells=16, area=(0, 0, 1, 1))  # checked with an area argument too
+
+
 def test_json_file_and_area_argument(tmp_path):
     doc = mixed_shapes()
     f = tmp_path / "m.json"

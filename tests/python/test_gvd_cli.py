@@ -66,6 +66,14 @@ def test_cli_svg_and_path(tmp_path):
     ('{"area": {"box": [0, 0, 10, 10]},\n "obstacles": [\n  {"type": "point" "position": [1, 1]}]}', r"map.json:3:20: invalid JSON"),
     ('{"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "point", "position": [1, 1]}, {"type": "polygon", "vertices": [[0, 0], [1, 1]]}]}',
      r"obstacles\[1\].vertices: needs at least 3 points"),
+    # Before: the repeated key passed (the last one won), 1e999 failed without a place, and the NUL
+    # byte cut the message at 'circ.
+    ('{"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "point", "position": [1, 1], "position": [2, 2]}]}',
+     r"map.json:1:87: duplicate key 'position' in one object \(first at \S*map.json:1:67\)"),
+    ('{"area": {"box": [0, 0, 10, 10]},\n "obstacles": [{"type": "circle", "center": [1, 1], "radius": -1e999}]}',
+     r"map.json:2:63: number '-1e999' is beyond the range of a double"),
+    ('{"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "circ\\u0000le", "center": [1, 1]}]}',
+     r"map.json: obstacles\[0\].type: unknown obstacle type 'circ\\0le' \(expected polygon"),
 ])
 def test_cli_bad_input_names_the_field_and_writes_nothing(tmp_path, text, message):
     import re

@@ -6,6 +6,7 @@ delivers to the nearest node (brute force); distributed Boundary Scan equals the
 cells; the simulator is reproducible, counts every try and stops at its budget."""
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -374,6 +375,23 @@ def test_simulator_reproducible_budget_and_errors():
         net.simulate("cc", pts, 20.0, routing="flood")
 
 
+@pytest.mark.parametrize("algorithm", ["cc", "bd07", "bs"])
+def test_empty_and_single_node_networks(algorithm):
+    # Before: simulate("bd07", empty) raised numpy's "zero-size array to reduction operation" (the
+    # default region was recomputed in Python from the points). Empty input gives empty output (SPEC).
+    empty = net.simulate(algorithm, np.zeros((0, 2)), 10.0)
+    assert len(empty) == 0 and empty.total_transmissions == 0 and len(empty.indices) == 0
+    json.loads(empty.to_json())
+    one = net.simulate(algorithm, np.array([[3.0, 4.0]]), 10.0)
+    assert len(one) == 1 and len(one.neighbors(0)) == 0
+    if algorithm == "bd07":
+        assert empty.bounds is None  # no nodes and no bounds: no region
+        assert net.simulate("bd07", np.zeros((0, 2)), 10.0, bounds=(0, 0, 5, 5)).bounds == (0, 0, 5, 5)
+        # The region the run used: the points' bounding box, widened by 1 where it is flat.
+        assert one.bounds == (2.0, 3.0, 4.0, 5.0)
+        assert one.areas[0] == pytest.approx(4.0)
+
+
 def test_links_exact_range_and_obstacles():
     # Distance exactly the range is a link; an obstacle touching a link's segment cuts it.
     pts = np.array([[0.0, 0.0], [3.0, 4.0], [10.0, 0.0], [13.0, 0.0]])
@@ -390,7 +408,7 @@ def test_batch_matches_single_runs():
     nets = [rng.uniform(0, 100, (60, 2)) for _ in range(6)]
     obs = [net.random_bars(rng, 10, 5.0, (0, 0, 100, 100)) for _ in range(6)]
     seeds = list(range(6))
-    out = net.batch("cc", nets, 25.0, 0.2, obs, (0, 0, 100, 100), seeds, threads=2)
+    out = net.batch("cc", nets, 25.0, 0.2, obs, (0, 0, 100, 100), seeds, workers=2)
     for k in range(6):
         one = net.simulate("cc", nets[k], 25.0, loss=0.2, obstacles=obs[k], seed=seeds[k])
         assert out["by_type"][k].tolist() == [one.transmissions_by_type["location"],
@@ -398,7 +416,7 @@ def test_batch_matches_single_runs():
                                               one.transmissions_by_type["discovery"]]
         assert bool(out["condition"][k]) == one.condition
         assert bool(out["exact"][k]) == one.exact
-    b = net.batch("bd07", nets, 25.0, 0.0, [None] * 6, (0, 0, 100, 100), seeds, threads=2)
+    b = net.batch("bd07", nets, 25.0, 0.0, [None] * 6, (0, 0, 100, 100), seeds, workers=2)
     one = net.simulate("bd07", nets[0], 25.0, bounds=(0, 0, 100, 100), seed=0)
     assert b["by_type"][0].sum() == one.total_transmissions
 

@@ -15,7 +15,7 @@ def check(oracle, points: np.ndarray, label: str) -> None:
     want = [set(nb) for nb in exact["voronoi_neighbors"]]
     want_hull = np.asarray(exact["on_hull"], dtype=bool)
     for inner in ("scan", "evt"):
-        part = dv.voronoi_cells(points, inner=inner, threads=2)
+        part = dv.voronoi_cells(points, inner=inner, workers=2)
         got = neighbor_sets(part.indptr, part.indices)
         bad = [i for i in range(len(points)) if got[i] != want[i]]
         assert not bad, f"{label} [{inner}]: neighbours differ at agents {bad[:10]}"
@@ -101,7 +101,7 @@ def test_clipped_areas_match_cgal_and_sum_to_the_box(oracle, seed):
         for box in (box_around(pts, 0.1), box_around(pts, -0.2, shift=(0.05, 0.0)), box_around(pts, 0.0)):
             want = np.asarray(oracle(pts, 1.0, box)["clipped_areas"])
             for inner in ("scan", "evt"):
-                part = dv.voronoi_cells(pts, inner=inner, bounds=box, threads=2)
+                part = dv.voronoi_cells(pts, inner=inner, bounds=box, workers=2)
                 scale = box_area(box)
                 assert np.allclose(part.areas, want, rtol=1e-9, atol=1e-12 * scale), \
                     f"{label} {box} [{inner}]: worst {np.max(np.abs(part.areas - want)):.3g}"
@@ -235,6 +235,23 @@ def test_polygon_bounds_and_single_agent():
     for i in (0, 7, 100):
         cell = dv.voronoi_cell(pts[i], np.delete(pts, i, axis=0), bounds=box)
         assert cell.area == pytest.approx(part.areas[i], rel=1e-12, abs=1e-16)
+
+
+def test_closed_rings_are_the_same_polygon():
+    # A polygon whose last vertex repeats the first (GeoJSON, shapely) is the open polygon, for
+    # voronoi_cells and voronoi_cell as for coverage.lloyd and the grid diagram. Before: voronoi_cells
+    # refused it ("vertices 4 and 0 coincide") while lloyd accepted it.
+    pts = random_points(3, 60)
+    square = [[0, 0], [1, 0], [1, 1], [0, 1]]
+    want = dv.voronoi_cells(pts, bounds=(0, 0, 1, 1))
+    ring = square + [square[0]]
+    got = dv.voronoi_cells(pts, bounds=ring)
+    np.testing.assert_array_equal(got.areas, want.areas)
+    np.testing.assert_array_equal(got.bounds, want.bounds)
+    np.testing.assert_allclose(dv.voronoi_cells(pts, bounds=ring[::-1]).areas, want.areas, rtol=1e-14)
+    assert dv.voronoi_cell(pts[0], pts[1:], bounds=ring).area == pytest.approx(want.areas[0], rel=1e-14)
+    run = dv.coverage.lloyd(pts, 0.2, steps=3, bounds=square + [square[0]])
+    np.testing.assert_array_equal(run.trajectory, dv.coverage.lloyd(pts, 0.2, steps=3, bounds=square).trajectory)
 
 
 def test_bad_bounds():

@@ -10,7 +10,7 @@ BS's time at moderate density ("tens of neighbours in the sensing range"), about
 density, and up to 70x at the highest density.
 
 Here: the paper's r is the neighbourhood, so our cell radius is R = r / 2 (docs/spec.md). Both methods are
-timed through ``dv.limited_cells(points, R, method, threads=1)`` - one call for all 500 sensors, each
+timed through ``dv.limited_cells(points, R, method, workers=1)`` - one call for all 500 sensors, each
 sensor's cell computed from the sensors within r = 2R, exactly as the paper's per-sensor computation
 (the grid index that finds them is shared by both methods). Each time is the best of --repeat runs;
 configurations are averaged. ``fixed_cost_s`` is the time of the same call with a radius so small that
@@ -70,9 +70,9 @@ def main(argv=None) -> int:
             res = {}
             for m in order:
                 res[m] = best_of(args.repeat,
-                                 lambda: dv.limited_cells(pts, R, method=m, threads=1, progress=False))
+                                 lambda: dv.limited_cells(pts, R, method=m, workers=1, progress=False))
             t_fixed, _ = best_of(args.repeat,
-                                 lambda: dv.limited_cells(pts, 1e-9 * L, threads=1, progress=False))
+                                 lambda: dv.limited_cells(pts, 1e-9 * L, workers=1, progress=False))
             scan, chords = res["scan"][1], res["chords"][1]
             if not (np.array_equal(scan.indptr, chords.indptr) and np.array_equal(scan.indices, chords.indices)):
                 raise SystemExit(f"L = {L}, configuration {c}: scan and chords disagree on the neighbours")

@@ -80,7 +80,7 @@ def main(argv=None) -> int:
             draw = max(need, 64)
             cand = [rng.uniform(0, 100, (args.nodes, 2)) for _ in range(draw)]
             bars = [net.random_bars(rng, args.bars, args.bar_length, BOX) for _ in range(draw)]
-            chk = net.batch("check", cand, r, 0.0, bars, BOX, list(range(draw)), threads=args.threads)
+            chk = net.batch("check", cand, r, 0.0, bars, BOX, list(range(draw)), workers=args.threads or None)
             bar.set_postfix_str(f"range {r}: {len(kept_pts)}/{n_net} networks drawn, {rejected} rejected")
             for k in range(draw):
                 if len(kept_pts) == n_net:
@@ -100,7 +100,7 @@ def main(argv=None) -> int:
                     bar.refresh()
 
                 out = net.batch(alg, kept_pts, r, loss, kept_bars, BOX, seeds, verify=(alg == "cc"),
-                                threads=args.threads, progress=progress)
+                                workers=args.threads or None, progress=progress)
                 bar.n = done0 + n_net
                 bar.refresh()
                 tot = out["by_type"].sum(axis=1).astype(float)

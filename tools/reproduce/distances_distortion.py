@@ -37,7 +37,7 @@ def one_trial(n: int, seed: int, sigma: float, side: float = 254.0):
     rng = np.random.default_rng(seed)
     pts = rng.uniform(0.0, side, size=(n, 2))
     e = dv.distances.measure(pts, model="rssi", sigma=sigma, seed=seed + 1_000_003)
-    res = dv.neighbors_from_distances(e, threads=1)
+    res = dv.neighbors_from_distances(e, workers=1)
     dm = dv.distances.detection_distortion(pts, e)
     dvv = dv.distances.delaunay_distortion(pts, res)
     exact = dv.voronoi_cells(pts)

@@ -14,7 +14,7 @@ from typing import Any, Iterator, Optional, Tuple
 
 import numpy as np
 
-from .. import _core
+from .. import _args, _core
 from .._partition import ProgressArg, progress_callback
 from .._result import Result
 
@@ -65,6 +65,21 @@ def _edge_list(arr: np.ndarray, n: Optional[int]):
     return int(n), rows, cols, np.ascontiguousarray(arr[:, 2], dtype=np.float64), "edges"
 
 
+_READ_3X3 = ("a (3, 3) array is read as an edge list of three rows 'i j d' unless its diagonal is all "
+             "0 or inf, as a distance matrix's is; pass (rows, cols, values) to give an edge list explicitly")
+
+
+def _edge_list_3x3(arr: np.ndarray) -> bool:
+    """Is this (3, 3) array an edge list? The documented rule: yes unless its diagonal is all 0 or
+    inf. Every distance matrix has such a diagonal; an edge list has it only when its third row's
+    distance is inf (a row that measures nothing) and its first two rows start '0 ...' and '. 0',
+    so a real edge list of three measurements is never taken for a matrix."""
+    if arr.shape != (3, 3):
+        return False
+    d = np.diagonal(arr)
+    return not bool(np.all((d == 0) | np.isposinf(d)))
+
+
 def _dense(mat: np.ndarray, symmetrize: bool):
     n = mat.shape[0]
     diag = np.diagonal(mat)
@@ -97,6 +112,8 @@ def as_distance_graph(distances: Any, *, n: Optional[int] = None, squared: bool 
     :func:`neighbors_from_distances` for the accepted forms). Errors name the entry."""
     if isinstance(distances, _core.DistanceGraph):
         return distances
+    if n is not None:
+        n = _args.integer(n, "n", 0, 2**63 - 1)
     label = "distances"
     try:
         import scipy.sparse as sp
@@ -126,11 +143,16 @@ def as_distance_graph(distances: Any, *, n: Optional[int] = None, squared: bool 
         if arr.dtype.kind not in "fiu":
             raise TypeError(f"distances must be numeric, got dtype {arr.dtype}")
         arr = arr.astype(np.float64, copy=False)
-        if arr.ndim == 2 and arr.shape[0] == arr.shape[1]:
+        if arr.ndim == 2 and arr.shape[0] == arr.shape[1] and not _edge_list_3x3(arr):
             if n is not None and n != arr.shape[0]:
                 raise ValueError(f"n = {n} does not match the {arr.shape[0]} x {arr.shape[0]} distance matrix")
             nn, rows, cols, vals, label = _dense(arr, symmetrize)
         elif arr.ndim == 2 and arr.shape[1] == 3:
+            if arr.shape[0] == 3:  # read as an edge list by the rule: a mistake names the rule
+                try:
+                    return _core.distance_graph(*_edge_list(arr, n)[:4], bool(squared), bool(symmetrize), "edges")
+                except ValueError as e:
+                    raise ValueError(f"{e} [{_READ_3X3}]") from None
             nn, rows, cols, vals, label = _edge_list(arr, n)
         elif arr.size == 0:
             nn, rows, cols, vals = (0 if n is None else int(n)), np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
@@ -295,8 +317,8 @@ def _mds_layout(graph: "_core.DistanceGraph") -> np.ndarray:
 
 
 def neighbors_from_distances(distances: Any, consistency: bool = True, *, squared: bool = False,
-                             symmetrize: bool = False, n: Optional[int] = None, threads: Optional[int] = None,
-                             progress: ProgressArg = None) -> DistanceNeighbors:
+                             symmetrize: bool = False, n: Optional[int] = None, workers: Optional[int] = None,
+                             progress: ProgressArg = None, threads: Optional[int] = None) -> DistanceNeighbors:
     """Every robot's Voronoi neighbours (Delaunay-path order) and hull flag from measured
     inter-robot distances only, by VORONOI-NEIGHBORS (Elwin, Freeman & Lynch), then, if
     `consistency`, the consistency step that makes the relation symmetric.
@@ -308,8 +330,10 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
           not detect each other, 0 on the diagonal;
         * a ``scipy.sparse`` ``(n, n)`` matrix: stored entries are the measurements (absent = not
           detected);
-        * an edge list: an ``(m, 3)`` array of rows ``i j d`` (not square) or a tuple
-          ``(rows, cols, values)``; a pair may be listed once or in both directions.
+        * an edge list: an ``(m, 3)`` array of rows ``i j d`` or a tuple ``(rows, cols, values)``;
+          a pair may be listed once or in both directions. A ``(3, 3)`` array is read as a distance
+          matrix when its diagonal is all 0 or inf (as every distance matrix's is), else as an edge
+          list of three rows; the tuple form is never ambiguous.
         A pair given in both directions must have one value unless ``symmetrize=True``, which averages
         them, ``e_ij = (sigma_ij + sigma_ji) / 2`` as in the paper (and, for a dense matrix, drops
         pairs detected in one direction only).
@@ -320,8 +344,9 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
         moves an exactly degenerate configuration (see the C++ header distance_predicates.hpp).
     n
         Number of robots for an edge list (default: largest index + 1).
-    threads
-        OpenMP threads, None or 0 = all cores. ``progress``: as in :func:`dvoronoi.limited_cells`.
+    workers
+        Threads: None or -1 = all cores, k >= 1 = k (``threads`` is a deprecated alias, 0 = all
+        cores). ``progress``: as in :func:`dvoronoi.limited_cells`.
 
     With noise-free distances the answer equals the exact Voronoi neighbours and hull flags whenever
     every robot detects its Voronoi neighbours and robots opposite a shared Delaunay edge measure each
@@ -330,8 +355,8 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
 
     Raises ValueError naming the entry for negative, zero, NaN, one-sided or contradictory values.
     """
+    team = _args.workers(workers, threads)
     graph = as_distance_graph(distances, n=n, squared=squared, symmetrize=symmetrize)
-    threads = 0 if threads is None else int(threads)
     with progress_callback(np.empty((len(graph), 2)), progress, "voronoi neighbours") as callback:
-        core = _core.neighbors_from_distances(graph, bool(consistency), threads, callback)
+        core = _core.neighbors_from_distances(graph, bool(consistency), team, callback)
     return DistanceNeighbors(core, graph)

@@ -136,3 +136,21 @@ TEST_CASE("clipped side labels on lattices and random points in boxes") {
     }
     CHECK(checked > 3000);
 }
+
+TEST_CASE("a closed ring (the first vertex repeated at the end) is the same polygon") {
+    // Before: ConvexRegion::polygon refused it ("vertices 4 and 0 coincide"), ConvexPolygon (lloyd)
+    // accepted it: now both drop the repeated vertex.
+    Points open(4, 2), closed(5, 2), closed_cw(5, 2);
+    open << 0, 0, 2, 0, 2, 1, 0, 1;
+    closed << 0, 0, 2, 0, 2, 1, 0, 1, 0, 0;
+    closed_cw = closed.colwise().reverse();
+    const ConvexRegion a = ConvexRegion::polygon(open), b = ConvexRegion::polygon(closed),
+                       c = ConvexRegion::polygon(closed_cw);
+    CHECK(b.vertices() == a.vertices());
+    CHECK(c.vertices().size() == 4);
+    CHECK(c.area() == doctest::Approx(2.0));
+    // Only the last vertex is dropped: a repeat elsewhere is still two coinciding vertices.
+    Points twice(5, 2);
+    twice << 0, 0, 2, 0, 2, 0, 2, 1, 0, 1;
+    CHECK_THROWS_WITH_AS(ConvexRegion::polygon(twice), "bounds: vertices 1 and 2 coincide", InputError);
+}

@@ -4,7 +4,10 @@
 
 #include <doctest/doctest.h>
 
+#include <cfenv>
+#include <cmath>
 #include <random>
+#include <string>
 
 using dvoronoi::Vec2;
 namespace pred = dvoronoi::pred;
@@ -113,4 +116,41 @@ TEST_CASE("endpoint_side is exact when a chord endpoint lies on another bisector
     // The vertex (3, 4) of L_j and L_k is exactly on the circle.
     CHECK(pred::vertex_in_disk(c, pj, pk, 5.0) == 0);
     CHECK(pred::vertex_in_disk(c, pj, pk, 5.000000000000001) == -1);
+}
+
+TEST_CASE("exact far from 1: inputs scaled by 2^k for |k| up to 540 give the unscaled signs") {
+    // orient(0, a, b) = s^2 2^-51 > 0 for a = s (1, 1), b = s (2, 2 + 2^-51): the filter cannot
+    // decide it (the value is at the size of its error bound), so the exact stage runs. Scaled by
+    // s = 2^-k, the product's low bit falls below the smallest subnormal step from k = 512 on, and
+    // scaled by 2^k the products overflow from k = 512 on. Before: the sign came out 0 (or from
+    // inf - inf). Now the exact stage sees the lost bits and evaluates again on rescaled inputs.
+    const Vec2 o(0.0, 0.0);
+    for (int k = 0; k <= 540; ++k)
+        for (int dir : {-1, 1}) {
+            const double s = std::ldexp(1.0, dir * k);
+            const Vec2 a = s * Vec2(1.0, 1.0), b = s * Vec2(2.0, 2.0 + std::ldexp(1.0, -51));
+            CHECK(pred::orient(o, a, b) == 1);
+            CHECK(pred::orient(o, b, a) == -1);
+            // Degree 4 and 6: a cocircular lattice square, and its vertex on the disk of radius
+            // sqrt(2)/2 exactly (0 signs stay 0 at every scale).
+            CHECK(pred::incircle(s * Vec2(0, 0), s * Vec2(1, 0), s * Vec2(1, 1), s * Vec2(0, 1)) == 0);
+            CHECK(pred::vertex_in_disk(s * Vec2(0, 0), s * Vec2(1, 0), s * Vec2(0, 1), s * 0.5) == 1);
+            CHECK(pred::vertex_in_disk(s * Vec2(0, 0), s * Vec2(2, 0), s * Vec2(0, 2), s * 2.0) == -1);
+        }
+}
+
+TEST_CASE("inputs spanning more than doubles hold within one test: RangeError, not a guess") {
+    // orient(0, a, b) = -2^-1074 2^-1000 < 0 for a = (1, 2^-1074), b = (2^-1000, 0): no scale holds
+    // both 1 and that product. Before: 0 (the product underflowed).
+    const Vec2 o(0.0, 0.0), a(1.0, std::ldexp(1.0, -1074)), b(std::ldexp(1.0, -1000), 0.0);
+    CHECK_THROWS_WITH_AS(pred::orient(o, a, b), doctest::Contains("out of the exact range: an exact test underflowed"),
+                         dvoronoi::RangeError);
+    // A flag the caller had raised is still raised afterwards, and none is added.
+    std::feclearexcept(FE_ALL_EXCEPT);
+    std::feraiseexcept(FE_OVERFLOW);
+    CHECK_THROWS_AS(pred::orient(o, a, b), dvoronoi::RangeError);
+    CHECK(std::fetestexcept(FE_OVERFLOW) != 0);
+    std::feclearexcept(FE_ALL_EXCEPT);
+    CHECK(pred::orient(o, Vec2(1, 1), Vec2(2, 2 + std::ldexp(1.0, -51))) == 1);
+    CHECK(std::fetestexcept(FE_UNDERFLOW | FE_OVERFLOW) == 0);
 }

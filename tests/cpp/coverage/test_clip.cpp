@@ -196,6 +196,10 @@ TEST_CASE("bad environments are named errors") {
     CHECK(cw.contains(Vec2(0.5, 0.5)));
     CHECK(cw.contains(Vec2(1.0, 0.5)));
     CHECK_FALSE(cw.contains(Vec2(1.0 + 1e-16 * 4, 0.5)));
+    // A closed ring is the open polygon (the repeated last vertex is dropped).
+    const ConvexPolygon ring({Vec2(0, 0), Vec2(2, 0), Vec2(2, 1), Vec2(0, 1), Vec2(0, 0)});
+    CHECK(ring.size() == 4);
+    CHECK(ring.area() == doctest::Approx(2.0));
 }
 
 TEST_CASE("an agent on a wall keeps a half disk, in a corner a quarter disk (cuts through the arc's start)") {

@@ -113,6 +113,35 @@ TEST_CASE("empty input and comment-only input give 0 points") {
     CHECK(parse_point_text("x y\n", "f").points.rows() == 0);  // header only
 }
 
+TEST_CASE("the header line is reported: where it was and what it said") {
+    // The CLI warns about a file whose only content is a header ("hello world": probably the wrong file).
+    const auto only = parse_point_text("# c\nhello world  # greeting\n", "f");
+    CHECK(only.points.rows() == 0);
+    CHECK(only.header_line == 2);
+    CHECK(only.header == "hello world  ");
+    const auto data = parse_point_text("x,y\n1,2\n", "f");
+    CHECK(data.header_line == 1);
+    CHECK(data.points.rows() == 1);
+    CHECK(parse_point_text("1 2\n", "f").header_line == 0);
+    CHECK(parse_point_text("", "f").header_line == 0);
+}
+
+TEST_CASE("quoted input is escaped: a NUL byte or a control byte does not cut or garble the message") {
+    // Before: "f.txt:2:3: y value 'a" -- the NUL ended the C string, and the rest of the message.
+    const std::string nul = error_of(std::string("1 2\n3 a\0b\n", 10));
+    CHECK(nul == "f.txt:2:3: y value 'a\\0b' is not a number");
+    CHECK(std::strlen(nul.c_str()) == nul.size());
+    CHECK(error_of("1 2\n3 \x01\x1b[31m\x7f\\\n") == "f.txt:2:3: y value '\\x01\\x1b[31m\\x7f\\\\' is not a number");
+    // UTF-8 is kept as it is; a long token is cut after 40 bytes.
+    CHECK(contains(error_of("1 2\n3 \xc3\xa9t\xc3\xa9\n"), "'\xc3\xa9t\xc3\xa9' is not a number"));
+    CHECK(contains(error_of("1 2\n3 " + std::string(50, 'z') + "\n"), "'" + std::string(40, 'z') + "...'"));
+    // Header names too.
+    Columns by_name;
+    by_name.x_name = "lon";
+    by_name.y_name = "lat";
+    CHECK(contains(error_of(std::string("lon\tla\0t\n1 2\n", 13), by_name), "(columns: lon, la\\0t)"));
+}
+
 TEST_CASE("a token that is not a number is reported at its line and column") {
     CHECK(starts_with(error_of("1 2\n3 abc\n"), "f.txt:2:3: "));
     CHECK(contains(error_of("1 2\n3 abc\n"), "'abc' is not a number"));

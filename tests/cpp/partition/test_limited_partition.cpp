@@ -157,3 +157,125 @@ TEST_CASE("progress is reported to the end, and a throwing callback stops the ru
                                        [](Index, Index) { throw std::runtime_error("stop"); }),
                          "stop", std::runtime_error);
 }
+
+namespace {
+// A 6 x 6 lattice (cocircular quadruples: the exact stage runs) and 30 random agents in [0, 5]^2.
+Points lattice_and_random() {
+    Points P(66, 2);
+    for (int k = 0; k < 36; ++k) P.row(k) << k % 6, k / 6;
+    P.bottomRows(30) = random_points(30, 4, 5.0);
+    return P;
+}
+}  // namespace
+
+TEST_CASE("scaled far from 1 (a lattice and random agents, and the radius, by 2^k): the same cells") {
+    // Before: scaled by 2^-480 and beyond, exact tests underflowed and gave other neighbour sets. Now
+    // an exact test that loses bits is evaluated again on rescaled inputs (core/expansion.hpp), so
+    // any common scale whose radius lies in [kMinRadius, kMaxRadius] gives the unscaled answer.
+    const Points P = lattice_and_random();
+    for (Method method : {Method::Scan, Method::Chords}) {
+        const LimitedPartition ref = limited_cells(P, 1.0, method, 1);
+        for (int k : {-498, -490, -480, -470, -460, -400, 400, 460, 480, 490, 498}) {
+            const double s = std::ldexp(1.0, k);  // exact scaling: the same exact answer
+            const LimitedPartition got = limited_cells(P * s, s, method, 2);
+            CHECK(got.indptr == ref.indptr);
+            CHECK(got.indices == ref.indices);
+            CHECK(got.piece_neighbor == ref.piece_neighbor);
+            for (Index i = 0; i < P.rows(); ++i)
+                CHECK(got.areas[static_cast<std::size_t>(i)] == ref.areas[static_cast<std::size_t>(i)] * s * s);
+        }
+    }
+}
+
+TEST_CASE("agents whose differences span more than doubles hold: a RangeError naming an agent") {
+    // Agent 0 a few subnormal steps beside the line x = 0 on which its neighbours lie 2^-30 apart:
+    // the decisions need products below the smallest subnormal next to terms of 2^-60.
+    Points P(4, 2);
+    P << std::ldexp(3.0, -1074), 0.0, 0.0, std::ldexp(1.0, -30), 0.0, -std::ldexp(1.0, -30),
+        -std::ldexp(1.0, -1074), std::ldexp(1.0, -31);
+    for (Method method : {Method::Scan, Method::Chords}) {
+        std::string message;
+        try {
+            limited_cells(P, std::ldexp(1.0, -30), method, 1);
+        } catch (const RangeError& e) {
+            message = e.what();
+        }
+        CHECK(message.rfind("points[", 0) == 0);
+        CHECK(message.find("]: out of the exact range: an exact test underflowed") != std::string::npos);
+    }
+}
+
+TEST_CASE("the radius must lie in [kMinRadius, kMaxRadius]; measures stay finite up to it") {
+    const Points P = random_points(20, 3, 1.0);
+    CHECK_THROWS_AS(limited_cells(P, 1.01 * kMaxRadius), RangeError);
+    CHECK_THROWS_AS(limited_cells(P, 0.99 * kMinRadius), RangeError);
+    CHECK_THROWS_WITH_AS(limited_cells(P, 1e200), doctest::Contains("radius must lie between 1e-150 and 1e150"),
+                         RangeError);
+    // Two agents 1 apart, R >> 1: each cell is half a disk, to rounding. Its first moment (~R^3)
+    // overflowed from R ~ 1e103 on (centroids came out -inf); the measures are now summed in units
+    // of R.
+    Points two(2, 2);
+    two << 0.0, 0.0, 1.0, 0.0;
+    for (double R : {1e100, 1e120, kMaxRadius}) {
+        const LimitedPartition part = limited_cells(two, R, Method::Scan, 1);
+        for (Index i = 0; i < 2; ++i) {
+            CHECK(part.areas[static_cast<std::size_t>(i)] == doctest::Approx(M_PI * R * R / 2).epsilon(1e-12));
+            CHECK(std::isfinite(part.centroids(i, 0)));
+            CHECK(std::isfinite(part.perimeters[static_cast<std::size_t>(i)]));
+        }
+        // The half disk's centroid lies 4R / (3 pi) from the bisector.
+        CHECK(part.centroids(0, 0) == doctest::Approx(0.5 - 4.0 * R / (3.0 * M_PI)).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("Chords refuses more than kMaxChordsCandidates agents within 2R, naming the agent; Scan does not") {
+    const Points P = random_points(static_cast<int>(kMaxChordsCandidates) + 100, 5, 1.0);
+    CHECK_THROWS_WITH_AS(limited_cells(P, 1.0, Method::Chords, 2),
+                         doctest::Contains("method \"chords\" (RCVC, quadratic in the agents within 2R) accepts at most 1024"),
+                         RangeError);
+    try {
+        limited_cells(P, 1.0, Method::Chords, 2);
+    } catch (const RangeError& e) {
+        CHECK(std::string(e.what()).rfind("points[", 0) == 0);
+    }
+    CHECK(limited_cells(P, 1.0, Method::Scan, 2).size() == P.rows());
+    // One cell: exactly kMaxChordsCandidates others within 2R is accepted, one more is not.
+    const Points others = P.topRows(static_cast<Index>(kMaxChordsCandidates));
+    CHECK(limited_cell(Vec2(0.5, 0.5), others, 1.0, Method::Chords).candidates ==
+          static_cast<Index>(kMaxChordsCandidates));
+    CHECK_THROWS_AS(limited_cell(Vec2(0.5, 0.5), P.topRows(static_cast<Index>(kMaxChordsCandidates) + 1), 1.0,
+                                 Method::Chords),
+                    RangeError);
+}
+
+TEST_CASE("vertices of nearly parallel bisectors are constructed accurately, not as NaN") {
+    // Seen from agent 1, 1e50 away, agents 7 and 9 lie 1.9 apart: their bisectors meet inside the disk
+    // (exact), but D_jk = cross(a_7, a_9) rounded to nothing. Before: NaN areas and centroids,
+    // silently (one Lloyd step without bounds at R = 1e50 produced these positions). Now such a
+    // vertex is computed from exact expansions: it is equidistant from the three agents.
+    Points P(10, 2);
+    P << 0.5618757474128028, 0.26368998318376696, -4.803950461899142e+49, -2.7899023060781243e+49,
+        4.24907879479111e+49, 4.471688395115378e+49, 0.5663229472811333, 0.6850047083522466,
+        -2.987541129546544e+49, 5.550769095044644e+49, 1.99997520387985e+49, -6.234697987495406e+49,
+        5.730835909397884e+49, -2.9238759514447616e+49, 0.7170522508352185, 0.15326515342910968,
+        6.648390047658606e+49, 4.068813620489327e+48, -0.849147302260679, 1.0782537037477684;
+    for (Method method : {Method::Scan, Method::Chords}) {
+        const LimitedPartition part = limited_cells(P, 1e50, method, 2);
+        for (Index i = 0; i < P.rows(); ++i) {
+            CHECK(std::isfinite(part.areas[static_cast<std::size_t>(i)]));
+            CHECK(std::isfinite(part.centroids(i, 0)));
+            CHECK(std::isfinite(part.centroids(i, 1)));
+        }
+        const LimitedCell cell = part.cell(1);
+        const Vec2 c = P.row(1).transpose();
+        for (std::size_t t = 0; t < cell.pieces.size(); ++t) {
+            const Piece& in = cell.pieces[(t + cell.pieces.size() - 1) % cell.pieces.size()];
+            const Piece& out = cell.pieces[t];
+            if (in.is_arc() || out.is_arc()) continue;
+            const Vec2 v = out.start;  // the vertex of the bisectors of `in` and `out`
+            const double d = (v - c).norm();
+            CHECK((v - Vec2(P.row(in.neighbor).transpose())).norm() == doctest::Approx(d).epsilon(1e-12));
+            CHECK((v - Vec2(P.row(out.neighbor).transpose())).norm() == doctest::Approx(d).epsilon(1e-12));
+        }
+    }
+}

@@ -96,3 +96,30 @@ TEST_CASE("thread count does not change cells or numbers") {
     CHECK(a.radius_steps == b.radius_steps);
     CHECK(a.agents_used == b.agents_used);
 }
+
+TEST_CASE("scaled far from 1: the same neighbours, or a RangeError beyond the range, never others or a hang") {
+    // Before: from 2^-900 on, an exact test that underflowed called two agents coincident inside the
+    // parallel loop, and the exception left the OpenMP region (std::terminate); in between, other
+    // neighbour sets. Now exact tests are exact at any common scale (rescaled), and Adjust-Sensing-
+    // Radius, whose radii start at the nearest neighbour's distance, refuses a distance outside
+    // [1e-150, 1e150] (a squared distance of 0 kept doubling a radius of 0 forever).
+    Points P(66, 2);
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> u(0.0, 5.0);
+    for (int k = 0; k < 36; ++k) P.row(k) << k % 6, k / 6;
+    for (int k = 36; k < 66; ++k) P.row(k) << u(rng), u(rng);
+    for (AsrInner inner : {AsrInner::Scan, AsrInner::Evt}) {
+        const VoronoiPartition ref = voronoi_cells(P, inner, 1);
+        for (int k : {-480, -300, 300, 480}) {
+            const VoronoiPartition got = voronoi_cells(P * std::ldexp(1.0, k), inner, 2);
+            CHECK(got.indptr == ref.indptr);
+            CHECK(got.indices == ref.indices);
+            CHECK(got.on_hull == ref.on_hull);
+        }
+        for (int k : {-1060, -1000, -900, -600, 600, 900, 1000})
+            CHECK_THROWS_WITH_AS(voronoi_cells(P * std::ldexp(1.0, k), inner, 2),
+                                 doctest::Contains("Adjust-Sensing-Radius starts its radii at that distance, and they must "
+                                                   "lie between 1e-150 and 1e150"),
+                                 RangeError);
+    }
+}

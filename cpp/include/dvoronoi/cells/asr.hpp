@@ -23,7 +23,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace dvoronoi {
@@ -253,6 +255,23 @@ inline VoronoiEdge voronoi_edge(const LimitedCell& limited, std::size_t t, const
 /// `clip`, given only when the agents are pairwise distinct (the all-agents driver checks that), lets
 /// the inner Boundary Scan step run through the certified clipping filter (cells/certified_clip.hpp:
 /// the same cells, most of them faster).
+/// ASR's radii start at the nearest neighbour's distance and double; each is a limited cell's
+/// radius, so the start must lie in [kMinRadius, kMaxRadius] (from 0, a radius that underflowed,
+/// the doubling would never end). \throws RangeError otherwise.
+inline void require_schedule_start(double first_radius) {
+    if (first_radius >= kMinRadius && first_radius <= kMaxRadius) return;
+    char got[48];
+    if (first_radius == 0.0)
+        std::snprintf(got, sizeof got, "closer than about 1e-154");  // its square underflowed to 0
+    else if (!std::isfinite(first_radius))
+        std::snprintf(got, sizeof got, "farther than about 1e154");  // its square overflowed
+    else
+        std::snprintf(got, sizeof got, "%.3g away", first_radius);
+    throw RangeError(std::string("the nearest other agent lies ") + got +
+                     ": Adjust-Sensing-Radius starts its radii at that distance, and they must lie between "
+                     "1e-150 and 1e150");
+}
+
 template <class Query, class Certificate = NoCertificate>
 void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInner inner,
          CellWorkspace& ws, DelaunayWorkspace& dws, std::vector<Candidate>& cand, LimitedCell& limited,
@@ -267,6 +286,7 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
         out.on_hull = true;
         return;
     }
+    require_schedule_start(first_radius);
     for (double radius = first_radius;; radius *= 2.0) {
         query(radius, cand);
         ++out.radius_steps;

@@ -204,6 +204,26 @@ inline Vec2 vertex(const Vec2& aj, const Vec2& ak) {
     return Vec2((hj * ak.y() - hk * aj.y()) / d, (aj.x() * hk - ak.x() * hj) / d);
 }
 
+/// v_jk relative to c in units of 1 / `unit` (a power of two: v_jk * unit), from the agents
+/// themselves: vertex() of the scaled a_j, a_k when its determinant D_jk is well conditioned (the
+/// rounding of a_j, a_k and of the products moves it by less than 2^-20 of itself), else the same
+/// formula on exact expansions of p - c, scaled by a power of two to about 1 and rounded once at the
+/// end. So nearly parallel bisectors (a far vertex of nearly collinear agents, or two neighbours 1
+/// apart seen from 1e50 away) give a vertex within a few ulps instead of one whose D_jk rounded to
+/// anything, 0 included (an infinite vertex, a NaN area).
+inline Vec2 vertex(const Vec2& c, const Line& j, const Line& k, double unit) {
+    const Vec2 ja = j.a * unit, ka = k.a * unit;
+    const double l = ja.x() * ka.y(), r = ja.y() * ka.x();
+    if (std::fabs(l - r) > 0x1p-20 * (std::fabs(l) + std::fabs(r))) return vertex(ja, ka);
+    const int e = std::ilogb(std::max(ja.cwiseAbs().maxCoeff(), ka.cwiseAbs().maxCoeff()));
+    const Expansion s(std::ldexp(unit, -e));
+    const Expansion jx = Expansion::diff(j.p.x(), c.x()) * s, jy = Expansion::diff(j.p.y(), c.y()) * s;
+    const Expansion kx = Expansion::diff(k.p.x(), c.x()) * s, ky = Expansion::diff(k.p.y(), c.y()) * s;
+    const Expansion nj = jx * jx + jy * jy, nk = kx * kx + ky * ky;
+    const double d2 = 2.0 * (jx * ky - jy * kx).estimate();
+    return Vec2(std::ldexp((nj * ky - nk * jy).estimate() / d2, e), std::ldexp((jx * nk - kx * nj).estimate() / d2, e));
+}
+
 /// Half the angle the chord of L_j subtends at c.
 inline double chord_half_angle(const Vec2& a, double radius) {
     return std::atan2(half_chord(a, radius), 0.5 * a.norm());
@@ -211,12 +231,13 @@ inline double chord_half_angle(const Vec2& a, double radius) {
 
 /// Counter-clockwise angle from direction a_j to a_k, in (0, 2 pi]; `same` lines give 2 pi. The
 /// branch (below or above pi) comes from the exact orientation.
-inline double ccw_gap(const Vec2& c, const Line& j, const Line& k) {
+inline double ccw_gap(const Vec2& c, const Line& j, const Line& k, double unit = 1.0) {
     constexpr double kTwoPi = 6.283185307179586476925286766559;
     if (&j == &k) return kTwoPi;
     const int o = pred::orient(c, j.p, k.p);
-    const double cr = std::fabs(j.a.x() * k.a.y() - j.a.y() * k.a.x());
-    const double t = std::atan2(cr, j.a.dot(k.a));  // in [0, pi]
+    const Vec2 ja = j.a * unit, ka = k.a * unit;  // `unit`: an exact scaling (no product underflows)
+    const double cr = std::fabs(ja.x() * ka.y() - ja.y() * ka.x());
+    const double t = std::atan2(cr, ja.dot(ka));  // in [0, pi]
     if (o > 0) return t;
     if (o < 0) return kTwoPi - t;
     return kTwoPi / 2.0;  // opposite directions (same directions were merged)
@@ -233,10 +254,14 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
     out.center = c;
     out.radius = radius;
     const std::size_t s = cycle.size();
-    // Pieces are assembled relative to c, measured there, then moved to the caller's frame.
+    // Pieces are assembled relative to c in units of 2^e ~ radius (an exact scaling: the same
+    // roundings, but no product of two lengths under- or overflows however small or large the
+    // radius), measured there, then moved to the caller's frame.
+    const int e = std::ilogb(radius);
+    const double unit = std::ldexp(1.0, -e), r = radius * unit;
     if (s == 0) {
         Piece arc;
-        arc.start = Vec2(radius, 0.0);
+        arc.start = Vec2(r, 0.0);
         arc.arc_span = kTwoPi;
         out.pieces.push_back(arc);
     }
@@ -244,20 +269,21 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
         const Line& j = L[static_cast<std::size_t>(cycle[t])];
         const std::size_t tp = (t + s - 1) % s;
         const Line& i = L[static_cast<std::size_t>(cycle[tp])];
+        const Vec2 ja = j.a * unit;
         Piece edge;
         edge.neighbor = j.id;
-        edge.start = meets[tp] ? vertex(i.a, j.a) : chord_end(j.a, radius, -1);
+        edge.start = meets[tp] ? vertex(c, i, j, unit) : chord_end(ja, r, -1);
         out.pieces.push_back(edge);
         if (!meets[t]) {
             const Line& k = L[static_cast<std::size_t>(cycle[(t + 1) % s])];
+            const Vec2 ka = k.a * unit;
             Piece arc;
-            const Vec2 e = chord_end(j.a, radius, +1), sk = chord_end(k.a, radius, -1);
-            arc.start = e;
+            const Vec2 end = chord_end(ja, r, +1), sk = chord_end(ka, r, -1);
+            arc.start = end;
             // The span from the combinatorial gap, refined by the direct angle between the
             // endpoints when both agree on the branch (tiny arcs never become full turns).
-            const double approx = ccw_gap(c, j, s == 1 ? j : k) - chord_half_angle(j.a, radius) -
-                                  chord_half_angle(k.a, radius);
-            double direct = std::atan2(e.x() * sk.y() - e.y() * sk.x(), e.dot(sk));
+            const double approx = ccw_gap(c, j, s == 1 ? j : k, unit) - chord_half_angle(ja, r) - chord_half_angle(ka, r);
+            double direct = std::atan2(end.x() * sk.y() - end.y() * sk.x(), end.dot(sk));
             if (direct < 0.0) direct += kTwoPi;
             if (direct - approx > kTwoPi / 2) direct -= kTwoPi;
             if (approx - direct > kTwoPi / 2) direct += kTwoPi;
@@ -265,8 +291,19 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
             out.pieces.push_back(arc);
         }
     }
-    out.measures_ = measure_local(out.pieces, radius, c);
-    for (Piece& p : out.pieces) p.start += c;
+    const CellMeasures m = measure_local(out.pieces, r, Vec2::Zero());
+    out.measures_.area = std::ldexp(m.area, 2 * e);
+    out.measures_.centroid = c + std::ldexp(1.0, e) * m.centroid;
+    out.measures_.perimeter = std::ldexp(m.perimeter, e);
+    // The combinatorics are exact and the vertices accurate (vertex()); a cell that still cannot be
+    // measured in doubles is refused rather than handed back with a NaN area.
+    if (!std::isfinite(out.measures_.area) || !std::isfinite(out.measures_.centroid.x()) ||
+        !std::isfinite(out.measures_.centroid.y()))
+        throw RangeError(
+            "out of the range of doubles: the cell's measures are not finite (its agents within 2R differ in "
+            "scale by more than doubles resolve; coordinates are in range for nonzero differences between "
+            "about 1e-45 and 1e45)");
+    for (Piece& p : out.pieces) p.start = c + std::ldexp(1.0, e) * p.start;
 }
 
 /// The predicates on bisectors (indices into ws.lines) around c: a floating-point fast path on the

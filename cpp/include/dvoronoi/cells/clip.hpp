@@ -43,13 +43,15 @@ public:
     }
 
     /// A convex polygon given by its vertices in order (either orientation; collinear vertices are
-    /// dropped). \throws InputError naming `name` when a coordinate is not finite, fewer than three
-    /// vertices remain, two consecutive vertices coincide, or the polygon is not convex (decided
-    /// with exact orientation tests).
+    /// dropped; a closed ring, its first vertex repeated at the end as GeoJSON and shapely write it,
+    /// is the same polygon). \throws InputError naming `name` when a coordinate is not finite, fewer
+    /// than three vertices remain, two consecutive vertices coincide, or the polygon is not convex
+    /// (decided with exact orientation tests).
     static ConvexRegion polygon(PointsRef pts, const std::string& name = "bounds") {
         detail::require_finite_points(pts, name.c_str());
         std::vector<Vec2> v;
         for (Index k = 0; k < pts.rows(); ++k) v.push_back(pts.row(k).transpose());
+        detail::open_ring(v);
         const std::size_t m = v.size();
         for (std::size_t k = 0; k < m; ++k)
             if (v[k] == v[(k + 1) % m])
@@ -109,19 +111,25 @@ struct ClippedCell {
 
 namespace detail {
 
-/// Area and centroid of a polygon given in the frame centred at the origin (shoelace).
+/// Area and centroid of a polygon given in the frame centred at the origin (shoelace), summed in
+/// units of 2^e ~ its largest coordinate (an exact scaling): the first moments (~ size^3) stay finite
+/// whenever the area (~ size^2) is a double.
 inline void polygon_measures(const std::vector<Vec2>& local, const Vec2& origin, ClippedCell& out) {
+    double reach = 0.0;
+    for (const Vec2& p : local) reach = std::max(reach, p.cwiseAbs().maxCoeff());
+    const int e = reach > 0.0 && reach <= std::numeric_limits<double>::max() ? std::ilogb(reach) : 0;
+    const double s = std::ldexp(1.0, -e);
     double a2 = 0.0, cx = 0.0, cy = 0.0;
     for (std::size_t k = 0; k < local.size(); ++k) {
-        const Vec2& p = local[k];
-        const Vec2& q = local[(k + 1) % local.size()];
+        const Vec2 p = local[k] * s;
+        const Vec2 q = local[(k + 1) % local.size()] * s;
         const double w = p.x() * q.y() - p.y() * q.x();
         a2 += w;
         cx += (p.x() + q.x()) * w;
         cy += (p.y() + q.y()) * w;
     }
-    out.area = 0.5 * a2;
-    out.centroid = a2 > 0.0 ? Vec2(origin + Vec2(cx, cy) / (3.0 * a2))
+    out.area = std::ldexp(0.5 * a2, 2 * e);
+    out.centroid = a2 > 0.0 ? Vec2(origin + std::ldexp(1.0, e) * Vec2(cx, cy) / (3.0 * a2))
                             : Vec2::Constant(std::numeric_limits<double>::quiet_NaN());
 }
 

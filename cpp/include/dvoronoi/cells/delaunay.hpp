@@ -204,7 +204,7 @@ private:
         const int s = fast_sign(l - r, std::fabs(l) + std::fabs(r), 16);
         if (s != 2) return s;
         double d[4];
-        if (!exact_diffs(a, c, d) || !exact_diffs(b, c, d + 2)) return pred::orient(c, a, b);
+        if (!exact_diffs(a, c, d) || !exact_diffs(b, c, d + 2) || !xp::exact_range<480>(d, 4)) return pred::orient(c, a, b);
         return xp::orient_exact(d[0], d[1], d[2], d[3]);
     }
 
@@ -223,8 +223,9 @@ private:
         const int s = fast_sign(det, perm, 64);
         if (s != 2) return s;
         double e[6];
-        if (!exact_diffs(a, d, e) || !exact_diffs(b, d, e + 2) || !exact_diffs(c, d, e + 4))
-            return pred::incircle(a, b, c, d);
+        if (!exact_diffs(a, d, e) || !exact_diffs(b, d, e + 2) || !exact_diffs(c, d, e + 4) ||
+            !xp::exact_range<200>(e, 6))
+            return pred::incircle(a, b, c, d);  // checked for over- and underflow
         return xp::incircle_exact(e[0], e[1], e[2], e[3], e[4], e[5]);
     }
 

@@ -33,8 +33,11 @@ inline const char* method_name(Method m) { return m == Method::Scan ? "scan" : "
 /// \throws InputError if `radius` is not positive and finite, a coordinate is NaN or inf.
 /// \throws CoincidentError if an agent of `others` lies at `center` or two agents within 2*radius
 ///         coincide (the error names them).
+/// \throws RangeError if `radius` lies outside [kMinRadius, kMaxRadius], an exact test over- or
+///         underflows (coordinates far outside the exact range, core/expansion.hpp), or Chords has
+///         more than kMaxChordsCandidates agents within 2*radius.
 /// \note Thread-safe (pure function). Complexity O(m log m) for Scan, O(m^2) worst case for Chords,
-///       m = agents within 2*radius.
+///       m = agents within 2*radius (at most kMaxChordsCandidates for Chords).
 inline LimitedCell limited_cell(const Vec2& center, PointsRef others, double radius,
                                 Method method = Method::Scan) {
     detail::require_finite_radius(radius);

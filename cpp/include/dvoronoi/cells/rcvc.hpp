@@ -19,12 +19,30 @@
 
 #include "dvoronoi/cells/bisectors.hpp"
 
+#include <cstdio>
+#include <string>
+
 namespace dvoronoi {
+
+/// The most agents within 2R that RCVC (Method::Chords) accepts per cell. Its checkChords is
+/// quadratic in them: 1024 take a few milliseconds per cell, 2,000 agents all within 2R of each other
+/// took 110 s. Boundary Scan (Method::Scan) gives the same cells in O(m log m) without a bound.
+inline constexpr std::size_t kMaxChordsCandidates = 1024;
+
 namespace detail {
 
 /// RCVC on candidates already known to lie strictly within 2R of c.
+/// \throws RangeError when there are more than kMaxChordsCandidates of them.
 inline void rcvc(const Vec2& c, const std::vector<Candidate>& cand, double radius, LimitedCell& out,
                  CellWorkspace& ws) {
+    if (cand.size() > kMaxChordsCandidates) {
+        char r[32];
+        std::snprintf(r, sizeof r, "%.17g", radius);
+        throw RangeError("method \"chords\" (RCVC, quadratic in the agents within 2R) accepts at most " +
+                         std::to_string(kMaxChordsCandidates) + " agents within 2R of an agent; this one has " +
+                         std::to_string(cand.size()) + " within 2R = 2 x " + r +
+                         ": use method \"scan\" (the same cells in O(m log m)) or a smaller radius");
+    }
     sorted_bisectors(c, cand, ws);  // constructChords
     out.candidates = static_cast<Index>(cand.size());
     const auto& L = ws.lines;

@@ -8,6 +8,8 @@
 // (relative to c), the half-plane H_j = {x.a_j <= h_j} contains c, D_jk = cross(a_j, a_k), and
 // v_jk = L_j ∩ L_k is the circumcenter of (c, p_j, p_k). Positions along L_j are measured in the
 // counter-clockwise direction perp(a_j) = (-a_j.y, a_j.x) from the foot a_j / 2.
+// Inputs enter through T::diff and T::from, numeric constants through T::constant: every predicate is
+// a homogeneous polynomial in its inputs, which the exact stage may rescale (core/expansion.hpp).
 // Do not compile with -ffast-math: the filter and the expansions rely on IEEE rounding.
 #pragma once
 
@@ -47,7 +49,7 @@ inline int within_2r(const Vec2& c, const Vec2& p, double radius) {
         using T = typename decltype(tag)::type;
         const auto a = detail_::rel<T>(p, c);
         const T r = T::from(radius);
-        return T::from(4.0) * r * r - detail_::norm2(a);
+        return T::constant(4.0) * r * r - detail_::norm2(a);
     });
 }
 
@@ -99,7 +101,7 @@ inline int vertex_in_disk(const Vec2& c, const Vec2& pj, const Vec2& pk, double 
         const Rel<T> jk{T::diff(pj.x(), pk.x()), T::diff(pj.y(), pk.y())};
         const T d = cross(aj, ak);
         const T r = T::from(radius);
-        return norm2(aj) * norm2(ak) * norm2(jk) - T::from(4.0) * r * r * d * d;
+        return norm2(aj) * norm2(ak) * norm2(jk) - T::constant(4.0) * r * r * d * d;
     });
 }
 
@@ -139,7 +141,7 @@ inline int endpoint_side(const Vec2& c, const Vec2& pm, int sigma, const Vec2& p
         const T y = cross(am, aj);
         const T p = norm2(am);
         const T r = T::from(radius);
-        const T q = T::from(4.0) * r * r - p;
+        const T q = T::constant(4.0) * r * r - p;
         return x * x * p - y * y * q;
     });
     return sx * cmp;

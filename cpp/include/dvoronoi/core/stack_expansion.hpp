@@ -69,6 +69,24 @@ inline int sign_of(int n, const double* h) {
     return 0;
 }
 
+/// True when every value is 0 or has a magnitude in [2^-Bound, 2^Bound]. Each such value is a
+/// multiple of 2^-(Bound + 52), so a product of `degree` of them, and every component of its
+/// expansion, is a multiple of 2^-degree (Bound + 52): with degree (Bound + 52) <= 1074 nothing is
+/// lost to underflow (subnormals hold it exactly), and nothing overflows while 2^(degree Bound) and
+/// the sums stay below the largest double. orient_exact: degree 2, bound 480; incircle_exact: degree
+/// 4, bound 200. Otherwise the general, checked exact stage decides (pred::orient, pred::incircle).
+template <int Bound>
+bool exact_range(const double* v, int n) {
+    static_assert(Bound == 480 || Bound == 200, "the bounds used below");
+    constexpr double lo = Bound == 480 ? 0x1p-480 : 0x1p-200, hi = Bound == 480 ? 0x1p480 : 0x1p200;
+    bool ok = true;
+    for (int i = 0; i < n; ++i) {
+        const double a = std::fabs(v[i]);
+        ok &= a == 0.0 || (a >= lo && a <= hi);
+    }
+    return ok;
+}
+
 /// sign(ax * by - ay * bx), exactly.
 inline int orient_exact(double ax, double ay, double bx, double by) {
     double l1, l0, r1, r0, x[4];

@@ -3,7 +3,9 @@
 // Error policy (decided once, for every header): misuse of the API (bad shapes, NaN/inf coordinates,
 // a non-positive radius, coinciding agents) throws dvoronoi::Error (or its subclass InputError) with a
 // message that names the argument. Geometric degeneracy (cocircular, collinear, lattice inputs) is never
-// an error: it is decided exactly.
+// an error: it is decided exactly. Input outside the range where exact answers are possible (a radius
+// outside kMinRadius..kMaxRadius, an exact test that would over- or underflow: see core/expansion.hpp)
+// throws RangeError, never a silently wrong answer.
 #pragma once
 
 #include <Eigen/Core>
@@ -41,6 +43,14 @@ public:
     using Error::Error;
 };
 
+/// Input outside the documented range, where the answer could not be exact (an exact test that over-
+/// or underflows, a radius whose square or disk area is not a normal double) or would take
+/// unbounded time (RCVC with more candidates than it accepts). The message names the argument.
+class RangeError : public InputError {
+public:
+    using InputError::InputError;
+};
+
 /// Coinciding agents: their cells are undefined. Carries the first pair of indices found.
 class CoincidentError : public InputError {
 public:
@@ -61,12 +71,49 @@ struct Candidate {
     Index id;
 };
 
+}  // namespace detail
+
+/// The range of a radius (a cell radius, a communication range): its square and the area of its
+/// disk are normal doubles, and the index's floating-point screens keep their error bounds.
+inline constexpr double kMinRadius = 1e-150;
+inline constexpr double kMaxRadius = 1e150;
+
+namespace detail {
+
+/// \throws RangeError naming `name` unless lo <= radius <= hi; `why` says what needs the range.
+inline void require_radius_range(double radius, double lo, double hi, const char* name, const char* why) {
+    if (radius >= lo && radius <= hi) return;
+    const auto show = [](double v) {  // "1e150", not printf's "1e+150"
+        char b[32];
+        std::snprintf(b, sizeof b, "%g", v);
+        std::string t(b);
+        const std::size_t plus = t.find("e+");
+        if (plus != std::string::npos) t.erase(plus + 1, 1);
+        return t;
+    };
+    char got[32];
+    std::snprintf(got, sizeof got, "%.17g", radius);
+    throw RangeError(name + std::string(" must lie between ") + show(lo) + " and " + show(hi) + " (" + why +
+                     "), got " + got);
+}
+
+/// \throws InputError naming `name` unless radius is positive and finite; RangeError unless it lies
+///         in [kMinRadius, kMaxRadius].
 inline void require_finite_radius(double radius, const char* name = "radius") {
     if (!std::isfinite(radius) || !(radius > 0.0)) {
         char got[32];
         std::snprintf(got, sizeof got, "%.17g", radius);
         throw InputError(std::string(name) + " must be a positive finite number, got " + got);
     }
+    require_radius_range(radius, kMinRadius, kMaxRadius, name,
+                         "its square and its disk's area must be normal doubles");
+}
+
+/// Drops the last vertex of a closed ring (one that repeats the first), so a polygon given as a
+/// closed ring and as an open one are the same.
+template <class Vertices>
+void open_ring(Vertices& v) {
+    if (v.size() > 1 && v.front() == v.back()) v.pop_back();
 }
 
 inline void require_finite_point(const Vec2& p, const std::string& name) {

@@ -16,7 +16,8 @@ namespace dvoronoi {
 ///
 /// Construction checks the input once: at least three finite vertices, no repeated vertex, every
 /// turn strictly convex (exact orientation test), either orientation accepted (clockwise input is
-/// reversed). Containment is decided exactly; the boundary counts as inside.
+/// reversed). A closed ring (the first vertex repeated at the end, as GeoJSON and shapely write it)
+/// is the same polygon. Containment is decided exactly; the boundary counts as inside.
 class ConvexPolygon {
 public:
     ConvexPolygon() = default;
@@ -24,6 +25,7 @@ public:
     /// \throws InputError naming `name` and the offending vertex.
     explicit ConvexPolygon(std::vector<Vec2> vertices, const std::string& name = "bounds")
         : v_(std::move(vertices)) {
+        detail::open_ring(v_);
         const std::size_t n = v_.size();
         if (n < 3)
             throw InputError(name + " must have at least 3 vertices, got " + std::to_string(n));

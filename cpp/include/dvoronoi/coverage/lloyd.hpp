@@ -91,6 +91,12 @@ inline void clipped_local_cell(const Swarm& swarm, Index i, const ConvexPolygon*
         w.clipped.swap(w.local);
 }
 
+/// The cost's polar moments grow as R^4 (a lone agent's is pi R^4 / 2): \throws RangeError unless
+/// 1e-75 <= radius <= 1e75, where R^4 is a normal double.
+inline void require_moment_radius(double radius) {
+    require_radius_range(radius, 1e-75, 1e75, "radius", "coverage: the cells' polar moments, ~R^4, must be normal doubles");
+}
+
 /// Runs f(i, workspace) for agents 0..count-1 on an OpenMP team; results must be written per agent
 /// (so they do not depend on the team). The first failure in agent order is rethrown after the loop.
 template <class F>
@@ -99,33 +105,23 @@ void for_each_agent(Index count, int threads, const ProgressFn& progress, F&& f)
     const Index nblocks = (count + block - 1) / block;
     const int team = thread_team(threads, nblocks);
     ProgressTracker tracker(progress, count);
-    std::mutex mu;
-    Index failed_at = std::numeric_limits<Index>::max();
-    std::exception_ptr failure;
 #pragma omp parallel num_threads(team)
     {
         CoverageWorkspace w;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
-            if (tracker.cancelled()) continue;
             const Index lo = b * block, hi = std::min(count, lo + block);
-            for (Index i = lo; i < hi; ++i) {
-                try {
-                    f(i, w);
-                } catch (...) {
-                    std::lock_guard<std::mutex> lock(mu);
-                    if (i < failed_at) {
-                        failed_at = i;
-                        failure = std::current_exception();
-                    }
-                    break;
-                }
+            if (tracker.skip(lo)) continue;
+            Index i = lo;
+            try {
+                for (; i < hi; ++i) f(i, w);
+            } catch (...) {
+                tracker.fail(i, i);
             }
             tracker.block_done(hi - lo);
         }
     }
     tracker.rethrow_if_failed();
-    if (failure) std::rethrow_exception(failure);
     tracker.report_all();
 }
 
@@ -180,6 +176,7 @@ struct CoverageMoments {
 /// \throws CoincidentError naming global ids. \note Thread-safe; O(owned m log m).
 inline CoverageMoments coverage_moments(const Swarm& swarm, const ConvexPolygon* env, Index owned = -1,
                                         int threads = 0, const ProgressFn& progress = nullptr) {
+    detail::require_moment_radius(swarm.radius());
     const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
     CoverageMoments out;
     out.mass.assign(static_cast<std::size_t>(n), 0.0);
@@ -254,6 +251,7 @@ struct CoverageQuadrature {
 
 inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPolygon* env, int order,
                                               Index owned = -1, int threads = 0) {
+    detail::require_moment_radius(swarm.radius());
     const GaussRule g(order);
     const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
     std::vector<std::vector<double>> xs(static_cast<std::size_t>(n)), ys(xs), ws(xs);
@@ -335,6 +333,7 @@ public:
         if (!(gain > 0.0 && gain <= 1.0))
             throw InputError("gain must be in (0, 1], got " + std::to_string(gain));
         detail::require_finite_radius(radius);
+        detail::require_moment_radius(radius);
         detail::require_finite_points(points, "points");
         if (env_)
             for (Eigen::Index i = 0; i < points.rows(); ++i)

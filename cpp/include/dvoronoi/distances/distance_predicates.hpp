@@ -50,7 +50,7 @@ T sq(double v, bool squared) {
 template <class T>
 T heron(const T& a, const T& b, const T& c) {
     const T e = a + b - c;
-    return T::from(4.0) * a * b - e * e;
+    return T::constant(4.0) * a * b - e * e;
 }
 
 /// The squared sides of two triangles (i, j, k) and (i, j, l) on a common edge: a = d_ij^2,
@@ -124,7 +124,7 @@ inline int opposite_sides(double dij, double dik, double djk, double dil, double
         using detail::sq;
         const T a = sq<T>(dij, squared), bk = sq<T>(dik, squared), ck = sq<T>(djk, squared);
         const T bl = sq<T>(dil, squared), cl = sq<T>(djl, squared), e = sq<T>(dkl, squared);
-        return a * (bk + ck + bl + cl - a - T::from(2.0) * e) - (bl - cl) * (bk - ck);
+        return a * (bk + ck + bl + cl - a - T::constant(2.0) * e) - (bl - cl) * (bk - ck);
     });
 }
 

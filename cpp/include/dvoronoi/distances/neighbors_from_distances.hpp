@@ -109,20 +109,25 @@ inline DistanceNeighbors neighbors_from_distances(const DistanceGraph& g, bool c
         NeighborWorkspace ws;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
-            if (tracker.cancelled()) continue;
             Block& blk = blocks[static_cast<std::size_t>(b)];
             const Index lo = b * block, hi = std::min(n, lo + block);
-            for (Index pos = lo; pos < hi; ++pos) {
-                const Index i = order[static_cast<std::size_t>(pos)];
-                const auto ii = static_cast<std::size_t>(i);
-                local_table(ptr.data(), idx.data(), val.data(), pos, g.squared, t, slot);
-                voronoi_neighbors(t, path, ws);
-                const Index base = g.indptr[ii];
-                blk.first.push_back(static_cast<Index>(blk.flat.size()));
-                for (int v : path.order) blk.flat.push_back(g.indices[static_cast<std::size_t>(base + v)]);
-                out.on_hull[ii] = path.hull ? 1 : 0;
-                out.path_length[ii] = static_cast<Index>(path.order.size());
-                out.detected[ii] = t.m;
+            if (tracker.skip(lo)) continue;
+            Index pos = lo;
+            try {
+                for (; pos < hi; ++pos) {
+                    const Index i = order[static_cast<std::size_t>(pos)];
+                    const auto ii = static_cast<std::size_t>(i);
+                    local_table(ptr.data(), idx.data(), val.data(), pos, g.squared, t, slot);
+                    voronoi_neighbors(t, path, ws);
+                    const Index base = g.indptr[ii];
+                    blk.first.push_back(static_cast<Index>(blk.flat.size()));
+                    for (int v : path.order) blk.flat.push_back(g.indices[static_cast<std::size_t>(base + v)]);
+                    out.on_hull[ii] = path.hull ? 1 : 0;
+                    out.path_length[ii] = static_cast<Index>(path.order.size());
+                    out.detected[ii] = t.m;
+                }
+            } catch (...) {
+                tracker.fail(pos, order[static_cast<std::size_t>(pos)], "distances: robot ", "");
             }
             tracker.block_done(hi - lo);
         }

@@ -71,7 +71,7 @@ inline DistanceFile parse_distance_text(std::string_view text, const std::string
             const auto r = std::from_chars(f.text.data(), f.text.data() + f.text.size(), v);
             if (r.ec != std::errc() || r.ptr != f.text.data() + f.text.size() || v < 0)
                 throw detail::file_error(name, line_no, f.col,
-                                         std::string("robot index ") + (t == 0 ? "i" : "j") + " " + detail::quoted(f.text) +
+                                         std::string("robot index ") + (t == 0 ? "i" : "j") + " " + in_quotes(f.text) +
                                              " is not a non-negative integer");
             ij[t] = static_cast<Index>(v);
         }
@@ -80,12 +80,12 @@ inline DistanceFile parse_distance_text(std::string_view text, const std::string
         switch (detail::parse_number(fd.text, d)) {
             case detail::NumberStatus::Ok: break;
             case detail::NumberStatus::NotFinite:
-                throw detail::file_error(name, line_no, fd.col, "distance " + detail::quoted(fd.text) +
+                throw detail::file_error(name, line_no, fd.col, "distance " + in_quotes(fd.text) +
                                                                     " is not finite (leave undetected pairs out)");
-            default: throw detail::file_error(name, line_no, fd.col, "distance " + detail::quoted(fd.text) + " is not a number");
+            default: throw detail::file_error(name, line_no, fd.col, "distance " + in_quotes(fd.text) + " is not a number");
         }
         if (!(d > 0.0))
-            throw detail::file_error(name, line_no, fd.col, "distance " + detail::quoted(fd.text) + " must be positive" +
+            throw detail::file_error(name, line_no, fd.col, "distance " + in_quotes(fd.text) + " must be positive" +
                                                                 (d == 0.0 ? " (coinciding robots have no Voronoi cells)" : ""));
         if (ij[0] == ij[1])
             throw detail::file_error(name, line_no, fields[1].col, "a robot's distance to itself is not a measurement");

@@ -17,13 +17,16 @@
 // an error, so a typo ("raduis") does not pass silently. The area's edges become labels
 // n, n + 1, ... (counter-clockwise from its first vertex; a box starts at (xmin, ymin)).
 //
-// Errors: a JSON syntax error names FILE:LINE:COLUMN; a schema error names FILE and the JSON path of
+// Errors: a JSON syntax error, a key repeated within one object and a number beyond the range of a
+// double name FILE:LINE:COLUMN (io/strict_json.hpp); a schema error names FILE and the JSON path of
 // the offending field, e.g. "map.json: obstacles[3].radius: must be a positive finite number, got -1".
 // The same loader serves the CLI, the MPI executable and Python (dv.grid_voronoi passes its obstacle
 // list here as JSON text), so there is one schema and one set of messages.
 #pragma once
 
 #include "dvoronoi/gvd/obstacles.hpp"
+#include "dvoronoi/io/quote.hpp"
+#include "dvoronoi/io/strict_json.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -87,7 +90,7 @@ inline void only_keys(const json& j, const std::string& path, const std::set<std
         if (!allowed.count(it.key())) {
             std::string list;
             for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-            throw InputError(path + ": unknown field '" + it.key() + "' (expected " + list + ")");
+            throw InputError(path + ": unknown field " + in_quotes(it.key()) + " (expected " + list + ")");
         }
 }
 
@@ -136,7 +139,7 @@ inline gvd::Shape shape(const json& j, const std::string& path, bool allow_union
             parts->push_back(shape(p[k], path + ".parts[" + std::to_string(k) + "]", false, nullptr));
         return gvd::Shape{};
     }
-    throw InputError(path + ".type: unknown obstacle type '" + type + "' (expected polygon, circle, point, segment" +
+    throw InputError(path + ".type: unknown obstacle type " + in_quotes(type) + " (expected polygon, circle, point, segment" +
                      (allow_union ? ", union)" : ")"));
 }
 
@@ -145,33 +148,10 @@ inline gvd::Shape shape(const json& j, const std::string& path, bool allow_union
 inline ObstacleFile obstacles_from_json(const nlohmann::json& doc, const std::string& name);
 
 /// Parses obstacle JSON text. `name` prefixes every message (a file name, or "obstacles").
-/// \throws InputError as described above.
+/// \throws InputError as described above; also for a key repeated within an object or a number
+///         beyond the range of a double, naming FILE:LINE:COLUMN (io/strict_json.hpp).
 inline ObstacleFile parse_obstacles(const std::string& text, const std::string& name) {
-    using nlohmann::json;
-    json doc;
-    try {
-        doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        // nlohmann reports the last byte it read (1-based); point at the first character of that token
-        std::size_t idx = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.empty() ? 0 : text.size() - 1);
-        auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+'; };
-        if (!text.empty() && text[idx] == '"' && idx > 0) {
-            std::size_t k = idx;
-            while (k > 0 && !(text[k - 1] == '"' && (k < 2 || text[k - 2] != '\\'))) --k;
-            if (k > 0) idx = k - 1;
-        } else if (!text.empty() && word(text[idx])) {
-            while (idx > 0 && word(text[idx - 1])) --idx;
-        }
-        std::size_t line = 1, col = 1;
-        for (std::size_t k = 0; k < idx; ++k) {
-            if (text[k] == '\n') { ++line; col = 1; } else ++col;
-        }
-        std::string what = e.what();
-        const auto pos = what.find("syntax error");
-        throw InputError(name + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " +
-                         (pos == std::string::npos ? what : what.substr(pos)));
-    }
-    return obstacles_from_json(doc, name);
+    return obstacles_from_json(parse_json(text, name), name);
 }
 
 /// The same from a parsed document (e.g. converted from Python objects without a text round trip).

@@ -4,10 +4,12 @@
 // Error policy: a malformed file throws dvoronoi::InputError whose message starts with
 // `FILE:LINE:COLUMN:` (1-based line and byte column of the offending token), so editors and terminals
 // can jump to it. `.npy` errors name the file and, for values, the row and column of the array.
-// An empty file (or one with only comments and a header) is valid and gives 0 points.
+// An empty file (or one with only comments and a header) is valid and gives 0 points; PointFile says
+// which line was taken for the header, so a caller can tell "x y" from a wrong file ("hello world").
 #pragma once
 
 #include "dvoronoi/core/types.hpp"
+#include "dvoronoi/io/quote.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -38,7 +40,7 @@ inline Columns parse_columns(std::string_view spec, const std::string& what = "c
     const auto fail = [&]() -> Columns {
         throw InputError(what + ": expected two comma-separated column indices (0-based) or header "
                                 "names, e.g. \"1,2\" or \"x,y\", got \"" +
-                         std::string(spec) + "\"");
+                         printable(spec) + "\"");
     };
     const auto trim = [](std::string_view s) {
         while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -75,6 +77,8 @@ struct PointFile {
     std::string name;         ///< the file name as given
     Points points;            ///< n x 2, in file order
     std::vector<Index> line;  ///< 1-based line of each point (text files); empty for .npy
+    std::size_t header_line = 0;  ///< 1-based line of the header (text files), 0 = none
+    std::string header;           ///< that line's content (comment removed)
 
     /// "FILE:LINE" for point i of a text file, "FILE (row i)" for an array file.
     std::string where(Index i) const {
@@ -167,13 +171,6 @@ inline void split_fields(std::string_view content, const std::string& name, std:
     }
 }
 
-inline std::string quoted(std::string_view s) {
-    std::string out = "'";
-    out.append(s.substr(0, 40));
-    if (s.size() > 40) out += "...";
-    return out + "'";
-}
-
 inline double field_value(const Field& f, const std::string& name, std::size_t line_no,
                           const char* axis) {
     double v = 0.0;
@@ -181,16 +178,16 @@ inline double field_value(const Field& f, const std::string& name, std::size_t l
         case NumberStatus::Ok: return v;
         case NumberStatus::NotFinite:
             throw file_error(name, line_no, f.col,
-                             std::string(axis) + " value " + quoted(f.text) +
+                             std::string(axis) + " value " + in_quotes(f.text) +
                                  " is not finite (NaN and inf are not positions)");
         case NumberStatus::OutOfRange:
             throw file_error(name, line_no, f.col,
-                             std::string(axis) + " value " + quoted(f.text) +
+                             std::string(axis) + " value " + in_quotes(f.text) +
                                  " is out of the range of a double");
         case NumberStatus::NotNumber: break;
     }
     throw file_error(name, line_no, f.col,
-                     std::string(axis) + " value " + quoted(f.text) + " is not a number");
+                     std::string(axis) + " value " + in_quotes(f.text) + " is not a number");
 }
 
 /// Resolves header names to indices; returns the index or throws naming the header line.
@@ -201,14 +198,14 @@ inline int header_index(const std::vector<Field>& header, const std::string& wan
         if (header[k].text == wanted) {
             if (found >= 0)
                 throw file_error(name, line_no, header[k].col,
-                                 "column name '" + wanted + "' appears twice in the header");
+                                 "column name " + in_quotes(wanted) + " appears twice in the header");
             found = static_cast<int>(k);
         }
     if (found < 0) {
         std::string names;
-        for (const Field& f : header) names += (names.empty() ? "" : ", ") + std::string(f.text);
+        for (const Field& f : header) names += (names.empty() ? "" : ", ") + printable(f.text);
         throw file_error(name, line_no, 1,
-                         "no column named '" + wanted + "' in the header (columns: " + names + ")");
+                         "no column named " + in_quotes(wanted) + " in the header (columns: " + names + ")");
     }
     return found;
 }
@@ -258,6 +255,8 @@ inline PointFile parse_point_text(std::string_view text, const std::string& name
             bool any_number = false;
             for (const detail::Field& f : fields) any_number = any_number || detail::is_number_token(f.text);
             if (!any_number) {  // header line
+                out.header_line = line_no;
+                out.header = std::string(line);
                 if (by_name) {
                     xi = detail::header_index(fields, columns.x_name, name, line_no);
                     yi = detail::header_index(fields, columns.y_name, name, line_no);
@@ -266,9 +265,9 @@ inline PointFile parse_point_text(std::string_view text, const std::string& name
             }
             if (by_name)
                 throw detail::file_error(name, line_no, 1,
-                                         "columns are selected by name ('" + columns.x_name + "', '" +
-                                             columns.y_name +
-                                             "') but the file has no header line before its data");
+                                         "columns are selected by name (" + in_quotes(columns.x_name) + ", " +
+                                             in_quotes(columns.y_name) +
+                                             ") but the file has no header line before its data");
         }
 
         if (xi < 0) {

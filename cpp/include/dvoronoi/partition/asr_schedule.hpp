@@ -55,6 +55,7 @@ public:
     /// farthest vertex's distance (a hint for the search; infinite for an unbounded cell).
     template <class Inside>
     std::pair<int, bool> stop(const Vec2& c, double d1, double reach, Inside&& inside) const {
+        require_schedule_start(d1);
         const double far = far_lower(c);
         const auto all_in = [&](int k) {
             const double r = schedule_radius(d1, k);

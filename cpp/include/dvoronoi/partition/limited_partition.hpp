@@ -15,6 +15,7 @@
 #include <exception>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <string>
 #include <type_traits>
@@ -279,13 +280,20 @@ inline int thread_id() {
 #endif
 }
 
-/// Progress of a parallel loop over blocks: counts finished agents, calls the callback from the
-/// calling thread (OpenMP thread 0), and turns an exception thrown by the callback (e.g. a Python
-/// KeyboardInterrupt) into a cancellation that is rethrown after the parallel region.
+/// Progress and failures of a parallel loop over blocks of agents: counts finished agents, calls the
+/// callback from the calling thread (OpenMP thread 0), and turns an exception thrown by the callback
+/// (e.g. a Python KeyboardInterrupt) into a cancellation that is rethrown after the parallel region.
+/// An exception thrown by an agent's work must not leave the parallel region (that would terminate
+/// the program): the worker catches it and hands it to fail(), which keeps the failure of the lowest
+/// loop position, so the error reported does not depend on the thread count, and lets the blocks
+/// after it be skipped.
 class ProgressTracker {
 public:
     ProgressTracker(const ProgressFn& progress, Index total) : progress_(progress), total_(total) {}
     bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
+    /// True when the block starting at loop position `lo` need not run: the callback failed, or an
+    /// agent before `lo` did (its failure is the one reported).
+    bool skip(Index lo) const { return cancelled() || lo > failed_at_.load(std::memory_order_relaxed); }
     void block_done(Index agents) {
         const Index now = done_.fetch_add(agents) + agents;
         if (!progress_ || thread_id() != 0) return;  // only the calling thread reports
@@ -296,9 +304,31 @@ public:
             cancelled_ = true;
         }
     }
-    /// After the parallel region: rethrow the callback's exception, if it threw.
+    /// Called in a worker's catch block: the work at loop position `pos` (agent `agent`) threw. A
+    /// RangeError is given the agent in front of its message: `before` agent `after` (default
+    /// "points[17]: ...").
+    void fail(Index pos, Index agent, const char* before = "points[", const char* after = "]") {
+        std::exception_ptr e = std::current_exception();
+        try {
+            throw;
+        } catch (const RangeError& r) {
+            try {
+                e = std::make_exception_ptr(
+                    RangeError(before + std::to_string(agent) + after + ": " + r.what()));
+            } catch (...) {  // no memory for the longer message: keep the original
+            }
+        } catch (...) {
+        }
+        const std::lock_guard<std::mutex> lock(mu_);
+        if (pos < failed_at_.load(std::memory_order_relaxed)) {
+            failed_at_.store(pos, std::memory_order_relaxed);
+            agent_failure_ = e;
+        }
+    }
+    /// After the parallel region: rethrow the callback's exception, else the first agent's failure.
     void rethrow_if_failed() const {
         if (failure_) std::rethrow_exception(failure_);
+        if (agent_failure_) std::rethrow_exception(agent_failure_);
     }
     /// At the very end: the callback sees (total, total).
     void report_all() const {
@@ -311,7 +341,21 @@ private:
     std::atomic<Index> done_{0};
     std::atomic<bool> cancelled_{false};
     std::exception_ptr failure_;
+    std::mutex mu_;
+    std::atomic<Index> failed_at_{std::numeric_limits<Index>::max()};
+    std::exception_ptr agent_failure_;
 };
+
+/// f(), with `what: ` in front of the message of a RangeError it throws: for the steps over all
+/// agents (a convex hull, a triangulation), where no single agent is to blame.
+template <class F>
+auto naming_range_error(const char* what, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const RangeError& e) {
+        throw RangeError(std::string(what) + ": " + e.what());
+    }
+}
 
 /// Agents per block of the parallel drivers (the unit of scheduling and of progress reports).
 inline constexpr Index kBlock = 2048;
@@ -360,7 +404,11 @@ inline void require_distinct(const GridIndex& index, const Points& pts) {
 /// \param threads number of OpenMP threads; 0 = all cores. Results do not depend on it.
 /// \param progress optional callback (done, total), called from the calling thread.
 /// \throws InputError for a bad radius or non-finite coordinates; CoincidentError for coinciding
-///         agents (lowest pair named).
+///         agents (lowest pair named); RangeError for a radius outside [kMinRadius, kMaxRadius], and,
+///         naming the agent ("points[17]: ..."), for an exact test that over- or underflows
+///         (coordinates far outside the exact range of core/expansion.hpp) or a Chords cell with more
+///         than kMaxChordsCandidates agents within 2R. The agent named is the first in grid order
+///         that fails, whatever the thread count.
 /// \note Scan gives Boundary Scan's cells bit for bit; most are computed by the certified clipping
 ///       filter of cells/certified_clip.hpp (O(m) per agent in a swarm: the nearest agents shrink
 ///       the cell, the others fail a one-comparison screen), the rest by Boundary Scan itself
@@ -432,48 +480,53 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         detail::ClipWorkspace clip_ws;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
-            if (tracker.cancelled()) continue;
             const Index lo = b * block, hi = std::min(n, lo + block);
-            for (Index pos = lo; pos < hi; ++pos) {
-                const auto pp = static_cast<std::size_t>(pos);
-                if (pos + detail::kWriteAhead < n) {
-                    const auto a = static_cast<std::size_t>(order[pp + detail::kWriteAhead]);
-                    detail::prefetch_for_write(&out.areas[a]);
-                    detail::prefetch_for_write(&out.perimeters[a]);
-                    detail::prefetch_for_write(out.centroids.data() + 2 * a);
-                    detail::prefetch_for_write(&out.candidates[a]);
-                    detail::prefetch_for_write(&out.piece_ptr[a + 1]);
-                    detail::prefetch_for_write(&out.indptr[a + 1]);
-                    detail::prefetch_for_write(&source[a]);
-                }
-                const Vec2 c = index.point_at(pp);
-                if (method == Method::Scan) {
-                    // Boundary Scan's cell: the certified clipping filter on the candidates as the
-                    // query finds them (agents are distinct: checked above), Boundary Scan itself
-                    // when the filter gives up. The previous agent's count sets the near radius.
-                    clip_ws.start(c, detail::near_first_sq(radius, clip_ws.m));
-                    index.for_each_batch_within_at(pp, radius, [&](auto... batch) { clip_ws.add_batch(batch...); });
-                    if (!detail::certified_clip_loaded(radius, cell, clip_ws)) {
-                        clip_ws.candidates(cand);
-                        detail::boundary_scan(c, cand, radius, cell, ws);
+            if (tracker.skip(lo)) continue;
+            Index pos = lo;
+            try {
+                for (; pos < hi; ++pos) {
+                    const auto pp = static_cast<std::size_t>(pos);
+                    if (pos + detail::kWriteAhead < n) {
+                        const auto a = static_cast<std::size_t>(order[pp + detail::kWriteAhead]);
+                        detail::prefetch_for_write(&out.areas[a]);
+                        detail::prefetch_for_write(&out.perimeters[a]);
+                        detail::prefetch_for_write(out.centroids.data() + 2 * a);
+                        detail::prefetch_for_write(&out.candidates[a]);
+                        detail::prefetch_for_write(&out.piece_ptr[a + 1]);
+                        detail::prefetch_for_write(&out.indptr[a + 1]);
+                        detail::prefetch_for_write(&source[a]);
                     }
-                } else {
-                    index.within_at(pp, radius, cand);
-                    detail::rcvc(c, cand, radius, cell, ws);
+                    const Vec2 c = index.point_at(pp);
+                    if (method == Method::Scan) {
+                        // Boundary Scan's cell: the certified clipping filter on the candidates as the
+                        // query finds them (agents are distinct: checked above), Boundary Scan itself
+                        // when the filter gives up. The previous agent's count sets the near radius.
+                        clip_ws.start(c, detail::near_first_sq(radius, clip_ws.m));
+                        index.for_each_batch_within_at(pp, radius, [&](auto... batch) { clip_ws.add_batch(batch...); });
+                        if (!detail::certified_clip_loaded(radius, cell, clip_ws)) {
+                            clip_ws.candidates(cand);
+                            detail::boundary_scan(c, cand, radius, cell, ws);
+                        }
+                    } else {
+                        index.within_at(pp, radius, cand);
+                        detail::rcvc(c, cand, radius, cell, ws);
+                    }
+                    const CellMeasures m = cell.measures();
+                    const auto i = static_cast<std::size_t>(order[pp]);
+                    out.areas[i] = m.area;
+                    out.perimeters[i] = m.perimeter;
+                    out.centroids(static_cast<Index>(i), 0) = m.centroid.x();
+                    out.centroids(static_cast<Index>(i), 1) = m.centroid.y();
+                    out.candidates[i] = cell.candidates;
+                    Index edges = 0;
+                    for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
+                    out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
+                    out.indptr[i + 1] = edges;
+                    source[i] = detail::column_place(mine.x.size(), team, me);
+                    mine.append(static_cast<Index>(i), cell.pieces);
                 }
-                const CellMeasures m = cell.measures();
-                const auto i = static_cast<std::size_t>(order[pp]);
-                out.areas[i] = m.area;
-                out.perimeters[i] = m.perimeter;
-                out.centroids(static_cast<Index>(i), 0) = m.centroid.x();
-                out.centroids(static_cast<Index>(i), 1) = m.centroid.y();
-                out.candidates[i] = cell.candidates;
-                Index edges = 0;
-                for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
-                out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
-                out.indptr[i + 1] = edges;
-                source[i] = detail::column_place(mine.x.size(), team, me);
-                mine.append(static_cast<Index>(i), cell.pieces);
+            } catch (...) {
+                tracker.fail(pos, order[static_cast<std::size_t>(pos)]);
             }
             tracker.block_done(hi - lo);
         }

@@ -99,7 +99,10 @@ struct VoronoiPartition {
 /// \param threads number of OpenMP threads; 0 = all cores. Results do not depend on it.
 /// \param bounds  a convex region (box or polygon) to clip every cell to: `areas` and `centroids`
 ///                then measure the clipped cells, and `cell(i)` carries the clipped polygon.
-/// \throws InputError for non-finite coordinates; CoincidentError for coinciding agents.
+/// \throws InputError for non-finite coordinates; CoincidentError for coinciding agents; RangeError
+///         when an exact test over- or underflows (coordinates far outside the exact range of
+///         core/expansion.hpp), naming the agent whose cell needed it ("points[17]: ...") or
+///         "points" for the steps over all agents.
 /// \note With the Boundary Scan inner step, each agent first tries one certified clipping at a
 ///       radius R of 1.5 mean spacings (cells/certified_exact_cell.hpp), from one grid query (about
 ///       28 agents within 2R in a uniform swarm); that certifies ~97% of a uniform swarm's cells. The
@@ -142,7 +145,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     const int team = detail::thread_team(threads, nblocks);
     const GridIndex index(out.points, range, team);
     detail::require_distinct(index, out.points);
-    const ConvexHull hull(out.points);
+    const ConvexHull hull = detail::naming_range_error("points", [&] { return ConvexHull(out.points); });
     const detail::EmptyCircleCertificate cert(out.points, index, hull);
     const detail::AsrSchedule schedule(out.points, index, hull);
     const std::vector<Index>& order = index.grid_order();
@@ -256,43 +259,48 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         std::vector<Index> my_deferred;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
-            if (tracker.cancelled()) continue;
             const Index lo = b * block, hi = std::min(n, lo + block);
+            if (tracker.skip(lo)) continue;
             Index put_off = 0;
-            for (Index pos = lo; pos < hi; ++pos) {
-                const auto spos = static_cast<std::size_t>(pos);
-                const Index i = order[spos];
-                const Vec2 c = index.point_at(spos);
-                Result r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
-                sc.mine.clear();
-                if (deferring) {
-                    load_in_range(sc, spos, c);
-                    if (!detail::certified_exact_cell(one_shot, sc.exact, sc.clip_ws)) {
-                        my_deferred.push_back(pos);
-                        ++put_off;
-                        continue;
+            Index pos = lo;
+            try {
+                for (; pos < hi; ++pos) {
+                    const auto spos = static_cast<std::size_t>(pos);
+                    const Index i = order[spos];
+                    const Vec2 c = index.point_at(spos);
+                    Result r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
+                    sc.mine.clear();
+                    if (deferring) {
+                        load_in_range(sc, spos, c);
+                        if (!detail::certified_exact_cell(one_shot, sc.exact, sc.clip_ws)) {
+                            my_deferred.push_back(pos);
+                            ++put_off;
+                            continue;
+                        }
+                        from_clip(sc, c, r);
+                    } else {
+                        const auto query = [&](double radius, std::vector<detail::Candidate>& cs) {
+                            index.within_at(spos, radius, cs);
+                        };
+                        // The nearest neighbour starts the schedule: widen a query until it finds someone.
+                        double first = 0.0;
+                        if (n > 1) {
+                            double rr = 0.5 * range;
+                            for (index.within_at(spos, rr, sc.cand); sc.cand.empty(); index.within_at(spos, rr, sc.cand))
+                                rr *= 2.0;
+                            double best = std::numeric_limits<double>::infinity();
+                            for (const detail::Candidate& q : sc.cand) best = std::min(best, (q.p - c).squaredNorm());
+                            first = std::sqrt(best);
+                        }
+                        detail::asr(c, query, n - 1, first, inner, sc.ws, sc.dws, sc.cand, sc.limited, sc.cell, i, cert,
+                                    &sc.clip_ws);
+                        from_cell(sc, c, first, r);
                     }
-                    from_clip(sc, c, r);
-                } else {
-                    const auto query = [&](double radius, std::vector<detail::Candidate>& cs) {
-                        index.within_at(spos, radius, cs);
-                    };
-                    // The nearest neighbour starts the schedule: widen a query until it finds someone.
-                    double first = 0.0;
-                    if (n > 1) {
-                        double rr = 0.5 * range;
-                        for (index.within_at(spos, rr, sc.cand); sc.cand.empty(); index.within_at(spos, rr, sc.cand))
-                            rr *= 2.0;
-                        double best = std::numeric_limits<double>::infinity();
-                        for (const detail::Candidate& q : sc.cand) best = std::min(best, (q.p - c).squaredNorm());
-                        first = std::sqrt(best);
-                    }
-                    detail::asr(c, query, n - 1, first, inner, sc.ws, sc.dws, sc.cand, sc.limited, sc.cell, i, cert,
-                                &sc.clip_ws);
-                    from_cell(sc, c, first, r);
+                    finish(sc, c, me, r);
+                    by_pos[spos] = r;
                 }
-                finish(sc, c, me, r);
-                by_pos[spos] = r;
+            } catch (...) {
+                tracker.fail(pos, order[static_cast<std::size_t>(pos)]);
             }
             tracker.block_done(hi - lo - put_off);
         }
@@ -319,7 +327,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         std::vector<Vec2> dpts(deferred.size());
         for (std::size_t t = 0; t < deferred.size(); ++t) dpts[t] = index.point_at(static_cast<std::size_t>(deferred[t]));
         detail::Delaunay dt;
-        const int dim = dt.build(dpts, /*spatial=*/true);
+        const int dim = detail::naming_range_error("points", [&] { return dt.build(dpts, /*spatial=*/true); });
         std::vector<int> line, line_rank;  // collinear deferred agents: their order along the line
         if (dim == 1) {
             line = dt.line_order();
@@ -335,41 +343,46 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
             std::vector<int> dnb;
 #pragma omp for schedule(dynamic, 1)
             for (Index b = 0; b < dblocks; ++b) {
-                if (tracker.cancelled()) continue;
                 const Index lo = b * block, hi = std::min(nd, lo + block);
-                for (Index t = lo; t < hi; ++t) {
-                    const auto spos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(t)]);
-                    const Vec2 c = index.point_at(spos);
-                    Result r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
-                    sc.mine.clear();
-                    // Candidates: the agents strictly within 2R, then the triangulation's neighbours beyond.
-                    load_in_range(sc, spos, c);
-                    dnb.clear();
-                    if (dim == 2) {
-                        dt.star(static_cast<int>(t), dnb);
-                    } else if (dim == 1) {
-                        const int k = line_rank[static_cast<std::size_t>(t)];
-                        if (k > 0) dnb.push_back(line[static_cast<std::size_t>(k - 1)]);
-                        if (k + 1 < static_cast<int>(line.size())) dnb.push_back(line[static_cast<std::size_t>(k + 1)]);
+                if (tracker.skip(lo)) continue;
+                Index t = lo;
+                try {
+                    for (; t < hi; ++t) {
+                        const auto spos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(t)]);
+                        const Vec2 c = index.point_at(spos);
+                        Result r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
+                        sc.mine.clear();
+                        // Candidates: the agents strictly within 2R, then the triangulation's neighbours beyond.
+                        load_in_range(sc, spos, c);
+                        dnb.clear();
+                        if (dim == 2) {
+                            dt.star(static_cast<int>(t), dnb);
+                        } else if (dim == 1) {
+                            const int k = line_rank[static_cast<std::size_t>(t)];
+                            if (k > 0) dnb.push_back(line[static_cast<std::size_t>(k - 1)]);
+                            if (k + 1 < static_cast<int>(line.size())) dnb.push_back(line[static_cast<std::size_t>(k + 1)]);
+                        }
+                        for (int v : dnb) {
+                            const auto qpos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(v)]);
+                            const Vec2 q = index.point_at(qpos);
+                            if (!(pred::within_2r(c, q, one_shot) > 0)) sc.clip_ws.add(q, order[qpos]);
+                        }
+                        // A square of 4R first (most of these cells: a vertex a little beyond R), whose
+                        // corners the clip screens candidates against; then a huge one.
+                        if (detail::certified_candidate_cell(4.0 * one_shot, sc.exact, sc.clip_ws) ||
+                            detail::certified_candidate_cell(wide * one_shot, sc.exact, sc.clip_ws)) {
+                            from_clip(sc, c, r);
+                        } else {
+                            // Unbounded, huge or degenerate: the exact cell of the same candidates.
+                            sc.clip_ws.candidates(sc.cand);
+                            detail::candidate_cell(c, sc.cand, inner, sc.ws, sc.dws, sc.cell);
+                            from_cell(sc, c, std::sqrt(sc.clip_ws.lo), r);
+                        }
+                        finish(sc, c, me, r);
+                        by_pos[spos] = r;
                     }
-                    for (int v : dnb) {
-                        const auto qpos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(v)]);
-                        const Vec2 q = index.point_at(qpos);
-                        if (!(pred::within_2r(c, q, one_shot) > 0)) sc.clip_ws.add(q, order[qpos]);
-                    }
-                    // A square of 4R first (most of these cells: a vertex a little beyond R), whose
-                    // corners the clip screens candidates against; then a huge one.
-                    if (detail::certified_candidate_cell(4.0 * one_shot, sc.exact, sc.clip_ws) ||
-                        detail::certified_candidate_cell(wide * one_shot, sc.exact, sc.clip_ws)) {
-                        from_clip(sc, c, r);
-                    } else {
-                        // Unbounded, huge or degenerate: the exact cell of the same candidates.
-                        sc.clip_ws.candidates(sc.cand);
-                        detail::candidate_cell(c, sc.cand, inner, sc.ws, sc.dws, sc.cell);
-                        from_cell(sc, c, std::sqrt(sc.clip_ws.lo), r);
-                    }
-                    finish(sc, c, me, r);
-                    by_pos[spos] = r;
+                } catch (...) {
+                    tracker.fail(t, order[static_cast<std::size_t>(deferred[static_cast<std::size_t>(t)])]);
                 }
                 tracker.block_done(hi - lo);
             }
