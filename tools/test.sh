@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fresh machine -> every test: system packages, the Python package with its test extras, the C++
-# tests (unit tests and the CGAL oracle target) under ctest, then pytest (API, CLI, oracle).
+# tests (unit tests and the CGAL oracle target) under ctest, the C++ unit tests again under
+# AddressSanitizer and UndefinedBehaviorSanitizer, then pytest (API, CLI, oracle).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install_system_deps.sh
@@ -13,6 +14,16 @@ fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDVORONOI_BUILD_TESTS=ON -DDVORONOI_BUILD_CLI=ON
 cmake --build build -j "$(nproc)"
 ctest --test-dir build --output-on-failure
+# Sanitizers, in a build directory of their own: every tests/cpp executable (the dvoronoi_unit_tests
+# target) with ASan + UBSan; -fno-sanitize-recover makes any UB report fail its test, and ASan reports
+# and leaks fail theirs. The CGAL oracle targets (label "oracle") are not built here: instrumenting
+# CGAL's exact kernel costs time on code that is not ours, and the dvoronoi code they run the unit
+# tests run too.
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DDVORONOI_BUILD_TESTS=ON -DDVORONOI_BUILD_CLI=OFF \
+  -DDVORONOI_BUILD_MPI=OFF \
+  -DCMAKE_CXX_FLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
+cmake --build build-sanitize -j "$(nproc)" --target dvoronoi_unit_tests
+UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir build-sanitize -LE oracle -j "$(nproc)" --output-on-failure
 DVORONOI_CGAL_ORACLE="$PWD/build/tests/oracle/dvoronoi_cgal_oracle" \
 DVORONOI_CLI="$PWD/build/cpp/cli/dvoronoi" \
 DVORONOI_GVD_MPI="$PWD/build/cpp/mpi/dvoronoi_gvd_mpi" \
