@@ -247,14 +247,6 @@ inline VoronoiEdge voronoi_edge(const LimitedCell& limited, std::size_t t, const
     return e;
 }
 
-/// Adjust-Sensing-Radius around agent `self` at c. `query(radius, cand)` fills `cand` with the agents
-/// strictly within 2*radius of c (exact); `total` is the number of other agents; `first_radius`
-/// starts the schedule (the nearest-neighbour distance). From radius step Certificate::kFromStep on,
-/// an uncertified step also asks `cert` (see partition/empty_circle_certificate.hpp): +1 exact, 0 it
-/// added candidates (recompute and ask again), -1 widen the radius. Leaves the cell in `out`.
-/// `clip`, given only when the agents are pairwise distinct (the all-agents driver checks that), lets
-/// the inner Boundary Scan step run through the certified clipping filter (cells/certified_clip.hpp:
-/// the same cells, most of them faster).
 /// ASR's radii start at the nearest neighbour's distance and double; each is a limited cell's
 /// radius, so the start must lie in [kMinRadius, kMaxRadius] (from 0, a radius that underflowed,
 /// the doubling would never end). \throws RangeError otherwise.
@@ -272,6 +264,14 @@ inline void require_schedule_start(double first_radius) {
                      "1e-150 and 1e150");
 }
 
+/// Adjust-Sensing-Radius around agent `self` at c. `query(radius, cand)` fills `cand` with the agents
+/// strictly within 2*radius of c (exact); `total` is the number of other agents; `first_radius`
+/// starts the schedule (the nearest-neighbour distance). From radius step Certificate::kFromStep on,
+/// an uncertified step also asks `cert` (see partition/empty_circle_certificate.hpp): +1 exact, 0 it
+/// added candidates (recompute and ask again), -1 widen the radius. Leaves the cell in `out`.
+/// `clip`, given only when the agents are pairwise distinct (the all-agents driver checks that), lets
+/// the inner Boundary Scan step run through the certified clipping filter (cells/certified_clip.hpp:
+/// the same cells, most of them faster).
 template <class Query, class Certificate = NoCertificate>
 void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInner inner,
          CellWorkspace& ws, DelaunayWorkspace& dws, std::vector<Candidate>& cand, LimitedCell& limited,

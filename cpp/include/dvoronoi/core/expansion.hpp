@@ -6,9 +6,8 @@
 // intermediate product underflows or overflows: nonzero coordinate differences between about 1e-45
 // and 1e45 for the degree-6 predicates (far outside any robot or sensor deployment). Outside that
 // range a decision is still exact or refused, never wrong: the filter's bound covers underflow and
-// gives up on overflow, and every exact evaluation is checked (filtered_sign): one that raised the
-// IEEE overflow flag, or the underflow flag with a loss that could change the sign, throws
-// dvoronoi::RangeError instead of returning a sign it cannot vouch for.
+// gives up on overflow, and the exact stage is checked (filtered_sign): where it lost bits it runs
+// again on rescaled inputs, and what even that cannot decide throws dvoronoi::RangeError.
 #pragma once
 
 #include "dvoronoi/core/types.hpp"
@@ -254,8 +253,8 @@ struct InputMagnitude {
 };
 
 /// The IEEE underflow and overflow flags, read and written around the exact stage. On x86 (SSE2,
-/// where doubles are computed) straight from MXCSR: the <cfenv> calls also save and load the x87
-/// environment, which made the exact stage of lattice inputs 70% slower.
+/// where doubles are computed) straight from MXCSR; the <cfenv> calls go through the x87 status
+/// word and environment as well.
 namespace fpflags {
 #if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
 using Flags = unsigned;
@@ -283,8 +282,9 @@ inline void set(Flags f) {
 /// The message of a decision the exact stage cannot vouch for.
 inline RangeError out_of_exact_range(bool overflowed) {
     return RangeError(std::string("out of the exact range: an exact test ") + (overflowed ? "overflowed" : "underflowed") +
-                      " (its values are too large, too small or too far apart in scale for exact arithmetic on "
-                      "doubles; coordinates are exact for nonzero differences between about 1e-45 and 1e45)");
+                      " even on rescaled inputs (the values of one test span more than doubles hold at once; "
+                      "decisions are exact for nonzero coordinate differences between about 1e-45 and 1e45, "
+                      "and beyond while no single test spans that much)");
 }
 
 /// Evaluates a predicate expression `f(tag)` (a generic lambda taking a type tag) with the filter
@@ -295,10 +295,11 @@ inline RangeError out_of_exact_range(bool overflowed) {
 /// raise none), is no longer exact. It is then evaluated again on inputs scaled so that the largest
 /// is about 2^125 (room for degree 8): exact if that raises no flag, else once more with a bound on
 /// what underflow still loses (Rescaled<true>), which decides unless the inputs of one test span
-/// more than doubles can hold at once (about 2^1000 / degree), and then RangeError. So inputs far from 1 (spacings of 1e-300,
-/// coordinates of 1e200) are exact, and so is a coordinate a few ulps from 0 next to others 1e-9
-/// apart. The flags are touched around the exact stage only (the filter decides nearly every test),
-/// and the caller's flags are left as they were.
+/// more than doubles can hold at once (about 2^1000 / degree), and then RangeError. So a common
+/// scale far from 1 (spacings of 1e-200, coordinates of 1e200) is exact; a coordinate a few
+/// subnormal steps from 0 beside others 1e-9 apart may not be. The flags are touched around the
+/// exact stage only (the filter decides nearly every test), and the caller's flags are left as
+/// they were.
 /// \throws RangeError when the sign stays unknown.
 template <class T>
 struct Tag {
