@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 #include <cmath>
@@ -204,6 +205,23 @@ inline Vec2 vertex(const Vec2& aj, const Vec2& ak) {
     return Vec2((hj * ak.y() - hk * aj.y()) / d, (aj.x() * hk - ak.x() * hj) / d);
 }
 
+/// The binary exponent of v (ilogb, without a call for a normal v).
+inline int binary_exponent(double v) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+    return biased == 0 || biased == 0x7ff ? std::ilogb(v) : biased - 1023;
+}
+
+/// 2^e, exactly (without a call in the normal range).
+inline double power_of_two(int e) {
+    if (e < -1022 || e > 1023) return std::ldexp(1.0, e);
+    const std::uint64_t bits = static_cast<std::uint64_t>(e + 1023) << 52;
+    double v;
+    std::memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
 /// v_jk relative to c in units of 1 / `unit` (a power of two: v_jk * unit), from the agents
 /// themselves: vertex() of the scaled a_j, a_k when its determinant D_jk is well conditioned (the
 /// rounding of a_j, a_k and of the products moves it by less than 2^-20 of itself), else the same
@@ -257,8 +275,8 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
     // Pieces are assembled relative to c in units of 2^e ~ radius (an exact scaling: the same
     // roundings, but no product of two lengths under- or overflows however small or large the
     // radius), measured there, then moved to the caller's frame.
-    const int e = std::ilogb(radius);
-    const double unit = std::ldexp(1.0, -e), r = radius * unit;
+    const int e = binary_exponent(radius);
+    const double unit = power_of_two(-e), back = power_of_two(e), r = radius * unit;
     if (s == 0) {
         Piece arc;
         arc.start = Vec2(r, 0.0);
@@ -292,9 +310,9 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
         }
     }
     const CellMeasures m = measure_local(out.pieces, r, Vec2::Zero());
-    out.measures_.area = std::ldexp(m.area, 2 * e);
-    out.measures_.centroid = c + std::ldexp(1.0, e) * m.centroid;
-    out.measures_.perimeter = std::ldexp(m.perimeter, e);
+    out.measures_.area = m.area * back * back;
+    out.measures_.centroid = c + back * m.centroid;
+    out.measures_.perimeter = m.perimeter * back;
     // The combinatorics are exact and the vertices accurate (vertex()); a cell that still cannot be
     // measured in doubles is refused rather than handed back with a NaN area.
     if (!std::isfinite(out.measures_.area) || !std::isfinite(out.measures_.centroid.x()) ||
@@ -303,7 +321,7 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
             "out of the range of doubles: the cell's measures are not finite (its agents within 2R differ in "
             "scale by more than doubles resolve; coordinates are in range for nonzero differences between "
             "about 1e-45 and 1e45)");
-    for (Piece& p : out.pieces) p.start = c + std::ldexp(1.0, e) * p.start;
+    for (Piece& p : out.pieces) p.start = c + back * p.start;
 }
 
 /// The predicates on bisectors (indices into ws.lines) around c: a floating-point fast path on the
