@@ -49,6 +49,46 @@ TEST_CASE("after any sequence of additions and removals the diagram is the full 
     }
 }
 
+TEST_CASE("blobs put into open space and next to walls: the diagram is the full build's") {
+    // Large open maps, where an update skips the search for pixels whose nearest point lies near a
+    // blob when no unchanged wall is near it, and blobs next to walls and the border, where it cannot.
+    for (unsigned seed = 0; seed < 60; ++seed) {
+        std::mt19937 rng(seed);
+        OccupancyGrid g(128, 128 + static_cast<std::int32_t>(seed % 3) * 17);
+        for (int k = 0; k < 3; ++k) {  // a few walls
+            const int r0 = static_cast<int>(rng() % 110), c0 = static_cast<int>(rng() % 110);
+            const bool across = rng() % 2 == 0;
+            for (int t = 0; t < 40; ++t) {
+                const int r = across ? r0 : std::min(g.rows - 1, r0 + t), c = across ? std::min(g.cols - 1, c0 + t) : c0;
+                g.occupied[g.at(r, c)] = 1;
+            }
+        }
+        MedialOptions o;
+        const double prune[4] = {0.0, 3.0, 8.0, 20.0};
+        o.prune_length = prune[seed % 4];
+        MedialDiagram m = medial_diagram(g, o);
+        for (int step = 0; step < 8; ++step) {
+            std::vector<std::size_t> px;
+            for (int b = 0; b < 3; ++b) {
+                const int side = 2 + static_cast<int>(rng() % 5);
+                const int r0 = static_cast<int>(rng() % static_cast<unsigned>(g.rows - side));
+                const int c0 = static_cast<int>(rng() % static_cast<unsigned>(g.cols - side));
+                for (int r = r0; r < r0 + side; ++r)
+                    for (int c = c0; c < c0 + side; ++c)
+                        if (!m.grid.occ(r, c)) px.push_back(g.at(r, c));
+            }
+            set_pixels(m, px, true);
+            INFO("seed " << seed << ", step " << step << ", added");
+            require_same_as_full_build(m);
+            if (step % 2 == 1) {
+                set_pixels(m, px, false);
+                INFO("seed " << seed << ", step " << step << ", removed");
+                require_same_as_full_build(m);
+            }
+        }
+    }
+}
+
 TEST_CASE("an update reports what it touched and rejects bad input") {
     MedialDiagram m = medial_diagram(scenes::rooms());
     const auto before = m.mask;

@@ -53,6 +53,43 @@ inline FeatureMap brute_force_features(const OccupancyGrid& g) {
 
 namespace detail {
 
+/// Does the pair (p, q) put p on the diagram? p, q: pixel centres; a, b: their nearest points
+/// (doubled units). `sep2` is floor(4 s^2): |a-b|^2 > 4 s^2 <=> |a-b|^2 > floor(4 s^2) for integers.
+template <class Join>
+bool pair_marks_first(const OccupancyGrid& g, const PairRule& rule, Join& join, std::int64_t px,
+                             std::int64_t py, std::int64_t qx, std::int64_t qy, std::int32_t ax, std::int32_t ay,
+                             std::int32_t bx, std::int32_t by) {
+    const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
+    if (d2 <= rule.sep2) return false;
+    auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
+    const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay);
+    const std::int64_t sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
+    if (sp > sq_) return false;
+    if (d2 <= rule.prune2 && join(g, ax, ay, bx, by)) return false;
+    return true;
+}
+
+/// Is free pixel (r, c) on the diagram, given every pixel's nearest point? (The definition, pixel by
+/// pixel; RowMarker applies it pair by pair.)
+template <class Join>
+bool on_diagram(const OccupancyGrid& g, const FeatureMap& f, const PairRule& rule, Join& join, std::int32_t r,
+                std::int32_t c) {
+    const std::size_t i = f.at(r, c);
+    if (g.occupied[i]) return false;
+    const std::int32_t ax = f.fx[i], ay = f.fy[i];
+    const std::int64_t px = 2 * c + 1, py = 2 * (g.rows - 1 - r) + 1;
+    const std::int32_t nr[4] = {r, r, r - 1, r + 1}, nc[4] = {c - 1, c + 1, c, c};
+    for (int k = 0; k < 4; ++k) {
+        if (g.blocked(nr[k], nc[k])) continue;
+        const std::size_t j = f.at(nr[k], nc[k]);
+        const std::int32_t bx = f.fx[j], by = f.fy[j];
+        if (bx == ax && by == ay) continue;
+        if (pair_marks_first(g, rule, join, px, py, 2 * nc[k] + 1, 2 * (g.rows - 1 - nr[k]) + 1, ax, ay, bx, by))
+            return true;
+    }
+    return false;
+}
+
 /// The box rule's join by the definition: a breadth-first search over the occupied squares that meet
 /// the grown box (none of BoxJoin's shortcuts or bit tricks).
 struct JoinByDefinition {

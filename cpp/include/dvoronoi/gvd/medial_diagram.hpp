@@ -57,7 +57,7 @@ namespace detail {
 
 /// Are the occupied squares containing a and b joined by occupied squares that meet the closed box
 /// spanned by a and b grown by one pixel (8-connected)? Squares outside the map count as occupied.
-/// a, b in doubled units.
+/// a, b in doubled units. One BoxJoin answers for one state of the map: it remembers answers.
 class BoxJoin {
 public:
     BoxJoin() = default;
@@ -65,6 +65,28 @@ public:
     explicit BoxJoin(const OccupancyBits* bits) : bits_(bits) {}
 
     bool operator()(const OccupancyGrid& g, std::int32_t ax, std::int32_t ay, std::int32_t bx, std::int32_t by) {
+        // Along a spur or a rough wall, neighbouring pairs ask about the same two nearest points
+        // (three calls in four on a cave map), so answers are kept in a small direct-mapped table.
+        // The question is symmetric; nearest points lie in [0, 2 cols] x [0, 2 rows] (sides <= 16383),
+        // so each coordinate fits 16 bits of the key.
+        auto point_key = [](std::int32_t x, std::int32_t y) {
+            return std::uint64_t{static_cast<std::uint16_t>(x)} << 16 | static_cast<std::uint16_t>(y);
+        };
+        std::uint64_t ka = point_key(ax, ay), kb = point_key(bx, by);
+        if (ka > kb) std::swap(ka, kb);
+        const std::uint64_t key = (ka << 32 | kb) + 1;  // 0 marks an empty slot
+        const std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - kMemoBits));
+        if (memo_key_[slot] == key) return memo_joined_[slot] != 0;
+        const bool joined = search(g, ax, ay, bx, by);
+        memo_key_[slot] = key;
+        memo_joined_[slot] = joined ? 1 : 0;
+        return joined;
+    }
+
+private:
+    static constexpr int kMemoBits = 8;
+
+    bool search(const OccupancyGrid& g, std::int32_t ax, std::int32_t ay, std::int32_t bx, std::int32_t by) {
         // the box spanned by a and b, grown by one pixel (two doubled units) on every side
         const std::int32_t xlo = std::min(ax, bx) - 2, xhi = std::max(ax, bx) + 2;
         const std::int32_t ylo = std::min(ay, by) - 2, yhi = std::max(ay, by) + 2;
@@ -128,13 +150,12 @@ public:
         return false;
     }
 
-private:
     static std::int32_t ceil_half(std::int32_t v) { return v >= 0 ? (v + 1) / 2 : -((-v) / 2); }
 
     /// The occupied squares (c, j pairs, flattened) whose closed extent holds the point (x, y).
     int squares_at(const OccupancyGrid& g, std::int32_t x, std::int32_t y, std::array<std::int32_t, 8>& out) const {
-        const std::int32_t cs[2] = {(x >> 1) - ((x & 1) ? 0 : 1), x >> 1};
-        const std::int32_t js[2] = {(y >> 1) - ((y & 1) ? 0 : 1), y >> 1};
+        const SquaresHolding h(x, y);
+        const std::int32_t cs[2] = {h.c0, h.c1}, js[2] = {h.j0, h.j1};
         int n = 0;
         for (int a = 0; a < 2; ++a)
             for (int b = 0; b < 2; ++b) {
@@ -177,6 +198,8 @@ private:
     }
 
     const OccupancyBits* bits_ = nullptr;
+    std::array<std::uint64_t, std::size_t{1} << kMemoBits> memo_key_{};
+    std::array<std::uint8_t, std::size_t{1} << kMemoBits> memo_joined_{};
     std::int32_t c0_ = 0, c1_ = 0, j0_ = 0, j1_ = 0;
     std::vector<std::uint64_t> occ_, reach_;
     std::vector<std::uint8_t> cell_;
@@ -217,42 +240,6 @@ struct PairRule {
           prune2(static_cast<std::int64_t>(std::floor(4.0 * o.prune_length * o.prune_length))) {}
 };
 
-/// Does the pair (p, q) put p on the diagram? p, q: pixel centres; a, b: their nearest points
-/// (doubled units). `sep2` is floor(4 s^2): |a-b|^2 > 4 s^2 <=> |a-b|^2 > floor(4 s^2) for integers.
-template <class Join>
-bool pair_marks_first(const OccupancyGrid& g, const PairRule& rule, Join& join, std::int64_t px,
-                             std::int64_t py, std::int64_t qx, std::int64_t qy, std::int32_t ax, std::int32_t ay,
-                             std::int32_t bx, std::int32_t by) {
-    const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
-    if (d2 <= rule.sep2) return false;
-    auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
-    const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay);
-    const std::int64_t sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
-    if (sp > sq_) return false;
-    if (d2 <= rule.prune2 && join(g, ax, ay, bx, by)) return false;
-    return true;
-}
-
-/// Is free pixel (r, c) on the diagram, given every pixel's nearest point?
-template <class Join>
-bool on_diagram(const OccupancyGrid& g, const FeatureMap& f, const PairRule& rule, Join& join, std::int32_t r,
-                std::int32_t c) {
-    const std::size_t i = f.at(r, c);
-    if (g.occupied[i]) return false;
-    const std::int32_t ax = f.fx[i], ay = f.fy[i];
-    const std::int64_t px = 2 * c + 1, py = 2 * (g.rows - 1 - r) + 1;
-    const std::int32_t nr[4] = {r, r, r - 1, r + 1}, nc[4] = {c - 1, c + 1, c, c};
-    for (int k = 0; k < 4; ++k) {
-        if (g.blocked(nr[k], nc[k])) continue;
-        const std::size_t j = f.at(nr[k], nc[k]);
-        const std::int32_t bx = f.fx[j], by = f.fy[j];
-        if (bx == ax && by == ay) continue;
-        if (pair_marks_first(g, rule, join, px, py, 2 * nc[k] + 1, 2 * (g.rows - 1 - nr[k]) + 1, ax, ay, bx, by))
-            return true;
-    }
-    return false;
-}
-
 }  // namespace detail
 
 /// The medial diagram of an occupancy grid with its nearest-point transform.
@@ -288,75 +275,95 @@ inline std::int64_t largest_sq(const FeatureMap& f, std::int32_t r0, std::int32_
 }
 
 /// Marks rows [r0, r1) of `m.mask`, pair by pair: a pair is judged once and marks one or both of
-/// its pixels (on_diagram's rule seen from both ends). Most pairs fail the separation test: it runs
-/// first over whole rows (branch-free, vectorised), and only separated pairs get the full rule. The
-/// vertical pairs across the band's edges are judged by both bands, each marking its own row only,
-/// so threads never write the same row.
+/// its pixels (the rule seen from both ends). Most pairs fail the separation test: it runs first over
+/// whole rows (branch-free, vectorised), and only separated pairs get the full rule. The vertical
+/// pairs across the band's edges are judged by both bands, each marking its own row only, so threads
+/// never write the same row. An update re-marks a few row segments (mark_segment) the same way.
 class RowMarker {
 public:
     explicit RowMarker(MedialDiagram& m)
-        : m_(m), rule_(m.options), join_(&m.bits), flag_(static_cast<std::size_t>(m.grid.cols) + 8, 0) {}
+        : m_(m), rule_(m.options), join_(&m.bits), flag_(static_cast<std::size_t>(m.grid.cols) + 8, 0),
+          sep2_(static_cast<std::int32_t>(std::min<std::int64_t>(rule_.sep2, INT32_MAX))) {}
 
     /// Marks rows [r0, r1): reads the nearest points of rows r0-1 .. r1.
     void mark(std::int32_t r0, std::int32_t r1) {
-        MedialDiagram& m = m_;
-        const PairRule& rule = rule_;
-        BoxJoin& join = join_;
-        const OccupancyGrid& g = m.grid;
-        const FeatureMap& f = m.features;
-        const std::int32_t W = g.cols;
-        const std::int32_t sep2 = static_cast<std::int32_t>(std::min<std::int64_t>(rule.sep2, INT32_MAX));
-        std::vector<std::uint8_t>& flag = flag_;
-        m.mask.clear_rows(r0, r1);
-        // 1: p is marked, 2: q is marked (both on a tie), 0: the pair does not separate
-        auto judge = [&](std::int32_t pr, std::int32_t pc, std::int32_t qr, std::int32_t qc) -> int {
-            const std::size_t i = f.at(pr, pc), j = f.at(qr, qc);
-            if (g.occupied[i] || g.occupied[j]) return 0;
-            const std::int32_t ax = f.fx[i], ay = f.fy[i], bx = f.fx[j], by = f.fy[j];
-            const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
-            if (d2 <= rule.sep2) return 0;
-            const std::int64_t px = 2 * pc + 1, py = 2 * (g.rows - 1 - pr) + 1, qx = 2 * qc + 1, qy = 2 * (g.rows - 1 - qr) + 1;
-            auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
-            const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay), sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
-            if (d2 <= rule.prune2 && join(g, ax, ay, bx, by)) return 0;
-            return (sp <= sq_ ? 1 : 0) | (sq_ <= sp ? 2 : 0);
-        };
-        // visit the columns whose flag is set, eight at a time past the empty stretches
-        auto each_flagged = [&](std::int32_t n, auto&& fn) {  // columns [0, n)
-            for (std::int32_t c = 0; c < n; c += 8) {
-                std::uint64_t word;
-                std::memcpy(&word, &flag[static_cast<std::size_t>(c)], 8);
-                if (word == 0) continue;
-                for (std::int32_t d = c; d < std::min(n, c + 8); ++d)
-                    if (flag[static_cast<std::size_t>(d)]) fn(d);
-            }
-        };
+        const std::int32_t W = m_.grid.cols;
+        m_.mask.clear_rows(r0, r1);
         for (std::int32_t r = std::max(0, r0 - 1); r < r1; ++r) {
-            if (r + 1 < g.rows) {  // vertical pairs (r, c), (r + 1, c)
-                separated(&f.fx[f.at(r, 0)], &f.fy[f.at(r, 0)], &f.fx[f.at(r + 1, 0)], &f.fy[f.at(r + 1, 0)], W, sep2,
-                          flag.data());
-                each_flagged(W, [&](std::int32_t c) {
-                    const int v = judge(r, c, r + 1, c);
-                    if ((v & 1) && r >= r0) m.mask.set(r, c, true);
-                    if ((v & 2) && r + 1 < r1) m.mask.set(r + 1, c, true);
+            if (r + 1 < m_.grid.rows)  // vertical pairs (r, c), (r + 1, c)
+                judge_flagged(r, r + 1, 0, W, [&](std::int32_t c, int v) {
+                    if ((v & 1) && r >= r0) m_.mask.set(r, c, true);
+                    if ((v & 2) && r + 1 < r1) m_.mask.set(r + 1, c, true);
                 });
-            }
             if (r < r0) continue;
-            const std::int16_t *x = &f.fx[f.at(r, 0)], *y = &f.fy[f.at(r, 0)];
-            separated(x, y, x + 1, y + 1, W - 1, sep2, flag.data());  // horizontal pairs (r, c), (r, c + 1)
-            each_flagged(W - 1, [&](std::int32_t c) {
-                const int v = judge(r, c, r, c + 1);
-                if (v & 1) m.mask.set(r, c, true);
-                if (v & 2) m.mask.set(r, c + 1, true);
+            judge_flagged(r, r, 0, W - 1, [&](std::int32_t c, int v) {  // horizontal pairs (r, c), (r, c + 1)
+                if (v & 1) m_.mask.set(r, c, true);
+                if (v & 2) m_.mask.set(r, c + 1, true);
             });
         }
     }
 
+    /// Recomputes the pixels (r, a .. b) of `m.mask` from every pair they belong to.
+    void mark_segment(std::int32_t r, std::int32_t a, std::int32_t b) {
+        const std::int32_t H = m_.grid.rows, W = m_.grid.cols;
+        m_.mask.clear(r, a, b);
+        auto in = [&](std::int32_t c) { return c >= a && c <= b; };
+        if (r > 0)
+            judge_flagged(r - 1, r, a, b + 1, [&](std::int32_t c, int v) { if (v & 2) m_.mask.set(r, c, true); });
+        if (r + 1 < H)
+            judge_flagged(r, r + 1, a, b + 1, [&](std::int32_t c, int v) { if (v & 1) m_.mask.set(r, c, true); });
+        judge_flagged(r, r, std::max(0, a - 1), std::min(W - 1, b + 1), [&](std::int32_t c, int v) {
+            if ((v & 1) && in(c)) m_.mask.set(r, c, true);
+            if ((v & 2) && in(c + 1)) m_.mask.set(r, c + 1, true);
+        });
+    }
+
 private:
+    /// Runs the separation test over the pairs (r, c), (q, c + (q == r)) for c in [c0, c1) and calls
+    /// fn(c, judge(...)) for the separated ones, skipping eight columns at a time past empty stretches.
+    template <class Fn>
+    void judge_flagged(std::int32_t r, std::int32_t q, std::int32_t c0, std::int32_t c1, Fn&& fn) {
+        if (c1 <= c0) return;
+        const FeatureMap& f = m_.features;
+        const std::int32_t dc = q == r ? 1 : 0, n = c1 - c0;
+        std::uint8_t* flag = flag_.data();
+        separated(&f.fx[f.at(r, c0)], &f.fy[f.at(r, c0)], &f.fx[f.at(q, c0 + dc)], &f.fy[f.at(q, c0 + dc)], n, sep2_, flag);
+        for (std::int32_t k = 0; k < n; k += 8) {
+            std::uint64_t word;
+            std::memcpy(&word, flag + k, 8);
+            if (word == 0) continue;
+            for (std::int32_t d = k; d < std::min(n, k + 8); ++d)
+                if (flag[d]) {
+                    const int v = judge(r, c0 + d, q, c0 + d + dc);
+                    if (v != 0) fn(c0 + d, v);
+                }
+        }
+    }
+
+    /// The pair (p, q) of 4-adjacent pixels: 1 marks p, 2 marks q (3: both, on a tie), 0: the pair
+    /// does not separate. p marks when it is no farther from the bisector of the nearest points a, b
+    /// than q (|p-b|^2 - |p-a|^2 <= |q-a|^2 - |q-b|^2). `sep2` is floor(4 s^2): for integers,
+    /// |a-b|^2 > 4 s^2 <=> |a-b|^2 > floor(4 s^2).
+    int judge(std::int32_t pr, std::int32_t pc, std::int32_t qr, std::int32_t qc) {
+        const OccupancyGrid& g = m_.grid;
+        const FeatureMap& f = m_.features;
+        const std::size_t i = f.at(pr, pc), j = f.at(qr, qc);
+        if (g.occupied[i] || g.occupied[j]) return 0;
+        const std::int32_t ax = f.fx[i], ay = f.fy[i], bx = f.fx[j], by = f.fy[j];
+        const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
+        if (d2 <= rule_.sep2) return 0;
+        const std::int64_t px = 2 * pc + 1, py = 2 * (g.rows - 1 - pr) + 1, qx = 2 * qc + 1, qy = 2 * (g.rows - 1 - qr) + 1;
+        auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
+        const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay), sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
+        if (d2 <= rule_.prune2 && join_(g, ax, ay, bx, by)) return 0;
+        return (sp <= sq_ ? 1 : 0) | (sq_ <= sp ? 2 : 0);
+    }
+
     MedialDiagram& m_;
     PairRule rule_;
     BoxJoin join_;
     std::vector<std::uint8_t> flag_;
+    std::int32_t sep2_;
 };
 
 /// Marks rows [r0, r1) of `m.mask` (reads the nearest points of rows r0-1 .. r1).

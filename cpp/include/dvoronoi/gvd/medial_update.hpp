@@ -19,8 +19,9 @@
 //  3. Diagram: the pair rule reads a pixel's and its neighbours' nearest points and the occupancy in
 //     a box spanned by two nearest points at most prune_length apart (grown by one pixel). Rechecked:
 //     pixels whose nearest point or occupancy changed, their neighbours, and pixels whose nearest
-//     point lies within prune_length + 3 pixels of a changed pixel (found per row by the same binary search, over the
-//     rows within the largest clearance of the map).
+//     point lies within prune_length + 3 pixels of a changed pixel (found per row by the same binary
+//     search, over the rows within the largest clearance of the map; skipped where no unchanged wall
+//     is that near). They are re-marked in row segments, vectorised as a build marks rows.
 #pragma once
 
 #include "dvoronoi/gvd/medial_diagram.hpp"
@@ -42,16 +43,6 @@ struct UpdateStats {
 };
 
 namespace detail {
-
-/// Is the point (x, y) (doubled units) on an occupied square or outside the map?
-inline bool on_occupied(const OccupancyGrid& g, std::int32_t x, std::int32_t y) {
-    const std::int32_t cs[2] = {(x >> 1) - ((x & 1) ? 0 : 1), x >> 1};
-    const std::int32_t js[2] = {(y >> 1) - ((y & 1) ? 0 : 1), y >> 1};
-    for (std::int32_t c : cs)
-        for (std::int32_t j : js)
-            if (g.blocked(g.rows - 1 - j, c)) return true;
-    return false;
-}
 
 /// First x in row r with fx >= lo (fx is non-decreasing along a row).
 inline std::int32_t first_at_least(const FeatureMap& f, std::int32_t r, std::int32_t lo) {
@@ -88,31 +79,20 @@ public:
     }
 
     /// Rechecks the diagram where the changes can reach it. A pixel's membership is a function of
-    /// the final nearest points, so pixels are simply recomputed where found (twice costs nothing).
+    /// the final nearest points, so the pixels found are collected, then re-marked row segment by
+    /// row segment as a build marks them.
     void refresh_mask() {
         if (changed_.empty()) return;
         const std::int32_t H = g_.rows, W = g_.cols;
-        const PairRule rule(m_.options);
-        BoxJoin join(&m_.bits);
-        std::vector<std::uint64_t> seen(g_.size() / 64 + 1, 0);  // each pixel is rechecked once
-        auto recheck = [&](std::size_t i) {
-            std::uint64_t& w = seen[i / 64];
-            const std::uint64_t bit = std::uint64_t{1} << (i % 64);
-            if (w & bit) return;
-            w |= bit;
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
-            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
-            m_.mask.set(r, c, on_diagram(g_, f_, rule, join, r, c));
-            ++stats.mask_checks;
-        };
+        PixelMask redo(H, W);
         for (std::size_t i : touched_) {
             const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
             const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
-            recheck(i);
-            if (c > 0) recheck(i - 1);
-            if (c + 1 < W) recheck(i + 1);
-            if (r > 0) recheck(i - static_cast<std::size_t>(W));
-            if (r + 1 < H) recheck(i + static_cast<std::size_t>(W));
+            redo.set(r, c, true);
+            if (c > 0) redo.set(r, c - 1, true);
+            if (c + 1 < W) redo.set(r, c + 1, true);
+            if (r > 0) redo.set(r - 1, c, true);
+            if (r + 1 < H) redo.set(r + 1, c, true);
         }
         // Pixels whose nearest point lies near a change (the box rule): changed pixels grouped in
         // tiles, each tile's box grown by that margin, searched in the rows within the map's
@@ -130,27 +110,62 @@ public:
         std::sort(tiles.begin(), tiles.end());
         tiles.erase(std::unique(tiles.begin(), tiles.end()), tiles.end());
         const std::int64_t reach = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(max_sq())) / 2.0)) + margin + 1;
+        std::vector<std::size_t> changed = changed_;
+        std::sort(changed.begin(), changed.end());
         for (std::size_t t : tiles) {
             const std::int32_t r0 = static_cast<std::int32_t>(t / tw) * kTile, c0 = static_cast<std::int32_t>(t % tw) * kTile;
             const std::int32_t r1 = std::min(H, r0 + kTile) - 1, c1 = std::min(W, c0 + kTile) - 1;
             // nearest points (doubled) in [xlo, xhi] x [ylo, yhi]
             const std::int32_t xlo = 2 * (c0 - margin), xhi = 2 * (c1 + 1 + margin);
             const std::int32_t ylo = 2 * (H - 1 - r1 - margin), yhi = 2 * (H - r0 + margin);
+            if (!unchanged_walls_meet(changed, xlo, xhi, ylo, yhi)) continue;
             const auto ra = static_cast<std::int32_t>(std::max<std::int64_t>(0, r0 - reach));
             const auto rb = static_cast<std::int32_t>(std::min<std::int64_t>(H - 1, r1 + reach));
             for (std::int32_t r = ra; r <= rb; ++r) {
                 const std::size_t base = f_.at(r, 0);
                 for (std::int32_t x = first_at_least(f_, r, xlo); x < W && f_.fx[base + static_cast<std::size_t>(x)] <= xhi; ++x) {
                     const std::int32_t y = f_.fy[base + static_cast<std::size_t>(x)];
-                    if (y >= ylo && y <= yhi && !g_.occupied[base + static_cast<std::size_t>(x)]) recheck(base + static_cast<std::size_t>(x));
+                    if (y >= ylo && y <= yhi && !g_.occupied[base + static_cast<std::size_t>(x)]) redo.set(r, x, true);
                 }
             }
         }
+        RowMarker marker(m_);
+        for (std::int32_t r = 0; r < H; ++r)  // runs of set bits
+            for (std::int32_t a = redo.find(r, 0, true); a < W; a = redo.find(r, a, true)) {
+                const std::int32_t b = redo.find(r, a, false);
+                stats.mask_checks += static_cast<std::uint64_t>(b - a);
+                marker.mark_segment(r, a, b - 1);
+                a = b;
+            }
     }
 
     UpdateStats stats;
 
 private:
+    /// Does an occupied square that is not a changed pixel (or the outside) meet the zone
+    /// [xlo, xhi] x [ylo, yhi] (doubled units)? If not, a pixel whose nearest point lies in the zone
+    /// has it on a changed square only, so the update gave it that point (or took it away): the pixel
+    /// was touched and is rechecked anyway. A blob put into open space (the common update) skips the
+    /// search for pixels whose nearest point lies near it.
+    bool unchanged_walls_meet(const std::vector<std::size_t>& changed, std::int32_t xlo, std::int32_t xhi,
+                              std::int32_t ylo, std::int32_t yhi) const {
+        const std::int32_t H = g_.rows, W = g_.cols;
+        // square column c covers [2c, 2c + 2]: it meets [xlo, xhi] (even bounds) for xlo/2 - 1 <= c <= xhi/2;
+        // columns and rows -1 and cols / rows are the outside (occupied in the bits)
+        const std::int32_t c0 = std::max(-1, xlo / 2 - 1), c1 = std::min(W, xhi / 2);
+        const std::int32_t j0 = std::max(-1, ylo / 2 - 1), j1 = std::min(H, yhi / 2);
+        for (std::int32_t j = j0; j <= j1; ++j)
+            for (std::int32_t c = c0; c <= c1; c += 64) {
+                const std::int32_t n = std::min(64, c1 - c + 1);
+                for (std::uint64_t w = m_.bits.row(j, c, n); w != 0; w &= w - 1) {
+                    const std::int32_t cc = c + lowest_bit(w), r = H - 1 - j;
+                    if (cc < 0 || cc >= W || r < 0 || r >= H) return true;
+                    if (!std::binary_search(changed.begin(), changed.end(), g_.at(r, cc))) return true;
+                }
+            }
+        return false;
+    }
+
     /// Largest squared clearance (doubled units) now, an upper bound kept by the diagram.
     std::int64_t max_sq() {
         if (m_.max_sq < 0) m_.max_sq = largest_sq(f_, 0, f_.rows);  // the first update finds it
@@ -251,7 +266,7 @@ private:
         for (std::int32_t x = first_at_least(f_, r, xlo); x < W && f_.fx[base + static_cast<std::size_t>(x)] <= xhi; ++x) {
             const std::size_t i = base + static_cast<std::size_t>(x);
             if (g_.occupied[i]) continue;  // still occupied: its own centre
-            if (!on_occupied(g_, f_.fx[i], f_.fy[i])) redo.push_back(x);
+            if (!m_.bits.holds_point(f_.fx[i], f_.fy[i])) redo.push_back(x);
         }
         // one window per group of pixels with no occupied pixel between them
         const std::uint8_t* o = &g_.occupied[base];

@@ -61,6 +61,26 @@ struct OccupancyGrid {
     Vec2 to_pixels(const Vec2& p) const { return (p - origin) / resolution; }
 };
 
+/// The index of the lowest set bit of w (w != 0).
+inline std::int32_t lowest_bit(std::uint64_t w) {
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctzll(w);
+#else
+    std::int32_t k = 0;
+    for (; (w & 1) == 0; w >>= 1) ++k;
+    return k;
+#endif
+}
+
+/// The squares whose closed extent holds a point (x, y) given in doubled units: columns c0 .. c1 and
+/// square rows j0 .. j1 (counted from the bottom); one of each when the coordinate is odd (inside a
+/// square), two when it is even (on the line between two).
+struct SquaresHolding {
+    std::int32_t c0, c1, j0, j1;
+    SquaresHolding(std::int32_t x, std::int32_t y)
+        : c0((x >> 1) - ((x & 1) ? 0 : 1)), c1(x >> 1), j0((y >> 1) - ((y & 1) ? 0 : 1)), j1(y >> 1) {}
+};
+
 /// The occupancy as bits, with the outside: square row j (counted from the bottom, -1 .. rows) and
 /// column c (-1 .. cols) at bit c + 1 of row j + 1. The medial diagram's box rule reads a box's rows
 /// as words instead of byte by byte.
@@ -96,6 +116,13 @@ public:
         return n == 64 ? v : v & ((std::uint64_t{1} << n) - 1);
     }
     bool empty() const { return w_.empty(); }
+    /// Is the point (x, y) (doubled units, 0 <= x <= 2 cols, 0 <= y <= 2 rows) on an occupied square
+    /// or on the outside?
+    bool holds_point(std::int32_t x, std::int32_t y) const {
+        const SquaresHolding s(x, y);
+        const std::int32_t n = s.c1 - s.c0 + 1;
+        return row(s.j0, s.c0, n) != 0 || row(s.j1, s.c0, n) != 0;
+    }
 
 private:
     /// Square rows j in [j0, j1) from the occupancy bytes.
@@ -153,6 +180,26 @@ public:
     }
     void set(std::size_t i, bool v) {
         set(static_cast<std::int32_t>(i / static_cast<std::size_t>(cols_)), static_cast<std::int32_t>(i % static_cast<std::size_t>(cols_)), v);
+    }
+    /// The first column >= c of row r whose bit is v (cols when there is none).
+    std::int32_t find(std::int32_t r, std::int32_t c, bool v) const {
+        const std::uint64_t* w = row_words(r);
+        while (c < cols_) {
+            const std::uint64_t word = (v ? w[c / 64] : ~w[c / 64]) >> (c % 64);
+            if (word != 0) return std::min(cols_, c + lowest_bit(word));
+            c = (c / 64 + 1) * 64;
+        }
+        return cols_;
+    }
+    /// Pixels (r, a .. b) emptied.
+    void clear(std::int32_t r, std::int32_t a, std::int32_t b) {
+        std::uint64_t* w = row_words(r);
+        for (std::int32_t c = a; c <= b;) {
+            const std::int32_t n = std::min(b - c + 1, 64 - c % 64);
+            const std::uint64_t m = (n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1)) << (c % 64);
+            w[c / 64] &= ~m;
+            c += n;
+        }
     }
     /// Rows [r0, r1) emptied.
     void clear_rows(std::int32_t r0, std::int32_t r1) {
