@@ -152,16 +152,14 @@ public:
             cv[i] = (2 * a - 1) * (2 * a - 1);
         }
         std::size_t top = 0;
-        auto push = [&](std::int32_t e, std::int64_t off, std::int32_t y) { push_edge(top, e, off, y); };
-        push(s, 0, Y_);  // the occupied (or outside) pixel left of the run, in this row
+        push_edge(top, s, 0, Y_);  // the occupied (or outside) pixel left of the run, in this row
         for (std::int32_t e = s + 1; e <= t; ++e) {
-            const std::int64_t a = cv[e - 1 - s], b = cv[e - s];
+            const std::int32_t a = cv[e - 1 - s], b = cv[e - s];
             if (a == b) continue;  // never the nearest: see flat_edge
-            const std::int32_t ya = feature_y(Y_, vg_[e - 1]), yb = feature_y(Y_, vg_[e]);
-            const bool left = a < b || (a == b && ya <= yb);  // the nearer square; equal: the lower point
-            push(e, left ? a : b, left ? ya : yb);
+            const bool left = a < b;  // the nearer column's square
+            push_edge(top, e, left ? a : b, feature_y(Y_, left ? vg[e - 1 - s] : vg[e - s]));
         }
-        push(t + 1, 0, Y_);
+        push_edge(top, t + 1, 0, Y_);
         top_ = top;
         k_ = 0;
         run_s_ = s;

@@ -206,11 +206,13 @@ private:
     std::vector<std::array<std::int32_t, 2>> stack_;
 };
 
-/// out[c] = |a_c - b_c|^2 > sep2 for n pixels, a and b given by their nearest points' x and y.
-/// Differences of nearest points fit in 16 bits and their squared norms in 31 (sides <= 16383), so
-/// SSE2's pmaddwd computes dx^2 + dy^2 for eight pixels at once.
+/// Bit c of out (64-bit words) = |a_c - b_c|^2 > sep2, for n pixels given by their nearest points'
+/// x and y; bits from n up to the word's end are 0. Differences of nearest points fit in 16 bits and
+/// their squared norms in 31 (sides <= 16383), so SSE2's pmaddwd computes dx^2 + dy^2 for eight
+/// pixels at once. Bits, not bytes: the few separated pairs are then found without a branch a pixel.
 inline void separated(const std::int16_t* ax, const std::int16_t* ay, const std::int16_t* bx, const std::int16_t* by,
-                      std::int32_t n, std::int32_t sep2, std::uint8_t* out) {
+                      std::int32_t n, std::int32_t sep2, std::uint64_t* out) {
+    std::fill(out, out + (n + 63) / 64, std::uint64_t{0});
     std::int32_t c = 0;
 #if defined(__SSE2__)
     const __m128i limit = _mm_set1_epi32(sep2);
@@ -220,15 +222,13 @@ inline void separated(const std::int16_t* ax, const std::int16_t* ay, const std:
         const __m128i lo = _mm_unpacklo_epi16(dx, dy), hi = _mm_unpackhi_epi16(dx, dy);
         const __m128i d2lo = _mm_madd_epi16(lo, lo), d2hi = _mm_madd_epi16(hi, hi);  // dx^2 + dy^2, int32
         const __m128i flags = _mm_packs_epi32(_mm_cmpgt_epi32(d2lo, limit), _mm_cmpgt_epi32(d2hi, limit));
-        const __m128i bytes = _mm_packs_epi16(flags, flags);  // -1 / 0 per pixel
-        std::uint64_t word;
-        _mm_storel_epi64(reinterpret_cast<__m128i*>(&word), _mm_and_si128(bytes, _mm_set1_epi8(1)));
-        std::memcpy(out + c, &word, 8);
+        const auto bits = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(flags, flags)) & 0xff);
+        out[c / 64] |= bits << (c % 64);  // c % 8 == 0: the eight bits lie in one word
     }
 #endif
     for (; c < n; ++c) {
         const std::int32_t dx = ax[c] - bx[c], dy = ay[c] - by[c];
-        out[c] = dx * dx + dy * dy > sep2;
+        out[c / 64] |= static_cast<std::uint64_t>(dx * dx + dy * dy > sep2) << (c % 64);
     }
 }
 
@@ -282,7 +282,7 @@ inline std::int64_t largest_sq(const FeatureMap& f, std::int32_t r0, std::int32_
 class RowMarker {
 public:
     explicit RowMarker(MedialDiagram& m)
-        : m_(m), rule_(m.options), join_(&m.bits), flag_(static_cast<std::size_t>(m.grid.cols) + 8, 0),
+        : m_(m), rule_(m.options), join_(&m.bits), flag_(static_cast<std::size_t>(m.grid.cols) / 64 + 1, 0),
           sep2_(static_cast<std::int32_t>(std::min<std::int64_t>(rule_.sep2, INT32_MAX))) {}
 
     /// Marks rows [r0, r1): reads the nearest points of rows r0-1 .. r1.
@@ -320,24 +320,20 @@ public:
 
 private:
     /// Runs the separation test over the pairs (r, c), (q, c + (q == r)) for c in [c0, c1) and calls
-    /// fn(c, judge(...)) for the separated ones, skipping eight columns at a time past empty stretches.
+    /// fn(c, judge(...)) for the separated ones.
     template <class Fn>
     void judge_flagged(std::int32_t r, std::int32_t q, std::int32_t c0, std::int32_t c1, Fn&& fn) {
         if (c1 <= c0) return;
         const FeatureMap& f = m_.features;
         const std::int32_t dc = q == r ? 1 : 0, n = c1 - c0;
-        std::uint8_t* flag = flag_.data();
+        std::uint64_t* flag = flag_.data();
         separated(&f.fx[f.at(r, c0)], &f.fy[f.at(r, c0)], &f.fx[f.at(q, c0 + dc)], &f.fy[f.at(q, c0 + dc)], n, sep2_, flag);
-        for (std::int32_t k = 0; k < n; k += 8) {
-            std::uint64_t word;
-            std::memcpy(&word, flag + k, 8);
-            if (word == 0) continue;
-            for (std::int32_t d = k; d < std::min(n, k + 8); ++d)
-                if (flag[d]) {
-                    const int v = judge(r, c0 + d, q, c0 + d + dc);
-                    if (v != 0) fn(c0 + d, v);
-                }
-        }
+        for (std::int32_t k = 0; k < n; k += 64)
+            for (std::uint64_t w = flag[k / 64]; w != 0; w &= w - 1) {
+                const std::int32_t d = k + lowest_bit(w);
+                const int v = judge(r, c0 + d, q, c0 + d + dc);
+                if (v != 0) fn(c0 + d, v);
+            }
     }
 
     /// The pair (p, q) of 4-adjacent pixels: 1 marks p, 2 marks q (3: both, on a tie), 0: the pair
@@ -362,7 +358,7 @@ private:
     MedialDiagram& m_;
     PairRule rule_;
     BoxJoin join_;
-    std::vector<std::uint8_t> flag_;
+    std::vector<std::uint64_t> flag_;  // separated pairs of a row, as bits
     std::int32_t sep2_;
 };
 
