@@ -6,6 +6,7 @@
 // limited_cells releases the GIL for the whole computation; its arrays are zero-copy read-only views
 // into the bound LimitedPartition.
 #include "arrays.hpp"
+#include "pickle.hpp"
 #include "progress.hpp"
 
 #include "dvoronoi/cells/limited_cell.hpp"
@@ -118,6 +119,97 @@ py::array piece_array(const LimitedCell& c, F f) {
 }
 
 py::object cell_object(LimitedCell&& c) { return py::cast(PyCell{std::move(c), std::nullopt}); }
+
+// Pickled states: every field of the cell or partition (see pickle.hpp).
+py::tuple cell_state(const LimitedCell& c) {
+    py::dict d;
+    d["center"] = np_of(c.center);
+    d["radius"] = c.radius;
+    d["candidates"] = c.candidates;
+    d["chords_after_check"] = c.chords_after_check;
+    d["piece_neighbor"] = piece_array(c, [](const Piece& p) { return p.neighbor; });
+    d["piece_x"] = piece_array(c, [](const Piece& p) { return p.start.x(); });
+    d["piece_y"] = piece_array(c, [](const Piece& p) { return p.start.y(); });
+    d["piece_span"] = piece_array(c, [](const Piece& p) { return p.arc_span; });
+    d["area"] = c.measures_.area;
+    d["centroid"] = np_of(c.measures_.centroid);
+    d["perimeter"] = c.measures_.perimeter;
+    return make_state(d);
+}
+
+PyCell cell_from_state(const py::tuple& t) {
+    const py::dict d = state_dict(t, "LimitedCell");
+    LimitedCell c;
+    c.center = vec2_of(d, "center");
+    c.radius = d["radius"].cast<double>();
+    c.candidates = d["candidates"].cast<Index>();
+    c.chords_after_check = d["chords_after_check"].cast<Index>();
+    const auto nb = vec_of<Index>(d, "piece_neighbor");
+    const auto x = vec_of<double>(d, "piece_x"), y = vec_of<double>(d, "piece_y"), span = vec_of<double>(d, "piece_span");
+    if (x.size() != nb.size() || y.size() != nb.size() || span.size() != nb.size())
+        throw py::value_error("pickled LimitedCell: piece arrays of different lengths");
+    for (std::size_t k = 0; k < nb.size(); ++k) {
+        Piece p;
+        p.neighbor = nb[k];
+        p.start = Vec2(x[k], y[k]);
+        p.arc_span = span[k];
+        c.pieces.push_back(p);
+    }
+    c.measures_.area = d["area"].cast<double>();
+    c.measures_.centroid = vec2_of(d, "centroid");
+    c.measures_.perimeter = d["perimeter"].cast<double>();
+    return PyCell{std::move(c), std::nullopt};
+}
+
+py::tuple partition_state(const PyPartition& pp) {
+    const LimitedPartition& p = pp.part;
+    py::dict d;
+    d["method"] = dvoronoi::method_name(pp.method);
+    d["radius"] = p.radius;
+    d["points"] = np_of(p.points);
+    d["piece_ptr"] = np_of(p.piece_ptr);
+    d["piece_neighbor"] = np_of(p.piece_neighbor);
+    d["piece_x"] = np_of(p.piece_x);
+    d["piece_y"] = np_of(p.piece_y);
+    d["piece_span"] = np_of(p.piece_span);
+    d["indptr"] = np_of(p.indptr);
+    d["indices"] = np_of(p.indices);
+    d["areas"] = np_of(p.areas);
+    d["perimeters"] = np_of(p.perimeters);
+    d["centroids"] = np_of(p.centroids);
+    d["candidates"] = np_of(p.candidates);
+    return make_state(d);
+}
+
+std::unique_ptr<PyPartition> partition_from_state(const py::tuple& t) {
+    const py::dict d = state_dict(t, "LimitedPartition");
+    auto out = std::make_unique<PyPartition>();
+    out->method = dvoronoi::parse_method(d["method"].cast<std::string>());
+    LimitedPartition& p = out->part;
+    p.method = out->method;
+    p.radius = d["radius"].cast<double>();
+    p.points = points_of(d, "points");
+    p.piece_ptr = vec_of<Index>(d, "piece_ptr");
+    p.piece_neighbor = vec_of<Index>(d, "piece_neighbor");
+    p.piece_x = vec_of<double>(d, "piece_x");
+    p.piece_y = vec_of<double>(d, "piece_y");
+    p.piece_span = vec_of<double>(d, "piece_span");
+    p.indptr = vec_of<Index>(d, "indptr");
+    p.indices = vec_of<Index>(d, "indices");
+    p.areas = vec_of<double>(d, "areas");
+    p.perimeters = vec_of<double>(d, "perimeters");
+    p.centroids = points_of(d, "centroids");
+    p.candidates = vec_of<Index>(d, "candidates");
+    const auto n = static_cast<std::size_t>(p.points.rows());
+    if (p.indptr.size() != n + 1 || p.piece_ptr.size() != n + 1 || p.areas.size() != n || p.perimeters.size() != n ||
+        static_cast<std::size_t>(p.centroids.rows()) != n || p.candidates.size() != n ||
+        p.indices.size() != static_cast<std::size_t>(p.indptr.back()) ||
+        p.piece_neighbor.size() != static_cast<std::size_t>(p.piece_ptr.back()) ||
+        p.piece_x.size() != p.piece_neighbor.size() || p.piece_y.size() != p.piece_neighbor.size() ||
+        p.piece_span.size() != p.piece_neighbor.size())
+        throw py::value_error("pickled LimitedPartition: arrays of inconsistent lengths");
+    return out;
+}
 
 const LimitedPartition& part_of(const py::object& self) { return self.cast<const PyPartition&>().part; }
 
@@ -263,6 +355,7 @@ void bind_cells(py::module_& m) {
                                [](const PyCell& c) { return c.cell.pieces.size() == 1 && c.cell.pieces[0].is_arc(); },
                                "True when no agent shapes the cell.")
         .def("__len__", [](const PyCell& c) { return c.cell.pieces.size(); }, "Number of pieces.")
+        .def(py::pickle([](const PyCell& c) { return cell_state(c.cell); }, &cell_from_state))
         .def("to_json", [](const PyCell& c, int indent) {
                  return indent < 0 ? dvoronoi::io::to_json_string(c.cell) : dvoronoi::io::to_json(c.cell).dump(indent);
              },
@@ -332,6 +425,7 @@ void bind_cells(py::module_& m) {
         .def_property_readonly("piece_span", [](const Self& s) { return view(part_of(s).piece_span, s); },
                                "Per piece: arc angle in (0, 2*pi] for arcs, 0 for edges.")
         .def("__len__", [](const PyPartition& p) { return p.part.size(); })
+        .def(py::pickle(&partition_state, &partition_from_state))
         .def("cell", [](const PyPartition& p, Index i) { return cell_object(p.part.cell(checked_index(p.part, i))); },
              py::arg("i"), "cell(i) -> LimitedCell\n\nAgent i's cell (neighbours in the partition's indexing).")
         .def("neighbors",

@@ -3,6 +3,7 @@
 // distance-only predicates. The Python layer (dvoronoi/distances) turns matrices and edge lists into
 // (rows, cols, values) and wraps the result in the shared Result surface.
 #include "arrays.hpp"
+#include "pickle.hpp"
 #include "progress.hpp"
 
 #include "dvoronoi/distances/local_region.hpp"
@@ -27,13 +28,6 @@ std::vector<T> to_vector(const py::array& a, const char* name) {
     return std::vector<T>(c.data(), c.data() + c.size());
 }
 
-template <class T>
-py::array copy_out(const std::vector<T>& v) {
-    py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
-    std::copy(v.begin(), v.end(), a.mutable_data());
-    return a;
-}
-
 py::array bool_out(const std::vector<char>& v) {
     py::array_t<bool> a(static_cast<py::ssize_t>(v.size()));
     for (std::size_t k = 0; k < v.size(); ++k) a.mutable_data()[k] = v[k] != 0;
@@ -55,10 +49,33 @@ void bind_distances(py::module_& m) {
     py::class_<dd::DistanceGraph>(m, "DistanceGraph", "Symmetric detection graph of measured distances (CSR, compiled core).")
         .def_readonly("n", &dd::DistanceGraph::n)
         .def_readonly("squared", &dd::DistanceGraph::squared)
-        .def_property_readonly("indptr", [](const dd::DistanceGraph& g) { return copy_out(g.indptr); })
-        .def_property_readonly("indices", [](const dd::DistanceGraph& g) { return copy_out(g.indices); })
-        .def_property_readonly("values", [](const dd::DistanceGraph& g) { return copy_out(g.values); })
-        .def("__len__", &dd::DistanceGraph::size);
+        .def_property_readonly("indptr", [](const dd::DistanceGraph& g) { return np_of(g.indptr); })
+        .def_property_readonly("indices", [](const dd::DistanceGraph& g) { return np_of(g.indices); })
+        .def_property_readonly("values", [](const dd::DistanceGraph& g) { return np_of(g.values); })
+        .def("__len__", &dd::DistanceGraph::size)
+        .def(py::pickle(
+            [](const dd::DistanceGraph& g) {
+                py::dict d;
+                d["n"] = g.n;
+                d["squared"] = g.squared;
+                d["indptr"] = np_of(g.indptr);
+                d["indices"] = np_of(g.indices);
+                d["values"] = np_of(g.values);
+                return make_state(d);
+            },
+            [](const py::tuple& t) {
+                const py::dict d = state_dict(t, "DistanceGraph");
+                dd::DistanceGraph g;
+                g.n = d["n"].cast<Index>();
+                g.squared = d["squared"].cast<bool>();
+                g.indptr = vec_of<Index>(d, "indptr");
+                g.indices = vec_of<Index>(d, "indices");
+                g.values = vec_of<double>(d, "values");
+                if (g.indptr.size() != static_cast<std::size_t>(g.n) + 1 || g.indices.size() != g.values.size() ||
+                    g.indices.size() != static_cast<std::size_t>(g.indptr.back()))
+                    throw py::value_error("pickled DistanceGraph: arrays of inconsistent lengths");
+                return g;
+            }));
 
     m.def(
         "distance_graph",
@@ -81,13 +98,44 @@ void bind_distances(py::module_& m) {
     py::class_<dd::DistanceNeighbors>(m, "DistanceNeighbors", "Voronoi neighbours from distances (compiled core).")
         .def_readonly("n", &dd::DistanceNeighbors::n)
         .def_readonly("consistency", &dd::DistanceNeighbors::consistency)
-        .def_property_readonly("indptr", [](const dd::DistanceNeighbors& r) { return copy_out(r.indptr); })
-        .def_property_readonly("indices", [](const dd::DistanceNeighbors& r) { return copy_out(r.indices); })
+        .def_property_readonly("indptr", [](const dd::DistanceNeighbors& r) { return np_of(r.indptr); })
+        .def_property_readonly("indices", [](const dd::DistanceNeighbors& r) { return np_of(r.indices); })
         .def_property_readonly("on_hull", [](const dd::DistanceNeighbors& r) { return bool_out(r.on_hull); })
-        .def_property_readonly("path_length", [](const dd::DistanceNeighbors& r) { return copy_out(r.path_length); })
-        .def_property_readonly("added", [](const dd::DistanceNeighbors& r) { return copy_out(r.added); })
-        .def_property_readonly("detected", [](const dd::DistanceNeighbors& r) { return copy_out(r.detected); })
-        .def("__len__", &dd::DistanceNeighbors::size);
+        .def_property_readonly("path_length", [](const dd::DistanceNeighbors& r) { return np_of(r.path_length); })
+        .def_property_readonly("added", [](const dd::DistanceNeighbors& r) { return np_of(r.added); })
+        .def_property_readonly("detected", [](const dd::DistanceNeighbors& r) { return np_of(r.detected); })
+        .def("__len__", &dd::DistanceNeighbors::size)
+        .def(py::pickle(
+            [](const dd::DistanceNeighbors& r) {
+                py::dict d;
+                d["n"] = r.n;
+                d["consistency"] = r.consistency;
+                d["indptr"] = np_of(r.indptr);
+                d["indices"] = np_of(r.indices);
+                d["on_hull"] = np_of(std::vector<std::uint8_t>(r.on_hull.begin(), r.on_hull.end()));
+                d["path_length"] = np_of(r.path_length);
+                d["added"] = np_of(r.added);
+                d["detected"] = np_of(r.detected);
+                return make_state(d);
+            },
+            [](const py::tuple& t) {
+                const py::dict d = state_dict(t, "DistanceNeighbors");
+                dd::DistanceNeighbors r;
+                r.n = d["n"].cast<Index>();
+                r.consistency = d["consistency"].cast<bool>();
+                r.indptr = vec_of<Index>(d, "indptr");
+                r.indices = vec_of<Index>(d, "indices");
+                const auto hull = vec_of<std::uint8_t>(d, "on_hull");
+                r.on_hull.assign(hull.begin(), hull.end());
+                r.path_length = vec_of<Index>(d, "path_length");
+                r.added = vec_of<Index>(d, "added");
+                r.detected = vec_of<Index>(d, "detected");
+                const auto n = static_cast<std::size_t>(r.n);
+                if (r.indptr.size() != n + 1 || r.on_hull.size() != n || r.path_length.size() != n || r.added.size() != n ||
+                    r.detected.size() != n || r.indices.size() != static_cast<std::size_t>(r.indptr.back()))
+                    throw py::value_error("pickled DistanceNeighbors: arrays of inconsistent lengths");
+                return r;
+            }));
 
     m.def(
         "neighbors_from_distances",
@@ -110,7 +158,7 @@ void bind_distances(py::module_& m) {
         "voronoi_neighbors_of",
         [](const dd::DistanceGraph& g, Index i) {
             const dd::RobotNeighbors r = dd::voronoi_neighbors(g, i);
-            return py::make_tuple(copy_out(r.order), r.hull);
+            return py::make_tuple(np_of(r.order), r.hull);
         },
         py::arg("graph"), py::arg("i"),
         "voronoi_neighbors_of(graph, i) -> (order, on_hull): one robot's VORONOI-NEIGHBORS (no consistency step).");
@@ -120,7 +168,7 @@ void bind_distances(py::module_& m) {
         [](const dd::DistanceGraph& g, Index i, std::vector<Index> order, bool hull) {
             const dd::LocalRegion r = dd::local_region(g, i, order, hull);
             py::dict d;
-            d["neighbors"] = copy_out(r.neighbors);
+            d["neighbors"] = np_of(r.neighbors);
             d["positions"] = xy_out(r.positions);
             d["vertices"] = xy_out(r.vertices);
             d["bounded"] = r.bounded;

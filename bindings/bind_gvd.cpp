@@ -30,6 +30,8 @@ namespace {
 /// A parsed obstacle file with its nearest-obstacle index for paths (built on the first path).
 struct PyScene {
     dvoronoi::io::ObstacleFile file;
+    nlohmann::json doc;  ///< the document it was compiled from (its pickled state)
+    std::string name;
     std::unique_ptr<gvd::ObstacleIndex> index;
     std::mutex mutex;
     const gvd::ObstacleIndex& path_index() {
@@ -42,6 +44,7 @@ struct PyScene {
 struct PyResult {
     gvd::GridVoronoi r;
     std::shared_ptr<PyScene> scene;
+    gvd::GvdOptions options;  ///< what made r (a pickled result is rebuilt from its scene and these)
     /// The roadmap and cell adjacency are built on first use (the diagram itself is ready at once).
     gvd::GridVoronoi& graph() {
         if (!r.has_graph) {
@@ -121,9 +124,26 @@ nlohmann::json doc_json(py::handle doc, const std::string& name) {
 /// The scene of a parsed document (the GIL released while it is checked and compiled).
 std::shared_ptr<PyScene> scene_of(const nlohmann::json& j, const std::string& name) {
     auto s = std::make_shared<PyScene>();
+    s->doc = j;
+    s->name = name;
     py::gil_scoped_release release;
     s->file = dvoronoi::io::obstacles_from_json(j, name);
     return s;
+}
+
+/// The labelled diagram of `scene` with options `o` (GIL released; InputError as ValueError).
+std::unique_ptr<PyResult> run_gvd(std::shared_ptr<PyScene> scene, const gvd::GvdOptions& o) {
+    auto out = std::make_unique<PyResult>();
+    out->scene = std::move(scene);
+    out->options = o;
+    py::gil_scoped_release release;
+    try {
+        out->r = gvd::grid_voronoi(out->scene->file.scene, o);
+    } catch (const dvoronoi::InputError& e) {
+        py::gil_scoped_acquire gil;
+        throw py::value_error(e.what());
+    }
+    return out;
 }
 
 gvd::SliceMode parse_mode(const std::string& m) {
@@ -147,6 +167,13 @@ void bind_gvd(py::module_& m) {
              py::arg("text"), py::arg("name"), py::arg("area") = py::none(),
              "The scene from JSON text (a file's bytes), with `area` (a document value) in place of the "
              "text's own when given; errors name NAME:LINE:COLUMN (private).")
+        // pickled as its document (JSON text), compiled again when loaded
+        .def(py::pickle([](const PyScene& s) { return py::make_tuple(s.doc.dump(), s.name); },
+                        [](const py::tuple& t) {
+                            if (t.size() != 2) throw py::value_error("not a pickled _GvdScene state");
+                            const std::string name = t[1].cast<std::string>();
+                            return scene_of(dvoronoi::io::parse_json(t[0].cast<std::string>(), name), name);
+                        }))
         .def_property_readonly("n_obstacles", [](const PyScene& s) { return s.file.scene.n_obstacles; })
         .def_property_readonly("n_labels", [](const PyScene& s) { return s.file.scene.n_labels; })
         .def_property_readonly("area", [](const PyScene& s) { return xy_array(s.file.scene.area); })
@@ -182,6 +209,24 @@ void bind_gvd(py::module_& m) {
         }, "Brute-force nearest obstacle (label, squared distance) of a point.");
 
     py::class_<PyResult>(m, "_GvdResult", "Grid Voronoi diagram (private; see dvoronoi.GridVoronoi).")
+        // Pickled as its scene and options; loading runs the build again, which gives the same
+        // diagram for any worker count (the run statistics are the new run's).
+        .def(py::pickle(
+            [](const PyResult& p) {
+                return py::make_tuple(p.scene, p.options.resolution, p.options.robot_radius, p.options.workers,
+                                      dvoronoi::io::mode_name(p.options.mode), p.options.visibility);
+            },
+            [](const py::tuple& t) {
+                if (t.size() != 6) throw py::value_error("not a pickled _GvdResult state");
+                gvd::GvdOptions o;
+                o.resolution = t[1].cast<std::int64_t>();
+                o.robot_radius = t[2].cast<double>();
+                o.workers = t[3].cast<int>();
+                o.mode = parse_mode(t[4].cast<std::string>());
+                o.visibility = t[5].cast<bool>();
+                o.graph = false;
+                return run_gvd(t[0].cast<std::shared_ptr<PyScene>>(), o);
+            }))
         .def_property_readonly("grid", [](const PyResult& p) {
             const auto& g = p.r.grid;
             return py::make_tuple(g.x0, g.y0, g.h, g.nx, g.ny);
@@ -267,18 +312,7 @@ void bind_gvd(py::module_& m) {
         o.mode = parse_mode(mode);
         o.visibility = visibility;
         o.graph = false;  // built on first use of the roadmap or a path
-        auto out = std::make_unique<PyResult>();
-        out->scene = scene;
-        {
-            py::gil_scoped_release release;
-            try {
-                out->r = gvd::grid_voronoi(scene->file.scene, o);
-            } catch (const dvoronoi::InputError& e) {
-                py::gil_scoped_acquire gil;
-                throw py::value_error(e.what());
-            }
-        }
-        return out;
+        return run_gvd(std::move(scene), o);
     }, py::arg("scene"), py::arg("resolution"), py::arg("robot_radius"), py::arg("workers"), py::arg("mode"),
        py::arg("visibility"));
 

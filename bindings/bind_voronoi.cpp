@@ -2,6 +2,7 @@
 // by Adjust-Sensing-Radius with Boundary Scan or EVT as the inner step. Neighbour sets and hull flags
 // are exact; arrays are copied out once (the results are small: CSR plus per-agent counters).
 #include "arrays.hpp"
+#include "pickle.hpp"
 #include "progress.hpp"
 
 #include "dvoronoi/cells/asr.hpp"
@@ -47,6 +48,97 @@ ConvexRegion region_arg(py::handle obj) {
 }
 
 py::tuple xy(const Vec2& v) { return py::make_tuple(v.x(), v.y()); }
+
+// Pickled states: every field (see pickle.hpp).
+py::tuple voronoi_cell_state(const VoronoiCell& c) {
+    py::dict d;
+    d["center"] = np_of(c.center);
+    std::vector<Index> nb;
+    std::vector<Vec2> start, end, dir;
+    std::vector<std::uint8_t> from_inf, to_inf;
+    for (const VoronoiEdge& e : c.edges) {
+        nb.push_back(e.neighbor);
+        start.push_back(e.start);
+        end.push_back(e.end);
+        dir.push_back(e.direction);
+        from_inf.push_back(e.from_infinity ? 1 : 0);
+        to_inf.push_back(e.to_infinity ? 1 : 0);
+    }
+    d["edge_neighbor"] = np_of(nb);
+    d["edge_start"] = np_of(start);
+    d["edge_end"] = np_of(end);
+    d["edge_direction"] = np_of(dir);
+    d["edge_from_infinity"] = np_of(from_inf);
+    d["edge_to_infinity"] = np_of(to_inf);
+    d["on_hull"] = c.on_hull;
+    d["radius_steps"] = c.radius_steps;
+    d["agents_used"] = c.agents_used;
+    d["is_clipped"] = c.is_clipped;
+    d["clipped_vertices"] = np_of(c.clipped.vertices);
+    d["clipped_side_neighbor"] = np_of(c.clipped.side_neighbor);
+    d["clipped_area"] = c.clipped.area;
+    d["clipped_centroid"] = np_of(c.clipped.centroid);
+    return make_state(d);
+}
+
+VoronoiCell voronoi_cell_from_state(const py::tuple& t) {
+    const py::dict d = state_dict(t, "VoronoiCell");
+    VoronoiCell c;
+    c.center = vec2_of(d, "center");
+    const auto nb = vec_of<Index>(d, "edge_neighbor");
+    const auto start = vec2s_of(d, "edge_start"), end = vec2s_of(d, "edge_end"), dir = vec2s_of(d, "edge_direction");
+    const auto from_inf = vec_of<std::uint8_t>(d, "edge_from_infinity"), to_inf = vec_of<std::uint8_t>(d, "edge_to_infinity");
+    if (start.size() != nb.size() || end.size() != nb.size() || dir.size() != nb.size() || from_inf.size() != nb.size() ||
+        to_inf.size() != nb.size())
+        throw py::value_error("pickled VoronoiCell: edge arrays of different lengths");
+    for (std::size_t k = 0; k < nb.size(); ++k)
+        c.edges.push_back({nb[k], start[k], end[k], dir[k], from_inf[k] != 0, to_inf[k] != 0});
+    c.on_hull = d["on_hull"].cast<bool>();
+    c.radius_steps = d["radius_steps"].cast<int>();
+    c.agents_used = d["agents_used"].cast<Index>();
+    c.is_clipped = d["is_clipped"].cast<bool>();
+    c.clipped.vertices = vec2s_of(d, "clipped_vertices");
+    c.clipped.side_neighbor = vec_of<Index>(d, "clipped_side_neighbor");
+    c.clipped.area = d["clipped_area"].cast<double>();
+    c.clipped.centroid = vec2_of(d, "clipped_centroid");
+    return c;
+}
+
+py::tuple voronoi_partition_state(const VoronoiPartition& p) {
+    py::dict d;
+    d["points"] = np_of(p.points);
+    d["indptr"] = np_of(p.indptr);
+    d["indices"] = np_of(p.indices);
+    d["on_hull"] = np_of(std::vector<std::uint8_t>(p.on_hull.begin(), p.on_hull.end()));
+    d["radius_steps"] = np_of(p.radius_steps);
+    d["agents_used"] = np_of(p.agents_used);
+    d["bounds"] = np_of(p.bounds.empty() ? std::vector<Vec2>{} : p.bounds.vertices());
+    d["areas"] = np_of(p.areas);
+    d["centroids"] = np_of(p.centroids);
+    return make_state(d);
+}
+
+VoronoiPartition voronoi_partition_from_state(const py::tuple& t) {
+    const py::dict d = state_dict(t, "VoronoiPartition");
+    VoronoiPartition p;
+    p.points = points_of(d, "points");
+    p.indptr = vec_of<Index>(d, "indptr");
+    p.indices = vec_of<Index>(d, "indices");
+    const auto hull = vec_of<std::uint8_t>(d, "on_hull");
+    p.on_hull.assign(hull.begin(), hull.end());
+    p.radius_steps = vec_of<int>(d, "radius_steps");
+    p.agents_used = vec_of<Index>(d, "agents_used");
+    const Points b = points_of(d, "bounds");
+    if (b.rows() > 0) p.bounds = ConvexRegion::polygon(b, "bounds");
+    p.areas = vec_of<double>(d, "areas");
+    p.centroids = points_of(d, "centroids");
+    const auto n = static_cast<std::size_t>(p.points.rows());
+    if (p.indptr.size() != n + 1 || p.on_hull.size() != n || p.radius_steps.size() != n || p.agents_used.size() != n ||
+        p.areas.size() != n || static_cast<std::size_t>(p.centroids.rows()) != n ||
+        p.indices.size() != static_cast<std::size_t>(p.indptr.back()))
+        throw py::value_error("pickled VoronoiPartition: arrays of inconsistent lengths");
+    return p;
+}
 
 }  // namespace
 
@@ -97,6 +189,7 @@ void bind_voronoi(py::module_& m) {
                                "Area of the clipped cell (with bounds), else of the bounded cell; NaN when unbounded.")
         .def_property_readonly("centroid", [](const VoronoiCell& c) { return xy(c.centroid()); })
         .def_readonly("radius_steps", &VoronoiCell::radius_steps)
+        .def(py::pickle(&voronoi_cell_state, &voronoi_cell_from_state))
         .def_readonly("agents_used", &VoronoiCell::agents_used)
         .def("__repr__", [](const VoronoiCell& c) {
             return "VoronoiCell(edges=" + std::to_string(c.edges.size()) + ", on_hull=" + (c.on_hull ? "True" : "False") +
@@ -131,7 +224,8 @@ void bind_voronoi(py::module_& m) {
             return xy_array(p.bounds.vertices());
         })
         .def("cell", [](const VoronoiPartition& p, Index i) { return p.cell(i); }, py::arg("i"))
-        .def("__len__", &VoronoiPartition::size);
+        .def("__len__", &VoronoiPartition::size)
+        .def(py::pickle(&voronoi_partition_state, &voronoi_partition_from_state));
 
     m.def(
         "voronoi_cells",

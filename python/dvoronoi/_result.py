@@ -11,8 +11,9 @@ arrays (``piece_ptr``, ``piece_neighbor``, ``piece_x``, ``piece_y``, ``piece_spa
 """
 from __future__ import annotations
 
+import functools
 import operator
-from typing import TYPE_CHECKING, Any, Optional
+from typing import TYPE_CHECKING, Any, Dict, Optional
 
 import numpy as np
 
@@ -31,6 +32,16 @@ class Result:
 
     def __len__(self) -> int:
         return int(len(self.indptr) - 1)
+
+    def __getstate__(self) -> Dict[str, Any]:
+        """Pickled state: the attributes without the cached views of the compiled result (which
+        pickles itself), so a pickle holds each array once."""
+        cls = type(self)
+        return {k: v for k, v in self.__dict__.items()
+                if not isinstance(getattr(cls, k, None), functools.cached_property)}
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:
+        self.__dict__.update(state)
 
     def _index(self, i: Any) -> int:
         i = operator.index(i)
