@@ -1,8 +1,14 @@
 #!/usr/bin/env python3
-"""Figures of docs/grid_diagram_maps.md (and the README), made from the library as it is.
+"""Figures of the documentation (docs/*.md and the README), made from the library as it is.
 
-    python3 tools/make_docs_figures.py            # writes docs/images/gvd_paris.png, gvd_pruning.png
-    python3 tools/make_docs_figures.py --out DIR  # somewhere else
+    python3 tools/make_docs_figures.py                 # writes every figure into docs/images/
+    python3 tools/make_docs_figures.py --out DIR       # somewhere else
+    python3 tools/make_docs_figures.py --only coverage # one figure (by its function name)
+
+Guides (docs/limited_cells.md, exact_cells.md, distances.md, networks.md, grid_diagram_obstacles.md,
+coverage.md, mpi.md): ``limited_cells.png``, ``exact_cells.png``, ``distances.png``,
+``networks.png``, ``gvd_obstacles.png``, ``coverage.png``, ``mpi_slabs.png`` (seeded random
+swarms, a few seconds each).
 
 - ``gvd_paris.png``: the medial diagram of the real MovingAI city map ``tests/data/maps/Paris_1_256.map``
   for a robot of radius 1 pixel, with a path between two far-apart free points.
@@ -13,7 +19,7 @@
   the spurs.
 
 Runs from any directory (paths are taken relative to the repository); matplotlib with the Agg backend,
-one thread of work, a few seconds.
+one thread of work (the MPI figure draws the slabs from one process; it needs no MPI).
 """
 from __future__ import annotations
 
@@ -31,7 +37,7 @@ from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
 import dvoronoi as dv  # noqa: E402
-from dvoronoi import occupancy_maps  # noqa: E402
+from dvoronoi import occupancy_maps, plotting  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 PARIS = ROOT / "tests" / "data" / "maps" / "Paris_1_256.map"
@@ -117,12 +123,170 @@ def pruning(out: Path) -> Path:
     return target
 
 
+def _square(ax, lo=None, hi=None) -> None:
+    ax.set_aspect("equal", adjustable="box")
+    if lo is not None:
+        ax.set_xlim(lo, hi)
+        ax.set_ylim(lo, hi)
+    ax.tick_params(labelsize=8)
+
+
+def limited_cells(out: Path) -> Path:
+    rng = np.random.default_rng(3)
+    center = np.array([0.0, 0.0])
+    others = rng.uniform(-1.9, 1.9, (9, 2))
+    others = others[np.hypot(*others.T) > 0.6]
+    cell = dv.limited_cell(center, others, radius=0.8)
+    points = rng.uniform(0, 10, (160, 2))
+    part = dv.limited_cells(points, radius=0.8, workers=1)
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 5.0))
+    plotting.plot_cell(cell, ax=axes[0], others=others)
+    axes[0].add_patch(plt.Circle(center, 0.8, fill=False, ls="--", lw=0.8, color="tab:blue"))
+    axes[0].add_patch(plt.Circle(center, 2 * 0.8, fill=False, ls=":", color="0.4"))
+    axes[0].set_title(f"one robot: limited_cell(center, others, radius=0.8)\n{len(cell.neighbors)} limited "
+                      f"neighbours, {len(cell.pieces)} pieces (edges and arcs);\ndashed: the disk of radius R, dotted: 2R", fontsize=9)
+    _square(axes[0], -2.0, 2.0)
+    part.plot(ax=axes[1])
+    axes[1].set_title(f"every agent: limited_cells(points, radius=0.8)\n{len(points)} agents, "
+                      f"{len(part.indices) // 2} limited-neighbour pairs", fontsize=9)
+    _square(axes[1], -0.9, 10.9)
+    fig.tight_layout()
+    return _save(fig, out / "limited_cells.png")
+
+
+def exact_cells(out: Path) -> Path:
+    rng = np.random.default_rng(5)
+    points = rng.uniform(1, 9, (70, 2))
+    vor = dv.voronoi_cells(points, bounds=(0, 0, 10, 10), workers=1)
+    fig, ax = plt.subplots(figsize=(6.0, 6.0))
+    vor.plot(ax=ax, delaunay=True)
+    hull = np.flatnonzero(vor.on_hull)
+    ax.scatter(points[hull, 0], points[hull, 1], s=40, facecolors="none", edgecolors="tab:red", zorder=5,
+               label=f"on_hull ({len(hull)} agents: unbounded cells, clipped to the box)")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.06), fontsize=8, frameon=False)
+    ax.set_title("voronoi_cells(points, bounds=(0, 0, 10, 10)): exact cells and the Delaunay graph", fontsize=9)
+    _square(ax, -0.3, 10.3)
+    fig.tight_layout()
+    return _save(fig, out / "exact_cells.png")
+
+
+def distances(out: Path) -> Path:
+    rng = np.random.default_rng(7)
+    points = rng.uniform(0, 10, (60, 2))
+    e = dv.distances.measure(points, radius=4.0, model="exact")
+    res = dv.neighbors_from_distances(e)
+    fig, ax = plt.subplots(figsize=(6.0, 6.0))
+    res.plot(ax=ax, points=points)
+    ax.set_title("neighbors_from_distances(e): Voronoi neighbours from distances only\n"
+                 "(60 robots, each measuring those within 4; drawn at the true positions)", fontsize=9)
+    _square(ax, -0.3, 10.3)
+    fig.tight_layout()
+    return _save(fig, out / "distances.png")
+
+
+def networks(out: Path) -> Path:
+    from dvoronoi import network
+    rng = np.random.default_rng(11)
+    points = rng.uniform(0, 100, (100, 2))
+    bars = network.random_bars(rng, 6, 25.0, (0, 0, 100, 100))
+    res = network.simulate("cc", points, comm_range=20.0, loss=0.2, obstacles=bars, seed=1)
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 5.2))
+    res.plot(ax=axes[0])
+    for (x0, y0, x1, y1) in bars:
+        axes[0].plot([x0, x1], [y0, y1], color="k", lw=2.5)
+    axes[0].set_title(f"CC over GPSR: 100 nodes, range 20, 20% loss, 6 walls (black)\n"
+                      f"Theorem 2's condition: {res.condition}; nodes not exact: {len(res.wrong_nodes)}", fontsize=9)
+    _square(axes[0], -2, 102)
+    res.plot_messages(ax=axes[1])
+    axes[1].set_title(f"messages per node ({res.total_transmissions} transmissions in all)", fontsize=9)
+    fig.tight_layout()
+    return _save(fig, out / "networks.png")
+
+
+def gvd_obstacles(out: Path) -> Path:
+    from dvoronoi.gvd_maps import mixed_shapes
+    gv = dv.grid_voronoi(mixed_shapes(), cells=512, robot_radius=1.5, workers=1)
+    route = gv.path((5, 5), (95, 95))
+    fig, ax = plt.subplots(figsize=(6.2, 6.2))
+    gv.plot(ax=ax, path=route)
+    ax.set_title("grid_voronoi(mixed_shapes(), cells=512, robot_radius=1.5)\n"
+                 "the paper's mixed-shapes map, its labelled diagram and a path", fontsize=9)
+    ax.set_aspect("equal")
+    ax.tick_params(labelsize=8)
+    fig.tight_layout()
+    return _save(fig, out / "gvd_obstacles.png")
+
+
+def coverage(out: Path) -> Path:
+    rng = np.random.default_rng(2)
+    points = rng.uniform(0.0, 0.25, (40, 2))
+
+    def density(x, y):
+        return np.exp(-((x - 0.65) ** 2 + (y - 0.6) ** 2) / 0.05)
+
+    run = dv.coverage.lloyd(points, radius=0.12, steps=60, bounds=(0, 0, 1, 1), density=density, workers=1)
+    fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.6))
+    dv.coverage.LloydStepper(points, 0.12, density=density, bounds=(0, 0, 1, 1)).cells().plot(ax=axes[0])
+    axes[0].set_title("start: 40 agents in a corner, R = 0.12", fontsize=9)
+    run.plot(ax=axes[1])
+    traj = np.asarray(run.trajectory)
+    for i in range(traj.shape[1]):
+        axes[1].plot(traj[:, i, 0], traj[:, i, 1], color="0.35", lw=0.6)
+    axes[1].set_title("after 60 Lloyd steps (grey: trajectories)", fontsize=9)
+    for ax in axes[:2]:
+        gx, gy = np.meshgrid(np.linspace(0, 1, 120), np.linspace(0, 1, 120))
+        ax.contour(gx, gy, density(gx, gy), levels=4, colors="tab:orange", linewidths=0.6)
+        _square(ax, -0.02, 1.02)
+    axes[2].plot(np.asarray(run.cost), color="tab:blue")
+    axes[2].set_xlabel("step", fontsize=9)
+    axes[2].set_ylabel("coverage cost H (never increases)", fontsize=9)
+    axes[2].tick_params(labelsize=8)
+    axes[2].set_title("cost", fontsize=9)
+    fig.tight_layout()
+    return _save(fig, out / "coverage.png")
+
+
+def mpi_slabs(out: Path) -> Path:
+    rng = np.random.default_rng(4)
+    points = rng.uniform(0, 1, (300, 2))
+    radius, ranks = 0.05, 3
+    cells = dv.coverage.LloydStepper(points, radius, bounds=(0, 0, 1, 1)).cells()
+    owner = np.minimum((points[:, 0] * ranks).astype(int), ranks - 1)
+    colours = ["tab:blue", "tab:orange", "tab:green"]
+    fig, ax = plt.subplots(figsize=(6.4, 6.0))
+    for r in range(ranks):
+        ax.axvspan(r / ranks - 2 * radius, r / ranks, color=colours[r], alpha=0.08, lw=0) if r else None
+        ax.axvspan((r + 1) / ranks, (r + 1) / ranks + 2 * radius, color=colours[r], alpha=0.08, lw=0) \
+            if r < ranks - 1 else None
+        ax.axvline(r / ranks, color="0.3", lw=1.0) if r else None
+    ax.scatter(points[:, 0], points[:, 1], s=7, c=[colours[o] for o in owner], zorder=4)
+    cells.plot(ax=ax, show_points=False, facecolor="none", alpha=1.0)
+    ax.set_title("dvoronoi.mpi: 3 ranks own x-slabs (colours); each also receives\n"
+                 "the agents within 2R of its slab (shaded halo), R = 0.05", fontsize=9)
+    _square(ax, -0.02, 1.02)
+    fig.tight_layout()
+    return _save(fig, out / "mpi_slabs.png")
+
+
+def _save(fig, target: Path) -> Path:
+    fig.savefig(target, dpi=110)
+    plt.close(fig)
+    return target
+
+
+FIGURES = (paris, pruning, limited_cells, exact_cells, distances, networks, gvd_obstacles, coverage, mpi_slabs)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", type=Path, default=ROOT / "docs" / "images", help="output directory")
+    ap.add_argument("--only", action="append", choices=[f.__name__ for f in FIGURES],
+                    help="make only this figure (repeatable)")
     args = ap.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
-    for make in (paris, pruning):
+    for make in FIGURES:
+        if args.only and make.__name__ not in args.only:
+            continue
         target = make(args.out)
         print(f"{os.path.relpath(target)}: {target.stat().st_size / 1024:.0f} KB")
 

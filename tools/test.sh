@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fresh machine -> every test: system packages, the Python package with its test extras, the C++
 # tests (unit tests and the CGAL oracle target) under ctest, the C++ unit tests again under
-# AddressSanitizer and UndefinedBehaviorSanitizer, then pytest (API, CLI, oracle).
+# AddressSanitizer and UndefinedBehaviorSanitizer, the docs site, then pytest (API, CLI, oracle, docs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install_system_deps.sh
@@ -24,6 +24,9 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DDVORONOI_BUILD_TESTS=ON 
   -DCMAKE_CXX_FLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
 cmake --build build-sanitize -j "$(nproc)" --target dvoronoi_unit_tests
 UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir build-sanitize -LE oracle -j "$(nproc)" --output-on-failure
+# The docs site (Sphinx + MyST, docs/conf.py), every warning an error; its code blocks run under pytest
+# (tests/python/test_docs_snippets.py).
+python3 -m sphinx -W --keep-going -b html docs build/docs
 DVORONOI_CGAL_ORACLE="$PWD/build/tests/oracle/dvoronoi_cgal_oracle" \
 DVORONOI_CLI="$PWD/build/cpp/cli/dvoronoi" \
 DVORONOI_GVD_MPI="$PWD/build/cpp/mpi/dvoronoi_gvd_mpi" \

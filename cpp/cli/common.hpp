@@ -126,7 +126,7 @@ inline void add_points_options(CLI::App* sub, std::string& points, std::string& 
 }
 
 /// Reads the POINTS argument with an optional --columns selection (InputError carries FILE:LINE:COL).
-/// A file whose only content is a header line is valid and has no points (SPEC), but a file of
+/// A file whose only content is a header line is valid and has no points (docs/spec.md), but a file of
 /// "hello world" is more likely the wrong file than an empty team: a warning on stderr says which
 /// line was taken for a header.
 inline io::PointFile read_points_argument(const std::string& path, const std::string& columns) {

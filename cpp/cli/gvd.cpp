@@ -1,6 +1,6 @@
 // `dvoronoi gvd OBSTACLES.json --grid N`: the grid Voronoi diagram of obstacles (Mendes et al.),
 // traced by K slice workers (threads), with clearance, roadmap and an optional path.
-// `dvoronoi gvd MAP.{yaml,pgm,png,map}`: the medial diagram of an occupancy grid (SPEC "Grid diagram
+// `dvoronoi gvd MAP.{yaml,pgm,png,map}`: the medial diagram of an occupancy grid (docs/spec.md, "Grid diagram
 // on occupancy grids"), with clearance and an optional path for a disk robot.
 #include "common.hpp"
 #include "map_options.hpp"

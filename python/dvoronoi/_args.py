@@ -2,7 +2,7 @@
 core: a pybind11 conversion error would list every accepted signature and print the whole call, arrays
 included. Each message names the argument and says what it accepts.
 
-Conventions (SPEC "API conventions"): ``workers: int | None = None`` everywhere, None or -1 = all
+Conventions (docs/spec.md, "API conventions"): ``workers: int | None = None`` everywhere, None or -1 = all
 cores, k >= 1 = k threads, anything else a ValueError naming ``workers``; ``threads`` stays as a
 deprecated alias (0 = all cores, as it always meant; None = not given, so ``threads=None`` does not
 warn). Numbers are Python or numpy numbers (or 0-d arrays of them); a string such as ``"0.2"`` or a

@@ -1,4 +1,4 @@
-"""The result surface every dvoronoi result shares (SPEC "One surface for every result").
+"""The result surface every dvoronoi result shares (docs/spec.md, "One surface for every result").
 
 A result that relates agents has ``neighbors(i)`` (int64, ascending unless the result defines an
 order), the relation as CSR arrays ``indptr``/``indices`` (scipy's layout, input order), ``to_csr()``,

@@ -311,7 +311,7 @@ class GridVoronoi(Result):
 
 
 def _workers(workers: Any) -> int:
-    """SPEC: None or -1 = all cores, k >= 1 = k threads (checked by _args.workers); the slice team
+    """docs/spec.md: None or -1 = all cores, k >= 1 = k threads (checked by _args.workers); the slice team
     needs the count itself."""
     return _args.workers(workers) or max(1, os.cpu_count() or 1)
 

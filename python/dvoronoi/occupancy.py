@@ -1,4 +1,4 @@
-"""Occupancy grids and their medial diagram (SPEC "Grid diagram on occupancy grids").
+"""Occupancy grids and their medial diagram (docs/spec.md, "Grid diagram on occupancy grids").
 
 >>> import dvoronoi as dv
 >>> grid = dv.OccupancyGrid.load("map.yaml")              # ROS map_server, .pgm, .png or MovingAI .map

@@ -357,7 +357,7 @@ def test_paths_keep_the_radius_and_exist_when_the_spec_promises_them():
         cm = gv.clearance_map
         for radius in (0.0, 0.05, 0.12):
             # pixels whose centres clear r + 1 pixel, 4-connected: the continuous set {d > r + 1 px}
-            # connects any two of one component, so the SPEC promises a path between them
+            # connects any two of one component, so docs/spec.md promises a path between them
             spare, _ = ndimage.label(cm > radius + 0.1)
             ok = np.argwhere(spare > 0)
             found = 0

@@ -334,6 +334,7 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
           a pair may be listed once or in both directions. A ``(3, 3)`` array is read as a distance
           matrix when its diagonal is all 0 or inf (as every distance matrix's is), else as an edge
           list of three rows; the tuple form is never ambiguous.
+
         A pair given in both directions must have one value unless ``symmetrize=True``, which averages
         them, ``e_ij = (sigma_ij + sigma_ji) / 2`` as in the paper (and, for a dense matrix, drops
         pairs detected in one direction only).

@@ -10,7 +10,7 @@
 // for a hull robot its two ends are the hull neighbours) and the Hull/Interior flag.
 //
 // Degenerate inputs (the paper assumes no three robots collinear and no four cocircular). With exact
-// inputs we return the SPEC's answer: neighbours are robots whose cells share an edge of positive
+// inputs we return the answer of docs/spec.md: neighbours are robots whose cells share an edge of positive
 // length. Collinear robots are outside the open half-planes of Theorem 3 (S = 0). When several robots
 // tie for MIN-RADIUS or MIN-SIGNED-RADIUS they are cocircular with i and j; of these only the one
 // adjacent to i on their common circle shares a positive-length edge with i, and we pick it (the

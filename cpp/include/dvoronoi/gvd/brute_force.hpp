@@ -1,4 +1,4 @@
-// The brute-force oracle of the grid Voronoi diagram (SPEC): every corner of the grid labelled by
+// The brute-force oracle of the grid Voronoi diagram (docs/spec.md): every corner of the grid labelled by
 // scanning every obstacle part (no index; same distances and tie rule as the tracer), and every
 // working-area cell whose corners carry two or more labels marked. Used by the tests; O(grid area x
 // obstacles).

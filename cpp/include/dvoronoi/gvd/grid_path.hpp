@@ -1,4 +1,4 @@
-// Paths for a disk robot on an occupancy grid (SPEC "paths"): no path when start and goal are
+// Paths for a disk robot on an occupancy grid (docs/spec.md, "paths"): no path when start and goal are
 // disconnected in {x : d(x, occupied) > r}; a path whenever they are connected in
 // {x : d(x, occupied) > r + 1 pixel}; every segment keeps a distance > r from every occupied pixel.
 //
@@ -9,7 +9,7 @@
 // centres make clear steps. A free path with clearance > r + sqrt(2)/2 crosses pixels whose centres
 // are within sqrt(2)/2 of it, hence clear, and 4-adjacent (a crossing exactly through a corner is
 // replaced by a detour through one of the two other pixels, also within sqrt(2)/2): the search
-// finds a path whenever the SPEC promises one.
+// finds a path whenever docs/spec.md promises one.
 // Costs keep the path on the diagram where it serves: a step onto a diagram pixel costs its length,
 // a step elsewhere `off_diagram_cost` times that. The pixel path is then straightened where a
 // straight segment is exactly clear (segment_clear below), runs of diagram pixels only among

@@ -1,4 +1,4 @@
-// Obstacles and the working area of the grid Voronoi diagram (Mendes et al., SPEC "Grid diagram of
+// Obstacles and the working area of the grid Voronoi diagram (Mendes et al., docs/spec.md, "Grid diagram of
 // obstacles"), compiled into a Scene of convex parts.
 //
 // An Obstacle is one label: a point, a segment, a circle, a simple polygon (convex or not), or a union

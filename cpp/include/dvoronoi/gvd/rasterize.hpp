@@ -1,4 +1,4 @@
-// Obstacle documents on the pixel grid, for the medial diagram (SPEC: diagram="medial" also applies
+// Obstacle documents on the pixel grid, for the medial diagram (docs/spec.md: diagram="medial" also applies
 // to obstacle documents, where it separates the parts of one non-convex obstacle).
 //
 // The area's bounding box is cut into `cells` square pixels along its longer side (make_grid, as the

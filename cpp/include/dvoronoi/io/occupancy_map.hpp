@@ -1,5 +1,5 @@
 // Occupancy-grid map files: ROS map_server YAML (with its PGM or PNG image), PGM (P2/P5), PNG and the
-// MovingAI benchmark `.map` text format (SPEC "Grid diagram on occupancy grids").
+// MovingAI benchmark `.map` text format (docs/spec.md, "Grid diagram on occupancy grids").
 //
 // Grey images follow map_server's trinary rule: with v the grey level scaled to [0, 1] (the mean of
 // the colour channels, alpha ignored), the occupancy probability is p = 1 - v (p = v with `negate`); p > occupied_thresh is
