@@ -101,10 +101,11 @@ inline void bounded_cell(const Vec2& c, const std::vector<Vec2>& nb, std::vector
         const Vec2 ai = (nb[(t + s - 1) % s] - c) * unit, aj = (nb[t] - c) * unit;
         b.push(line_vertex(ai.x(), ai.y(), ai.squaredNorm(), aj.x(), aj.y(), aj.squaredNorm()), false, 0.0);
     }
+    b.summarize();
     const LocalMeasures lm =
         accurate_measures(b, 0.0, [&](std::size_t k) { return exact_vertex(c, nb[(k + s - 1) % s], nb[k], unit); });
     local.clear();
-    for (const Vec2& v : b.v) local.push_back(back * v);
+    for (const BoundaryPoint& q : b) local.push_back(back * q.v);
     m.area = lm.area * back * back;
     m.centroid = c + back * Vec2(lm.cx, lm.cy);
 }

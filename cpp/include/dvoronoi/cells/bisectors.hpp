@@ -283,39 +283,62 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
     thread_local EmitScratch scratch;
     Boundary& b = scratch.boundary;
     auto& source = scratch.source;
-    b.clear();
-    source.clear();
-    const auto line = [&](std::size_t t) -> const Line& { return L[static_cast<std::size_t>(cycle[t % s])]; };
+    // At most two pieces per line; written by index with a count in a register (push_back would
+    // store the vectors' ends to thread-local memory at every piece).
+    BoundaryPoint* bp = b.room(2 * s);
+    if (source.size() < 2 * s) source.resize(2 * s);
+    VertexSource* src = source.data();
+    std::size_t n = 0;
+    Boundary::Summary sum;  // in registers through the loop
+    // The pieces as they come (moved only where accurate_measures moves a vertex), and the arcs'
+    // spans once measured.
+    const auto put = [&](const BoundedPoint& q, bool is_arc, double span, VertexSource from, Index id) {
+        const BoundaryPoint x{Vec2(q.x, q.y), q.e, span, is_arc};
+        sum.add(x);
+        bp[n] = x;
+        src[n++] = from;
+        Piece p;
+        p.neighbor = id;
+        p.start = c + back * Vec2(q.x, q.y);
+        out.pieces.push_back(p);
+    };
+    const auto line = [&](std::size_t t) -> const Line& { return L[static_cast<std::size_t>(cycle[t])]; };
     const auto chord = [&](const Line& l, int sigma) { return chord_vertex(l.a.x() * unit, l.a.y() * unit, r, sigma); };
+    const double u2 = unit * unit;
     for (std::size_t t = 0; t < s; ++t) {
         const Line& j = line(t);
-        const std::size_t tp = (t + s - 1) % s;
+        const std::size_t tp = t == 0 ? s - 1 : t - 1;  // no integer division
         const Line& i = line(tp);
-        if (meets[tp]) {
-            const double u2 = unit * unit;
-            b.push(line_vertex(i.a.x() * unit, i.a.y() * unit, i.n2 * u2, j.a.x() * unit, j.a.y() * unit, j.n2 * u2),
-                   false, 0.0);
-            source.push_back({cycle[tp], cycle[t], 0});
-        } else {
-            b.push(chord(j, -1), false, 0.0);
-            source.push_back({cycle[t], 0, -1});
-        }
+        if (meets[tp])
+            put(line_vertex(i.a.x() * unit, i.a.y() * unit, i.n2 * u2, j.a.x() * unit, j.a.y() * unit, j.n2 * u2),
+                false, 0.0, {cycle[tp], cycle[t], 0}, j.id);
+        else
+            put(chord(j, -1), false, 0.0, {cycle[t], 0, -1}, j.id);
         if (!meets[t]) {
             // The span from the combinatorial gap: it picks the branch of the direct angle between
             // the endpoints (tiny arcs never become full turns).
-            const Line& k = line(t + 1);
+            const Line& k = line(t + 1 == s ? 0 : t + 1);
             const double approx = ccw_gap(c, j, s == 1 ? j : k, unit) - chord_half_angle(j.a * unit, r) -
                                   chord_half_angle(k.a * unit, r);
-            b.push(chord(j, +1), true, approx);
-            source.push_back({cycle[t], 0, +1});
+            put(chord(j, +1), true, approx, {cycle[t], 0, +1}, kArc);
         }
     }
-    const LocalMeasures m = accurate_measures(b, r, [&](std::size_t k) {
+    b.set_size(n);
+    sum.to(b);
+    const auto exact = [&](std::size_t k) {
         const VertexSource& v = source[k];
         const Line& li = L[static_cast<std::size_t>(v.i)];
         if (v.sigma != 0) return exact_chord_end(c, li.p, r, unit, v.sigma);
         return exact_vertex(c, li.p, L[static_cast<std::size_t>(v.j)].p, unit);
-    });
+    };
+    const auto refine = [&](std::size_t k) {  // most refined vertices: no allocation
+        const VertexSource& v = source[k];
+        DDPoint x;
+        if (v.sigma == 0 && dd_vertex(c, L[static_cast<std::size_t>(v.i)].p, L[static_cast<std::size_t>(v.j)].p, unit, x))
+            return x;
+        return exact(k);
+    };
+    const LocalMeasures m = accurate_measures(b, r, refine, exact);
     out.measures_.area = m.area * back * back;
     out.measures_.centroid = c + back * Vec2(m.cx, m.cy);
     out.measures_.perimeter = m.perimeter * back;
@@ -328,11 +351,9 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
             "scale by more than doubles resolve; coordinates are in range for nonzero differences between "
             "about 1e-45 and 1e45)");
     for (std::size_t k = 0; k < b.size(); ++k) {
-        Piece p;
-        p.neighbor = b.arc[k] ? kArc : L[static_cast<std::size_t>(b.arc[k] ? 0 : source[k].sigma != 0 ? source[k].i : source[k].j)].id;
-        p.start = c + back * b.v[k];
-        p.arc_span = b.arc[k] ? b.span[k] : 0.0;
-        out.pieces.push_back(p);
+        Piece& p = out.pieces[k];
+        if (b.changed) p.start = c + back * b.p[k].v;
+        if (p.is_arc()) p.arc_span = b.p[k].span;
     }
 }
 

@@ -99,6 +99,7 @@ inline ClippedCell certified_cell_measures(const ExactClip& cell, const ClipWork
     const std::size_t s = cell.side.size();
     for (const clip::CellVertex& v : cell.vertex) b.push({v.x * unit, v.y * unit, v.e * unit}, false, 0.0);
     const auto at = [&](int k) { return Vec2(w.px[static_cast<std::size_t>(k)], w.py[static_cast<std::size_t>(k)]); };
+    b.summarize();
     const LocalMeasures lm = accurate_measures(b, 0.0, [&](std::size_t t) {
         return exact_vertex(w.c, at(cell.side[(t + s - 1) % s]), at(cell.side[t]), unit);
     });
