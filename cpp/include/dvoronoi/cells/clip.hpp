@@ -4,10 +4,11 @@
 //
 // The clipped cell is the region intersected with the half-planes of the agent's Voronoi neighbours
 // (the cell is exactly that intersection), by Sutherland-Hodgman in the agent's frame. The
-// combinatorics of the cell (its neighbours, bounded or not) come from the exact predicates; the
-// clipped polygon is a constructed object: its vertices carry rounding error (relative ~1e-15 of the
-// region's size in the agent's frame), so clipped areas over all agents sum to the region's area up
-// to about n * 1e-15 of it. A cell that meets the region with zero area (along the region's side or at
+// combinatorics of the cell (its neighbours, bounded or not) come from the exact predicates; which
+// region corners a bisector cuts off is decided in floating point by the clipping. Each vertex is then
+// constructed again from its two lines (bisectors or region edges) and the polygon measured to
+// core/accurate.hpp's accuracy (docs/guarantees.md), so clipped areas over all agents sum to the
+// region's area up to about n 2^-40 of it. A cell that meets the region with zero area (along the region's side or at
 // a corner) misses it: empty, like a cell outside it. Each side is labelled with what it lies on, the
 // neighbour whose bisector cut it or the region's boundary (-1), also where a Voronoi vertex lies
 // exactly on the region's boundary.
