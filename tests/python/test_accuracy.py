@@ -158,22 +158,20 @@ REPRO = [[1.1443556419135317, 46.94138466863679], [77.34700595259886, 99.9551300
 
 
 def test_issue_reproducer_area():
-    # Near-parallel bisectors of a close pair meeting far away (issue 20, item 5).
-    verts, spans, area, cen, per = reference_limited(
-        np.array(REPRO), 0, 1000.0, *[[int(v) for v in x] if k == 0 else [float(v) for v in x] for k, x in
-                                      enumerate(_pieces(REPRO, 1000.0, 0))])
+    # Near-parallel bisectors of a close pair meeting far away (issue 20, item 5): the exact area from
+    # exact rational vertices and mpmath arcs, with the pieces of dvoronoi's cell.
+    part = dv.limited_cells(REPRO, 1000.0)
+    nb = [int(v) for v in part.piece_neighbor[part.piece_ptr[0]:part.piece_ptr[1]]]
+    spans = [float(v) for v in part.piece_span[part.piece_ptr[0]:part.piece_ptr[1]]]
+    _, _, area, _, _ = reference_limited(np.array(REPRO), 0, 1000.0, nb, spans)
     assert abs(float(area) - 1663592.40467) < 1e-5
+    D = 2000.0  # at most the disk's diameter
     for method in METHODS:
         got = dv.limited_cells(REPRO, 1000.0, method=method).areas[0]
-        D = 2000.0
         assert abs(got - float(area)) <= ACC * D * D, (method, got, float(area))
+        one = dv.limited_cell(center=REPRO[0], others=REPRO[1:], radius=1000.0, method=method)
+        assert abs(one.area - float(area)) <= ACC * D * D, (method, one.area, float(area))
     assert_limited_accurate(REPRO, 1000.0, "reproducer")
-
-
-def _pieces(points, radius, i):
-    part = dv.limited_cells(points, radius)
-    lo, hi = part.piece_ptr[i], part.piece_ptr[i + 1]
-    return part.piece_neighbor[lo:hi], part.piece_span[lo:hi]
 
 
 def test_near_parallel_bisectors():
