@@ -46,6 +46,9 @@ TEST_CASE("line_vertex and chord_vertex bounds hold against the exact constructi
         const DDPoint x = exact_vertex(c, pj, pk, 1.0);
         if (std::isfinite(v.e)) CHECK(dist(x, v.x, v.y) <= v.e);
         refined += !(v.e <= 0x1p-44 * std::hypot(v.x, v.y));
+        // The cheap refinement: within 2^-51 |v| whenever it answers.
+        DDPoint y;
+        if (dd_vertex(c, pj, pk, 1.0, y)) CHECK(dist(x, y.x.value(), y.y.value()) <= 0x1p-51 * x.value().norm());
         // The exact stage: within an ulp of the exact vertex, checked on its defining property
         // (equidistant from c, p_j, p_k) through double-double residuals.
         const Vec2 vv = x.value();
