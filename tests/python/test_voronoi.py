@@ -155,15 +155,17 @@ def test_clipped_sides_labelled_when_a_vertex_lies_on_the_box():
     pts = np.array([[55.0, 5.0], [85.0, 5.0], [65.0, 15.0]])
     box = (0.0, 0.0, 110.0, 50.0)
     part = dv.voronoi_cells(pts, bounds=box)
-    sides = {i: dict(zip(map(tuple, part.cell(i).clipped.vertices.tolist()),
-                         part.cell(i).clipped.side_neighbors.tolist())) for i in range(3)}
-    assert sides[0][(70.0, 0.0)] == 2 and sides[2][(70.0, 0.0)] == 1 and sides[1][(70.0, 0.0)] == -1
+
+    def label_at(clipped, v):  # vertices are constructions (docs/guarantees.md): near, not equal
+        at = np.linalg.norm(clipped.vertices - np.asarray(v), axis=1)
+        assert at.min() <= 1e-12 * 110.0
+        return int(clipped.side_neighbors[int(np.argmin(at))])
+
+    assert [label_at(part.cell(i).clipped, (70.0, 0.0)) for i in range(3)] == [2, -1, 1]
     check_side_labels(pts, box, "three agents")
     # The per-agent call (neighbour ids index `others`).
-    cell = dv.voronoi_cell(pts[0], pts[1:], bounds=box).clipped
-    assert dict(zip(map(tuple, cell.vertices.tolist()), cell.side_neighbors.tolist()))[(70.0, 0.0)] == 1
-    cell = dv.voronoi_cell(pts[2], pts[:2], bounds=box).clipped
-    assert dict(zip(map(tuple, cell.vertices.tolist()), cell.side_neighbors.tolist()))[(70.0, 0.0)] == 1
+    assert label_at(dv.voronoi_cell(pts[0], pts[1:], bounds=box).clipped, (70.0, 0.0)) == 1
+    assert label_at(dv.voronoi_cell(pts[2], pts[:2], bounds=box).clipped, (70.0, 0.0)) == 1
 
 
 @pytest.mark.parametrize("seed", range(4))

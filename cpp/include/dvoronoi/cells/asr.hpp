@@ -53,6 +53,9 @@ struct VoronoiCell {
     Index agents_used = 0;       ///< agents within the final sensing radius (all of them if uncertified)
     bool is_clipped = false;     ///< `clipped` holds the cell cut to the caller's region
     ClippedCell clipped;         ///< the cell cut to the caller's region (when is_clipped)
+    /// Area and centroid of the bounded cell, taken where it was built (from exact positions, to
+    /// core/accurate.hpp's accuracy); NaN when unbounded.
+    ClippedCell bounded;
 
     /// Area and centroid: of the clipped cell when clipped, else of the bounded cell; NaN for an
     /// unbounded cell that was not clipped (never an invented boundary).
@@ -63,10 +66,7 @@ struct VoronoiCell {
         ClippedCell m;
         m.area = std::numeric_limits<double>::quiet_NaN();
         if (on_hull || edges.size() < 3) return m;
-        std::vector<Vec2> local;
-        for (const VoronoiEdge& e : edges) local.push_back(e.start - center);
-        detail::polygon_measures(local, center, m);
-        return m;
+        return bounded;
     }
 
     /// Voronoi neighbours (cells sharing a segment of positive length), ascending.
@@ -85,6 +85,30 @@ struct VoronoiCell {
 enum class AsrInner { Scan, Evt };
 
 namespace detail {
+
+/// The vertices (relative to c) and measures of c's bounded cell whose Voronoi neighbours,
+/// counter-clockwise, are at nb: to core/accurate.hpp's accuracy, in units of 2^e ~ the farthest
+/// neighbour's distance (an exact scaling).
+inline void bounded_cell(const Vec2& c, const std::vector<Vec2>& nb, std::vector<Vec2>& local, ClippedCell& m) {
+    thread_local Boundary b;
+    b.clear();
+    const std::size_t s = nb.size();
+    double far = 0.0;
+    for (const Vec2& p : nb) far = std::max(far, (p - c).cwiseAbs().maxCoeff());
+    const int e = far > 0.0 ? std::ilogb(far) : 0;
+    const double unit = std::ldexp(1.0, -e), back = std::ldexp(1.0, e);
+    for (std::size_t t = 0; t < s; ++t) {
+        const Vec2 ai = (nb[(t + s - 1) % s] - c) * unit, aj = (nb[t] - c) * unit;
+        b.push(line_vertex(ai.x(), ai.y(), ai.squaredNorm(), aj.x(), aj.y(), aj.squaredNorm()), false, 0.0);
+    }
+    b.summarize();
+    const LocalMeasures lm =
+        accurate_measures(b, 0.0, [&](std::size_t k) { return exact_vertex(c, nb[(k + s - 1) % s], nb[k], unit); });
+    local.clear();
+    for (const BoundaryPoint& q : b) local.push_back(back * q.v);
+    m.area = lm.area * back * back;
+    m.centroid = c + back * Vec2(lm.cx, lm.cy);
+}
 
 /// Direction of L_j, counter-clockwise around c: perp(a_j) normalised.
 inline Vec2 edge_direction(const Line& l) { return Vec2(-l.a.y(), l.a.x()).normalized(); }
@@ -129,8 +153,8 @@ inline void unlimited_cell(const Vec2& c, CellWorkspace& ws, VoronoiCell& out) {
             const Vec2 foot = 0.5 * j.a;
             e.from_infinity = !has_prev;
             e.to_infinity = !has_next;
-            e.start = c + (has_prev ? vertex(L[static_cast<std::size_t>(st[t - 1].line)].a, j.a) : foot);
-            e.end = c + (has_next ? vertex(j.a, L[static_cast<std::size_t>(st[t + 1].line)].a) : foot);
+            e.start = c + (has_prev ? accurate_vertex(c, L[static_cast<std::size_t>(st[t - 1].line)].p, j.p) : foot);
+            e.end = c + (has_next ? accurate_vertex(c, j.p, L[static_cast<std::size_t>(st[t + 1].line)].p) : foot);
             out.edges.push_back(e);
         }
         return;
@@ -154,15 +178,17 @@ inline void unlimited_cell(const Vec2& c, CellWorkspace& ws, VoronoiCell& out) {
         if (k != 0) st.push_back({k, g.orient(k, st.back().line), true});
     }
     const std::size_t s = st.size();
+    thread_local std::vector<Vec2> nb, local;
+    nb.clear();
+    for (std::size_t t = 0; t < s; ++t) nb.push_back(L[static_cast<std::size_t>(st[t].line)].p);
+    bounded_cell(c, nb, local, out.bounded);
     for (std::size_t t = 0; t < s; ++t) {
-        const Line& i = L[static_cast<std::size_t>(st[(t + s - 1) % s].line)];
         const Line& j = L[static_cast<std::size_t>(st[t].line)];
-        const Line& k = L[static_cast<std::size_t>(st[(t + 1) % s].line)];
         VoronoiEdge e;
         e.neighbor = j.id;
         e.direction = edge_direction(j);
-        e.start = c + vertex(i.a, j.a);
-        e.end = c + vertex(j.a, k.a);
+        e.start = c + local[t];
+        e.end = c + local[(t + 1) % s];
         out.edges.push_back(e);
     }
 }
@@ -175,6 +201,13 @@ void edges_from_neighbors(const Vec2& c, const std::vector<Index>& nb, bool unbo
     out.edges.clear();
     const std::size_t s = nb.size();
     const auto a = [&](std::size_t t) -> Vec2 { return pos(nb[t]) - c; };  // a value, not an Eigen expression of a temporary
+    thread_local std::vector<Vec2> at, local;
+    const bool bounded = !unbounded && s >= 3;
+    if (bounded) {
+        at.clear();
+        for (std::size_t t = 0; t < s; ++t) at.push_back(pos(nb[t]));
+        bounded_cell(c, at, local, out.bounded);
+    }
     for (std::size_t t = 0; t < s; ++t) {
         const Vec2 aj = a(t);
         VoronoiEdge e;
@@ -184,8 +217,13 @@ void edges_from_neighbors(const Vec2& c, const std::vector<Index>& nb, bool unbo
         const bool has_next = (!unbounded || t + 1 < s) && s > 1 && pred::orient(c, pos(nb[t]), pos(nb[(t + 1) % s])) > 0;
         e.from_infinity = !has_prev;
         e.to_infinity = !has_next;
-        e.start = c + (has_prev ? vertex(a((t + s - 1) % s), aj) : Vec2(0.5 * aj));
-        e.end = c + (has_next ? vertex(aj, a((t + 1) % s)) : Vec2(0.5 * aj));
+        if (bounded) {
+            e.start = c + local[t];
+            e.end = c + local[(t + 1) % s];
+        } else {
+            e.start = c + (has_prev ? accurate_vertex(c, pos(nb[(t + s - 1) % s]), pos(nb[t])) : Vec2(0.5 * aj));
+            e.end = c + (has_next ? accurate_vertex(c, pos(nb[t]), pos(nb[(t + 1) % s])) : Vec2(0.5 * aj));
+        }
         out.edges.push_back(e);
     }
     out.on_hull = unbounded;
@@ -325,6 +363,8 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
             if (clip->inside_disk) {  // certified: the limited cell is the whole cell
                 for (std::size_t t = 0; t < limited.pieces.size(); ++t)
                     out.edges.push_back(voronoi_edge(limited, t, clip->lines[static_cast<std::size_t>(clip->cycle[t])]));
+                out.bounded.area = limited.measures().area;
+                out.bounded.centroid = limited.measures().centroid;
                 return;
             }
             if (certify_beyond_radius(self, c, radius, inner, cert, ws, dws, cand, out)) return;
@@ -341,6 +381,8 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
         if (certified) {
             for (std::size_t t = 0; t < limited.pieces.size(); ++t)
                 out.edges.push_back(voronoi_edge(limited, t, ws.lines[static_cast<std::size_t>(st[t])]));
+            out.bounded.area = limited.measures().area;
+            out.bounded.centroid = limited.measures().centroid;
             return;
         }
         if (certify_beyond_radius(self, c, radius, inner, cert, ws, dws, cand, out)) return;

@@ -3,6 +3,7 @@
 // constructChords), and the final assembly of a cell from its cyclic list of boundary bisectors.
 #pragma once
 
+#include "dvoronoi/core/accurate.hpp"
 #include "dvoronoi/core/cell.hpp"
 #include "dvoronoi/core/predicates.hpp"
 
@@ -184,25 +185,23 @@ inline void sorted_bisectors(const Vec2& c, const std::vector<Candidate>& cand, 
     L.resize(w);
 }
 
-// ---- constructions (rounded once per operation; never used for decisions) ----
+// ---- constructions (never used for decisions; accurate as core/accurate.hpp states) ----
 
-/// Half-length of the chord of L_j in the disk: sqrt(R^2 - |a|^2/4), in a cancellation-free form.
-inline double half_chord(const Vec2& a, double radius) {
-    const double h = 0.5 * a.norm();
-    return std::sqrt(std::max(0.0, (radius - h) * (radius + h)));
-}
-
-/// Chord endpoint relative to c: sigma = -1 the counter-clockwise-first (s_j), +1 the last (e_j).
-inline Vec2 chord_end(const Vec2& a, double radius, int sigma) {
-    const double w = half_chord(a, radius) / a.norm();
-    return 0.5 * a + sigma * w * Vec2(-a.y(), a.x());
-}
-
-/// v_jk relative to c (the circumcenter of c, p_j, p_k).
+/// v_jk relative to c (the circumcenter of c, p_j, p_k), rounded once per operation: for
+/// certificates that need no accuracy (partition/empty_circle_certificate.hpp).
 inline Vec2 vertex(const Vec2& aj, const Vec2& ak) {
     const double d = aj.x() * ak.y() - aj.y() * ak.x();
     const double hj = 0.5 * aj.squaredNorm(), hk = 0.5 * ak.squaredNorm();
     return Vec2((hj * ak.y() - hk * aj.y()) / d, (aj.x() * hk - ak.x() * hj) / d);
+}
+
+/// v_jk relative to c, within 2^-44 |v_jk| of the exact vertex (the bound of line_vertex, else
+/// exact expansions in double-double): for cells whose measures are not taken from it.
+inline Vec2 accurate_vertex(const Vec2& c, const Vec2& pj, const Vec2& pk) {
+    const Vec2 aj = pj - c, ak = pk - c;
+    const BoundedPoint v = line_vertex(aj.x(), aj.y(), aj.squaredNorm(), ak.x(), ak.y(), ak.squaredNorm());
+    if (v.e <= 0x1p-44 * 0.7071 * l1(v.x, v.y)) return Vec2(v.x, v.y);
+    return exact_vertex(c, pj, pk, 1.0).value();
 }
 
 /// The binary exponent of v (ilogb, without a call for a normal v).
@@ -222,29 +221,9 @@ inline double power_of_two(int e) {
     return v;
 }
 
-/// v_jk relative to c in units of 1 / `unit` (a power of two: v_jk * unit), from the agents
-/// themselves: vertex() of the scaled a_j, a_k when its determinant D_jk is well conditioned (the
-/// rounding of a_j, a_k and of the products moves it by less than 2^-20 of itself), else the same
-/// formula on exact expansions of p - c, scaled by a power of two to about 1 and rounded once at the
-/// end. So nearly parallel bisectors (a far vertex of nearly collinear agents, or two neighbours 1
-/// apart seen from 1e50 away) give a vertex within a few ulps instead of one whose D_jk rounded to
-/// anything, 0 included (an infinite vertex, a NaN area).
-inline Vec2 vertex(const Vec2& c, const Line& j, const Line& k, double unit) {
-    const Vec2 ja = j.a * unit, ka = k.a * unit;
-    const double l = ja.x() * ka.y(), r = ja.y() * ka.x();
-    if (std::fabs(l - r) > 0x1p-20 * (std::fabs(l) + std::fabs(r))) return vertex(ja, ka);
-    const int e = std::ilogb(std::max(ja.cwiseAbs().maxCoeff(), ka.cwiseAbs().maxCoeff()));
-    const Expansion s(std::ldexp(unit, -e));
-    const Expansion jx = Expansion::diff(j.p.x(), c.x()) * s, jy = Expansion::diff(j.p.y(), c.y()) * s;
-    const Expansion kx = Expansion::diff(k.p.x(), c.x()) * s, ky = Expansion::diff(k.p.y(), c.y()) * s;
-    const Expansion nj = jx * jx + jy * jy, nk = kx * kx + ky * ky;
-    const double d2 = 2.0 * (jx * ky - jy * kx).estimate();
-    return Vec2(std::ldexp((nj * ky - nk * jy).estimate() / d2, e), std::ldexp((jx * nk - kx * nj).estimate() / d2, e));
-}
-
 /// Half the angle the chord of L_j subtends at c.
 inline double chord_half_angle(const Vec2& a, double radius) {
-    return std::atan2(half_chord(a, radius), 0.5 * a.norm());
+    return std::atan2(half_chord(a.x(), a.y(), radius), 0.5 * a.norm());
 }
 
 /// Counter-clockwise angle from direction a_j to a_k, in (0, 2 pi]; `same` lines give 2 pi. The
@@ -261,9 +240,23 @@ inline double ccw_gap(const Vec2& c, const Line& j, const Line& k, double unit =
     return kTwoPi / 2.0;  // opposite directions (same directions were merged)
 }
 
+/// What a cell's vertex is, for its exact recomputation: the meeting of two bisectors (lines i, j)
+/// or, with sigma != 0, the end of line i's chord.
+struct VertexSource {
+    int i, j, sigma;
+};
+
+/// Per-thread scratch of emit_cell.
+struct EmitScratch {
+    Boundary boundary;
+    std::vector<VertexSource> source;
+};
+
 /// Assembles the cell from its boundary bisectors in counter-clockwise order (`cycle`, indices into
 /// ws.lines) and, for each t, whether the edge of cycle[t] meets the edge of cycle[t+1] at their
-/// vertex (true) or the boundary follows an arc between them (false).
+/// vertex (true) or the boundary follows an arc between them (false). Vertices, arc spans and
+/// measures meet core/accurate.hpp's guarantee: each is computed in double with an error bound and
+/// redone from exact expansions where the bound is too large.
 inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
                       const std::vector<int>& cycle, const std::vector<char>& meets,
                       LimitedCell& out) {
@@ -277,51 +270,91 @@ inline void emit_cell(const Vec2& c, double radius, const std::vector<Line>& L,
     // radius), measured there, then moved to the caller's frame.
     const int e = binary_exponent(radius);
     const double unit = power_of_two(-e), back = power_of_two(e), r = radius * unit;
-    if (s == 0) {
+    if (s == 0) {  // the full disk: its start (r, 0) and centroid are exact
         Piece arc;
-        arc.start = Vec2(r, 0.0);
+        arc.start = Vec2(radius, 0.0) + c;
         arc.arc_span = kTwoPi;
         out.pieces.push_back(arc);
+        out.measures_.area = 0.5 * kTwoPi * r * r * back * back;
+        out.measures_.centroid = c;
+        out.measures_.perimeter = kTwoPi * radius;
+        return;
     }
+    thread_local EmitScratch scratch;
+    Boundary& b = scratch.boundary;
+    auto& source = scratch.source;
+    // At most two pieces per line; written by index with a count in a register (push_back would
+    // store the vectors' ends to thread-local memory at every piece).
+    BoundaryPoint* bp = b.room(2 * s);
+    if (source.size() < 2 * s) source.resize(2 * s);
+    VertexSource* src = source.data();
+    std::size_t n = 0;
+    Boundary::Summary sum;  // in registers through the loop
+    // The pieces as they come (moved only where accurate_measures moves a vertex), and the arcs'
+    // spans once measured.
+    const auto put = [&](const BoundedPoint& q, bool is_arc, double span, VertexSource from, Index id) {
+        const BoundaryPoint x{Vec2(q.x, q.y), q.e, span, is_arc};
+        sum.add(x);
+        bp[n] = x;
+        src[n++] = from;
+        Piece p;
+        p.neighbor = id;
+        p.start = c + back * Vec2(q.x, q.y);
+        out.pieces.push_back(p);
+    };
+    const auto line = [&](std::size_t t) -> const Line& { return L[static_cast<std::size_t>(cycle[t])]; };
+    const auto chord = [&](const Line& l, int sigma) { return chord_vertex(l.a.x() * unit, l.a.y() * unit, r, sigma); };
+    const double u2 = unit * unit;
     for (std::size_t t = 0; t < s; ++t) {
-        const Line& j = L[static_cast<std::size_t>(cycle[t])];
-        const std::size_t tp = (t + s - 1) % s;
-        const Line& i = L[static_cast<std::size_t>(cycle[tp])];
-        const Vec2 ja = j.a * unit;
-        Piece edge;
-        edge.neighbor = j.id;
-        edge.start = meets[tp] ? vertex(c, i, j, unit) : chord_end(ja, r, -1);
-        out.pieces.push_back(edge);
+        const Line& j = line(t);
+        const std::size_t tp = t == 0 ? s - 1 : t - 1;  // no integer division
+        const Line& i = line(tp);
+        if (meets[tp])
+            put(line_vertex(i.a.x() * unit, i.a.y() * unit, i.n2 * u2, j.a.x() * unit, j.a.y() * unit, j.n2 * u2),
+                false, 0.0, {cycle[tp], cycle[t], 0}, j.id);
+        else
+            put(chord(j, -1), false, 0.0, {cycle[t], 0, -1}, j.id);
         if (!meets[t]) {
-            const Line& k = L[static_cast<std::size_t>(cycle[(t + 1) % s])];
-            const Vec2 ka = k.a * unit;
-            Piece arc;
-            const Vec2 end = chord_end(ja, r, +1), sk = chord_end(ka, r, -1);
-            arc.start = end;
-            // The span from the combinatorial gap, refined by the direct angle between the
-            // endpoints when both agree on the branch (tiny arcs never become full turns).
-            const double approx = ccw_gap(c, j, s == 1 ? j : k, unit) - chord_half_angle(ja, r) - chord_half_angle(ka, r);
-            double direct = std::atan2(end.x() * sk.y() - end.y() * sk.x(), end.dot(sk));
-            if (direct < 0.0) direct += kTwoPi;
-            if (direct - approx > kTwoPi / 2) direct -= kTwoPi;
-            if (approx - direct > kTwoPi / 2) direct += kTwoPi;
-            arc.arc_span = std::clamp(direct, 0.0, kTwoPi);
-            out.pieces.push_back(arc);
+            // The span from the combinatorial gap: it picks the branch of the direct angle between
+            // the endpoints (tiny arcs never become full turns).
+            const Line& k = line(t + 1 == s ? 0 : t + 1);
+            const double approx = ccw_gap(c, j, s == 1 ? j : k, unit) - chord_half_angle(j.a * unit, r) -
+                                  chord_half_angle(k.a * unit, r);
+            put(chord(j, +1), true, approx, {cycle[t], 0, +1}, kArc);
         }
     }
-    const CellMeasures m = measure_local(out.pieces, r, Vec2::Zero());
+    b.set_size(n);
+    sum.to(b);
+    const auto exact = [&](std::size_t k) {
+        const VertexSource& v = source[k];
+        const Line& li = L[static_cast<std::size_t>(v.i)];
+        if (v.sigma != 0) return exact_chord_end(c, li.p, r, unit, v.sigma);
+        return exact_vertex(c, li.p, L[static_cast<std::size_t>(v.j)].p, unit);
+    };
+    const auto refine = [&](std::size_t k) {  // most refined vertices: no allocation
+        const VertexSource& v = source[k];
+        DDPoint x;
+        if (v.sigma == 0 && dd_vertex(c, L[static_cast<std::size_t>(v.i)].p, L[static_cast<std::size_t>(v.j)].p, unit, x))
+            return x;
+        return exact(k);
+    };
+    const LocalMeasures m = accurate_measures(b, r, refine, exact);
     out.measures_.area = m.area * back * back;
-    out.measures_.centroid = c + back * m.centroid;
+    out.measures_.centroid = c + back * Vec2(m.cx, m.cy);
     out.measures_.perimeter = m.perimeter * back;
-    // The combinatorics are exact and the vertices accurate (vertex()); a cell that still cannot be
-    // measured in doubles is refused rather than handed back with a NaN area.
+    // The combinatorics are exact and the vertices accurate; a cell that still cannot be measured in
+    // doubles is refused rather than handed back with a NaN area.
     if (!std::isfinite(out.measures_.area) || !std::isfinite(out.measures_.centroid.x()) ||
         !std::isfinite(out.measures_.centroid.y()))
         throw RangeError(
             "out of the range of doubles: the cell's measures are not finite (its agents within 2R differ in "
             "scale by more than doubles resolve; coordinates are in range for nonzero differences between "
             "about 1e-45 and 1e45)");
-    for (Piece& p : out.pieces) p.start = c + back * p.start;
+    for (std::size_t k = 0; k < b.size(); ++k) {
+        Piece& p = out.pieces[k];
+        if (b.changed) p.start = c + back * b.p[k].v;
+        if (p.is_arc()) p.arc_span = b.p[k].span;
+    }
 }
 
 /// The predicates on bisectors (indices into ws.lines) around c: a floating-point fast path on the

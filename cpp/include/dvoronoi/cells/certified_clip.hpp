@@ -32,42 +32,9 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 /// About how many nearest candidates are clipped before the farther ones are screened by distance.
 inline constexpr std::size_t kNearFirst = 8;
 
-/// A vertex relative to c with a bound on its distance to the exact vertex (of the exact p - c).
-struct Vertex {
-    double x, y, e;
-};
-
-inline double l1(double x, double y) { return std::fabs(x) + std::fabs(y); }
-
-/// v_jk, the vertex of two bisectors (cells/bisectors.hpp: vertex), with its error bound: the
-/// rounding of a = p - c (one unit per coordinate) and of every operation, to first order, doubled.
-inline Vertex line_vertex(double ajx, double ajy, double n2j, double akx, double aky, double n2k) {
-    const double l = ajx * aky, r = ajy * akx;
-    const double d = l - r, pd = std::fabs(l) + std::fabs(r);
-    const double hj = 0.5 * n2j, hk = 0.5 * n2k;
-    const double nx = hj * aky - hk * ajy, pnx = std::fabs(hj * aky) + std::fabs(hk * ajy);
-    const double ny = ajx * hk - akx * hj, pny = std::fabs(ajx * hk) + std::fabs(akx * hj);
-    // One division (a reciprocal) instead of four. x and y then take two roundings (of 1/d and of
-    // the product) instead of one: 3u |x| below, where the quotient needed u.
-    const double inv = 1.0 / d;
-    const double x = nx * inv, y = ny * inv;
-    if (!(std::fabs(d) > 16.0 * kU * pd)) return {x, y, kInf};
-    const double ainv = std::fabs(inv);
-    const double ex = (10.0 * kU * pnx + 6.0 * kU * pd * std::fabs(x)) * ainv + 3.0 * kU * std::fabs(x);
-    const double ey = (10.0 * kU * pny + 6.0 * kU * pd * std::fabs(y)) * ainv + 3.0 * kU * std::fabs(y);
-    return {x, y, 2.0 * (ex + ey)};
-}
-
-/// The chord end of bisector k (sigma = -1 first, +1 last; cells/bisectors.hpp: chord_end) with its
-/// error bound; infinite near tangency, where the half chord loses its digits.
-inline Vertex chord_vertex(double ax, double ay, double radius, int sigma) {
-    const Vec2 a(ax, ay);
-    const Vec2 s = chord_end(a, radius, sigma);
-    const double h = 0.5 * a.norm(), hc = half_chord(a, radius);
-    if (!(hc > 0.0) || !(radius - h > 0.0)) return {s.x(), s.y(), kInf};
-    const double e = 1.5 * kU * h * (radius + h) / hc + 10.0 * kU * hc + 4.0 * kU * 2.0 * h;
-    return {s.x(), s.y(), 2.0 * e};
-}
+/// A vertex relative to c with a bound on its distance to the exact vertex (of the exact p - c);
+/// line_vertex and chord_vertex (core/accurate.hpp) construct them.
+using Vertex = BoundedPoint;
 
 /// A vertex of the cell being clipped: position, error bound, the side that starts there
 /// (candidate index or kArcSide), and `slack` = 2 e + 24 u |v|_1, so that the certified test

@@ -88,6 +88,27 @@ inline bool vertices_inside(const ExactClip& cell, const ClipWorkspace& w, doubl
     return true;
 }
 
+/// Area and centroid of a certified cell (its vertices within the square of half-side `half`), to
+/// core/accurate.hpp's accuracy: from the clip's bounded vertices, in units of 2^e ~ half (an exact
+/// scaling), each redone from exact expansions where its bound is too large.
+inline ClippedCell certified_cell_measures(const ExactClip& cell, const ClipWorkspace& w, double half) {
+    thread_local Boundary b;
+    b.clear();
+    const int e = std::ilogb(half);
+    const double unit = std::ldexp(1.0, -e), back = std::ldexp(1.0, e);
+    const std::size_t s = cell.side.size();
+    for (const clip::CellVertex& v : cell.vertex) b.push({v.x * unit, v.y * unit, v.e * unit}, false, 0.0);
+    const auto at = [&](int k) { return Vec2(w.px[static_cast<std::size_t>(k)], w.py[static_cast<std::size_t>(k)]); };
+    b.summarize();
+    const LocalMeasures lm = accurate_measures(b, 0.0, [&](std::size_t t) {
+        return exact_vertex(w.c, at(cell.side[(t + s - 1) % s]), at(cell.side[t]), unit);
+    });
+    ClippedCell m;
+    m.area = lm.area * back * back;
+    m.centroid = w.c + back * Vec2(lm.cx, lm.cy);
+    return m;
+}
+
 /// About the distance from c of the cell's farthest vertex.
 inline double farthest_vertex(const ExactClip& cell) {
     double r2 = 0.0;

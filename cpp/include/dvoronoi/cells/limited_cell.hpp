@@ -28,7 +28,8 @@ inline const char* method_name(Method m) { return m == Method::Scan ? "scan" : "
 ///
 /// Edge pieces name their neighbour by its row in `others`. Combinatorics (which agents are limited
 /// neighbours, the order of pieces, whether two edges meet inside the disk) are decided with exact
-/// predicates; vertex coordinates and measures are rounded once per operation.
+/// predicates; vertex coordinates, arc spans and measures are within 2^-40 of the cell's diameter of
+/// the exact values (docs/guarantees.md, core/accurate.hpp).
 ///
 /// \throws InputError if `radius` is not positive and finite, a coordinate is NaN or inf.
 /// \throws CoincidentError if an agent of `others` lies at `center` or two agents within 2*radius

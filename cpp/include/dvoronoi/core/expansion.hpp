@@ -62,6 +62,10 @@ public:
     static Expansion constant(double v) { return Expansion(v); }
 
     int sign() const { return c_.empty() ? 0 : (c_.back() > 0.0 ? 1 : -1); }
+    /// The components, increasing in magnitude.
+    const std::vector<double>& components() const { return c_; }
+    /// This times b, exactly (barring underflow).
+    Expansion times(double b) const { return scaled(b); }
     std::size_t size() const { return c_.size(); }
     /// The value rounded (the components summed from the smallest: within a few ulps).
     double estimate() const {

@@ -203,13 +203,9 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
         } else {
             r.used = schedule.used(c, rk, certified);
         }
-        sc.local.clear();
-        for (std::size_t t = 0; t < sc.exact.side.size(); ++t) {
+        for (std::size_t t = 0; t < sc.exact.side.size(); ++t)
             sc.mine.push_back(clip_ws.id[static_cast<std::size_t>(sc.exact.side[t])]);
-            sc.local.emplace_back(sc.exact.vertex[t].x, sc.exact.vertex[t].y);
-        }
-        ClippedCell m;
-        detail::polygon_measures(sc.local, c, m);
+        const ClippedCell m = detail::certified_cell_measures(sc.exact, clip_ws, one_shot);
         r.area = m.area;
         r.cx = m.centroid.x();
         r.cy = m.centroid.y();
