@@ -537,11 +537,11 @@ private:
                     const double mid = std::atan2(0.5 * (r.y0 + r.y1) - c.y(), 0.5 * (r.x0 + r.x1) - c.x());
                     double lo = 0.0, hi = 0.0;
                     for (const Vec2& q : box_corner) {
-                        double a = std::atan2(q.y() - c.y(), q.x() - c.x()) - mid;
-                        if (a > pi) a -= two_pi;
-                        if (a < -pi) a += two_pi;
-                        lo = std::min(lo, a);
-                        hi = std::max(hi, a);
+                        double turn = std::atan2(q.y() - c.y(), q.x() - c.x()) - mid;
+                        if (turn > pi) turn -= two_pi;
+                        if (turn < -pi) turn += two_pi;
+                        lo = std::min(lo, turn);
+                        hi = std::max(hi, turn);
                     }
                     t_lo = mid + lo - step;
                     t_hi = mid + hi + step;
