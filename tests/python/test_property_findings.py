@@ -93,3 +93,44 @@ def test_map_yaml_errors_name_the_yaml():
         dv.OccupancyGrid.load(str(CORPUS / "ros_yaml" / "missing_image.yaml"))
     with pytest.raises(ValueError, match=r"no_such_image\.yaml: image: .*nowhere\.pgm: cannot open file"):
         dv.OccupancyGrid.load(str(CORPUS / "ros_yaml" / "no_such_image.yaml"))
+
+
+# ------------------------------------------------------------------ fuzz target "points" (CLI)
+def test_cli_names_the_file_of_a_point_out_of_the_exact_range(tmp_path):
+    # "dvoronoi: error: points[0]: out of the exact range ..." named no file (exit status 2 was right)
+    import os
+    import shutil
+    import subprocess
+
+    cli = os.environ.get("DVORONOI_CLI") or shutil.which("dvoronoi")
+    if not cli:
+        pytest.skip("no dvoronoi executable (set DVORONOI_CLI)")
+    src = CORPUS / "points" / "regress_out_of_exact_range.npy"
+    proc = subprocess.run([cli, "cells", str(src), "-r", "1.5", "-q", "-o", str(tmp_path / "out.json")],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2
+    assert f"{src} (row 1): points[1]: out of the exact range" in proc.stderr or \
+        f"{src} (row 0): points[0]: out of the exact range" in proc.stderr, proc.stderr
+    text = tmp_path / "pts.txt"
+    text.write_text("0 0\n5.299808824e-315 5.29462817e-315\n5.289447516e-315 0\n")
+    proc = subprocess.run([cli, "cells", str(text), "-r", "1.5", "-q", "-o", str(tmp_path / "out.json")],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and f"{text}:" in proc.stderr and "out of the exact range" in proc.stderr, proc.stderr
+
+
+# --------------------------------------------------------------------- fuzz target "obstacles"
+@pytest.mark.parametrize("radius", [2.0**31, 1e12, 1e300])
+def test_huge_circles_are_traced_quickly_and_exactly(radius):
+    # The contact sampling walked the whole circle, 2 pi R / (h/2) points: R = 2^31 took about an
+    # hour in a 16-cell grid (R = 1e300 overflowed the count). Now only the arc through the area.
+    import time
+
+    doc = {"area": {"polygon": [[0, 0], [8, 0], [10, 6], [4, 10], [-2, 5]]},
+           "obstacles": [{"type": "circle", "center": [4, 4], "radius": radius},
+                         {"type": "circle", "center": [4 + radius + 0.5, 4], "radius": radius},
+                         {"type": "point", "position": [3, 3]}]}
+    t0 = time.monotonic()
+    gv = dv.grid_voronoi(doc, cells=32, workers=2)
+    assert time.monotonic() - t0 < 5.0
+    brute = dv._core._gvd_brute_force(dv.gvd.load_obstacles(doc), 32, True)[2]
+    np.testing.assert_array_equal(gv.diagram_mask, brute)

@@ -267,7 +267,8 @@ def mutated_inputs(target: Target):
 def _limit(memory_mb: int, cpu_seconds: int):
     def apply():
         os.setsid()
-        resource.setrlimit(resource.RLIMIT_AS, (memory_mb << 20, memory_mb << 20))
+        if memory_mb > 0:  # 0: no limit (a sanitizer build reserves terabytes of address space)
+            resource.setrlimit(resource.RLIMIT_AS, (memory_mb << 20, memory_mb << 20))
         resource.setrlimit(resource.RLIMIT_CPU, (cpu_seconds, cpu_seconds + 1))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
     return apply
@@ -321,6 +322,8 @@ class Finding:
     detail: str
     data: bytes = b""
     seed: str = ""
+    #: for a dead worker: the inputs it had run before (the crash may come from damage one of them did)
+    context: List[Tuple[str, bytes]] = field(default_factory=list)
 
     def key(self) -> Tuple[str, str, str, str]:
         head = re.sub(r"\d+", "N", self.detail.split("\n")[0])[:60]
@@ -341,6 +344,7 @@ class Runner:
         self.tmp = Path(tempfile.mkdtemp(prefix="dvoronoi-fuzz-"))
         self.worker: Optional[subprocess.Popen] = None
         self.executions = 0
+        self.history: List[Tuple[str, bytes]] = []  # (file name, bytes) the current worker has run
 
     # -- the Python worker
     def _start_worker(self) -> None:
@@ -348,6 +352,7 @@ class Runner:
         self.worker = subprocess.Popen([self.python, "-c", WORKER_CODE], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                        stderr=subprocess.DEVNULL, text=True, env=env,
                                        preexec_fn=_limit(self.worker_memory_mb, 3600))
+        self.history = []
         line = self._read_line(60.0)
         if line is None or line.strip() != "ready":
             raise RuntimeError(f"the fuzz worker did not start ({self.python}): {line!r}")
@@ -432,9 +437,12 @@ class Runner:
             path = case / seed.name
             path.write_bytes(data)
             if self.use_python and target.python:
+                before = list(self.history[-200:])
                 got = self.run_python(target.python, str(path))
+                self.history.append((seed.name, data))
                 if got:
-                    return Finding(target.name, "python:" + target.python, got[0], got[1], data, seed.name)
+                    return Finding(target.name, "python:" + target.python, got[0], got[1], data, seed.name,
+                                   before if got[0] == "crash" else [])
             if self.cli and target.cli:
                 got = self.run_cli(target.cli, str(path), str(case))
                 if got:
@@ -458,7 +466,7 @@ def fuzz(target: Target, runner: Runner, seconds: float, batch: int = 50) -> Tup
     from hypothesis import HealthCheck, Phase, given, settings
 
     start = runner.executions
-    findings: Dict[Tuple[str, str, str, str], Finding] = {}
+    findings: Dict[Tuple[str, ...], Finding] = {}
     deadline = time.monotonic() + seconds
     strategy = mutated_inputs(target)
     while time.monotonic() < deadline:
@@ -479,9 +487,13 @@ def fuzz(target: Target, runner: Runner, seconds: float, batch: int = 50) -> Tup
         except BaseException as e:  # _Broken, or an ExceptionGroup of several distinct ones
             if isinstance(e, KeyboardInterrupt):
                 raise
-        # the shrunk example of each kind of failure is the last one seen
+        # the shrunk example of each kind of failure is the last one seen; for a dead worker also the
+        # first, with the inputs that worker had run (a crash may be the late effect of one of them)
         for f in failures:
             findings[f.key()] = f
+        first_crash = next((f for f in failures if f.kind == "crash" and f.context), None)
+        if first_crash is not None:
+            findings[first_crash.key() + ("first",)] = first_crash
     return runner.executions - start, list(findings.values())
 
 
@@ -492,8 +504,14 @@ def save_finding(f: Finding, folder: Path) -> Path:
     ext = Path(f.seed).suffix
     path = folder / f"{f.kind}-{digest}{ext}"
     path.write_bytes(f.data)
-    path.with_suffix(path.suffix + ".txt").write_text(
-        f"target {f.target}, route {f.route}, kind {f.kind}, mutated from {f.seed}\n{f.detail}\n")
+    note = f"target {f.target}, route {f.route}, kind {f.kind}, mutated from {f.seed}\n{f.detail}\n"
+    if f.context:  # a dead worker: what it ran before, oldest first, to replay in one fresh worker
+        ctx = folder / f"{path.stem}-context"
+        ctx.mkdir(exist_ok=True)
+        for k, (name, data) in enumerate(f.context):
+            (ctx / f"{k:03d}{Path(name).suffix}").write_bytes(data)
+        note += f"the worker had run {len(f.context)} inputs before it: {ctx}\n"
+    path.with_suffix(path.suffix + ".txt").write_text(note)
     return path
 
 

@@ -232,6 +232,14 @@ def regressions(out: Path) -> None:
     # an error naming the file
     write(out / "points", "regress_overflowing_shape.npy",
           npy_with_header("{'descr': '<f8', 'fortran_order': False, 'shape': (1152921504606846977, 2), }", bytes(16)))
+    # subnormal coordinates (5.3e-315): the CLI's "points[0]: out of the exact range" named no file
+    write(out / "points", "regress_out_of_exact_range.npy",
+          npy_bytes(np.array([[0.0, 0.0], [5.299808824e-315, 5.29462817e-315], [5.289447516e-315, 0.0]])))
+    # a circle of radius 2^31 around a 16-cell area: its contacts were sampled all round (3.6e10
+    # points, about an hour)
+    write(out / "obstacles", "regress_huge_circle.json",
+          '{"area": {"polygon": [[0, 0], [8, 0], [10, 6], [4, 10], [-2, 5]]}, '
+          '"obstacles": [{"type": "circle", "center": [4, 4], "radius": 2147483647, "name": "pillar"}]}')
     # not UTF-8: UnicodeDecodeError from python -m dvoronoi.mpi's point reader
     write(out / "points", "regress_latin1.txt", b"1 2\n3 4\xe9\n")
 
