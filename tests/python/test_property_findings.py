@@ -134,3 +134,27 @@ def test_huge_circles_are_traced_quickly_and_exactly(radius):
     assert time.monotonic() - t0 < 5.0
     brute = dv._core._gvd_brute_force(dv.gvd.load_obstacles(doc), 32, True)[2]
     np.testing.assert_array_equal(gv.diagram_mask, brute)
+
+
+def test_a_nul_byte_in_an_obstacle_file_is_a_valueerror_naming_its_place():
+    # nlohmann's parser stopped at a NUL byte ('"type"\\0...' read as the string "type"), and the
+    # duplicate-key walk then parsed an escaped key after it: json.exception.parse_error escaped
+    # (RuntimeError; status 1 from the CLI).
+    path = CORPUS / "obstacles" / "regress_nul_then_escaped_key.json"
+    with pytest.raises(ValueError, match=r"regress_nul_then_escaped_key\.json:1:7: invalid JSON: a NUL byte") as info:
+        dv.grid_voronoi(str(path), cells=16)
+    assert type(info.value) is ValueError
+
+
+def test_cli_names_the_distance_file_of_an_exact_range_error(tmp_path):
+    import os
+    import shutil
+    import subprocess
+
+    cli = os.environ.get("DVORONOI_CLI") or shutil.which("dvoronoi")
+    if not cli:
+        pytest.skip("no dvoronoi executable (set DVORONOI_CLI)")
+    src = CORPUS / "distances" / "regress_out_of_exact_range.txt"
+    proc = subprocess.run([cli, "neighbors-from-distances", str(src), "-o", str(tmp_path / "out.json")],
+                          capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and f"{src}: distances: robot 0: out of the exact range" in proc.stderr, proc.stderr

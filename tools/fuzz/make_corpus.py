@@ -240,6 +240,12 @@ def regressions(out: Path) -> None:
     write(out / "obstacles", "regress_huge_circle.json",
           '{"area": {"polygon": [[0, 0], [8, 0], [10, 6], [4, 10], [-2, 5]]}, '
           '"obstacles": [{"type": "circle", "center": [4, 4], "radius": 2147483647, "name": "pillar"}]}')
+    # a NUL byte ended the JSON parser's input; the key check then parsed an escaped key after it:
+    # nlohmann's parse_error escaped (RuntimeError in Python, status 1 from the CLI)
+    write(out / "obstacles", "regress_nul_then_escaped_key.json",
+          b'"type"\x00{"area": {"box": [0, 0, 10, 10]}, "\x00bst\\u0061cles": []}')
+    # distances whose exact tests overflow: the CLI's message said "distances: robot 0", not the file
+    write(out / "distances", "regress_out_of_exact_range.txt", "0 1 1\n1 2 1\n0 2 1e308\n2 3 1\n1 3 1.4142135623730951\n0 3 1\n")
     # not UTF-8: UnicodeDecodeError from python -m dvoronoi.mpi's point reader
     write(out / "points", "regress_latin1.txt", b"1 2\n3 4\xe9\n")
 
