@@ -246,6 +246,10 @@ def regressions(out: Path) -> None:
           b'"type"\x00{"area": {"box": [0, 0, 10, 10]}, "\x00bst\\u0061cles": []}')
     # distances whose exact tests overflow: the CLI's message said "distances: robot 0", not the file
     write(out / "distances", "regress_out_of_exact_range.txt", "0 1 1\n1 2 1\n0 2 1e308\n2 3 1\n1 3 1.4142135623730951\n0 3 1\n")
+    # an area vertex at 1e308: the exact tests overflow while tracing; the message named no file
+    write(out / "obstacles", "regress_area_out_of_exact_range.json",
+          '{"area": {"polygon": [[0, 0], [8, 0], [10, 6], [4, 1e308], [-2, 5]]}, '
+          '"obstacles": [{"type": "circle", "center": [4, 4], "radius": 1.5}]}')
     # not UTF-8: UnicodeDecodeError from python -m dvoronoi.mpi's point reader
     write(out / "points", "regress_latin1.txt", b"1 2\n3 4\xe9\n")
 
