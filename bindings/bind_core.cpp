@@ -3,8 +3,11 @@
 //   dvoronoi::CoincidentError -> dvoronoi.CoincidentError (a ValueError; `.indices` is the pair)
 //   dvoronoi::InputError      -> ValueError
 //   dvoronoi::Error           -> RuntimeError
-// Messages are passed through unchanged (they name the argument, and the pair for coinciding agents).
+// Messages are passed through unchanged (they name the argument, and the pair for coinciding agents),
+// decoded as UTF-8 with any other byte as a \\xNN escape.
 #include "dvoronoi/core/types.hpp"
+
+#include <cstring>
 
 #include <pybind11/gil_safe_call_once.h>
 #include <pybind11/pybind11.h>
@@ -14,6 +17,18 @@
 #endif
 
 namespace py = pybind11;
+
+namespace {
+
+/// A message as a Python str: UTF-8, and any byte that is not (a file name, a line quoted from a
+/// file) as a \xNN escape, so that the ValueError is raised rather than a UnicodeDecodeError.
+py::str message(const char* what) {
+    PyObject* s = PyUnicode_DecodeUTF8(what, static_cast<Py_ssize_t>(std::strlen(what)), "backslashreplace");
+    if (!s) throw py::error_already_set();
+    return py::reinterpret_steal<py::str>(s);
+}
+
+}  // namespace
 
 void bind_core(py::module_& m) {
     m.attr("__version__") = DVORONOI_VERSION;
@@ -31,13 +46,13 @@ void bind_core(py::module_& m) {
             if (p) std::rethrow_exception(p);
         } catch (const dvoronoi::CoincidentError& e) {
             const py::object& type = coincident.get_stored();
-            py::object exc = type(e.what());
+            py::object exc = type(message(e.what()));
             exc.attr("indices") = py::make_tuple(e.first(), e.second());
             PyErr_SetObject(type.ptr(), exc.ptr());
         } catch (const dvoronoi::InputError& e) {
-            PyErr_SetString(PyExc_ValueError, e.what());
+            PyErr_SetObject(PyExc_ValueError, message(e.what()).ptr());
         } catch (const dvoronoi::Error& e) {
-            PyErr_SetString(PyExc_RuntimeError, e.what());
+            PyErr_SetObject(PyExc_RuntimeError, message(e.what()).ptr());
         }
     });
 }

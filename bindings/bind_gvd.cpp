@@ -139,9 +139,9 @@ std::unique_ptr<PyResult> run_gvd(std::shared_ptr<PyScene> scene, const gvd::Gvd
     py::gil_scoped_release release;
     try {
         out->r = gvd::grid_voronoi(out->scene->file.scene, o);
-    } catch (const dvoronoi::InputError& e) {
+    } catch (const dvoronoi::InputError&) {
         py::gil_scoped_acquire gil;
-        throw py::value_error(e.what());
+        throw;  // to the translator (bind_core.cpp): a ValueError whose message stays UTF-8
     }
     return out;
 }
@@ -194,8 +194,8 @@ void bind_gvd(py::module_& m) {
             try {
                 py::gil_scoped_release release;
                 g = gvd::rasterize(s.file.scene, cells);
-            } catch (const dvoronoi::InputError& e) {
-                throw py::value_error(e.what());
+            } catch (const dvoronoi::InputError&) {
+                throw;  // to the translator (bind_core.cpp): a ValueError whose message stays UTF-8
             }
             py::array_t<bool> occ({static_cast<py::ssize_t>(g.rows), static_cast<py::ssize_t>(g.cols)});
             std::copy(g.occupied.begin(), g.occupied.end(), reinterpret_cast<std::uint8_t*>(occ.mutable_data()));
@@ -295,9 +295,9 @@ void bind_gvd(py::module_& m) {
                 py::gil_scoped_release release;
                 try {
                     res = gvd::find_path(p.r, p.scene->file.scene, p.scene->path_index(), s, g);
-                } catch (const dvoronoi::InputError& e) {
+                } catch (const dvoronoi::InputError&) {
                     py::gil_scoped_acquire gil;
-                    throw py::value_error(e.what());
+                    throw;  // to the translator (bind_core.cpp): a ValueError whose message stays UTF-8
                 }
             }
             return py::make_tuple(xy_array(res.points), res.length);

@@ -59,8 +59,8 @@ auto without_gil(Fn&& fn) {
     try {
         py::gil_scoped_release release;
         return fn();
-    } catch (const dvoronoi::InputError& e) {
-        throw py::value_error(e.what());
+    } catch (const dvoronoi::InputError&) {
+        throw;  // to the translator (bind_core.cpp): a ValueError whose message stays UTF-8
     }
 }
 

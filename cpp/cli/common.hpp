@@ -150,6 +150,20 @@ inline std::string coincident_message(const io::PointFile& file, const Coinciden
     return file.name + ": " + e.what();
 }
 
+/// Rewrites a RangeError ("points[i]: out of the exact range ...") in terms of the file: the point's
+/// line (text) or row (.npy) first, so the message names the file like every other input error.
+inline std::string range_message(const io::PointFile& file, const RangeError& e) {
+    const std::string what = e.what();
+    const std::string prefix = "points[";
+    if (what.compare(0, prefix.size(), prefix) == 0) {
+        const std::size_t close = what.find(']');
+        const std::string digits = close == std::string::npos ? "" : what.substr(prefix.size(), close - prefix.size());
+        if (!digits.empty() && digits.size() < 19 && digits.find_first_not_of("0123456789") == std::string::npos)
+            return file.where(static_cast<Index>(std::stoll(digits))) + ": " + what;
+    }
+    return file.name + ": " + what;
+}
+
 /// "LABEL: done/total" on stderr. On a terminal it is updated in place (only once a run has taken
 /// more than half a second); otherwise only runs of at least `large` items report, a line every 5 s
 /// and a final line. --quiet turns it off.
@@ -206,8 +220,8 @@ private:
 };
 
 /// Runs `work(callback)` under a progress counter `label` over `total` items: the counter line is
-/// ended before an error leaves, and a CoincidentError is rewritten in terms of `file` (its lines)
-/// when one is given.
+/// ended before an error leaves, and a CoincidentError or RangeError is rewritten in terms of `file`
+/// (its lines) when one is given.
 template <class Work>
 auto with_progress(const std::string& label, Index total, bool quiet, const io::PointFile* file, Work&& work) {
     Progress progress(label, total, quiet);
@@ -218,6 +232,10 @@ auto with_progress(const std::string& label, Index total, bool quiet, const io::
     } catch (const CoincidentError& e) {
         progress.abort();
         if (file) throw InputError(coincident_message(*file, e));
+        throw;
+    } catch (const RangeError& e) {
+        progress.abort();
+        if (file) throw InputError(range_message(*file, e));
         throw;
     } catch (...) {
         progress.abort();

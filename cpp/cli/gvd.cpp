@@ -120,7 +120,13 @@ int run_gvd(const GvdCliOptions& o) {
     opt.robot_radius = o.robot_radius;
     opt.visibility = !o.no_visibility;
     const auto t0 = std::chrono::steady_clock::now();
-    const gvd::GridVoronoi r = gvd::grid_voronoi(file.scene, opt);
+    const gvd::GridVoronoi r = [&] {
+        try {
+            return gvd::grid_voronoi(file.scene, opt);
+        } catch (const RangeError& e) {  // coordinates whose exact tests overflow: name the file
+            throw InputError(o.obstacles + ": " + e.what());
+        }
+    }();
     nlohmann::json doc = io::gvd_to_json(r);
     std::vector<Vec2> path_points;
     if (!o.path.empty()) {

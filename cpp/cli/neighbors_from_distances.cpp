@@ -57,10 +57,15 @@ int run_distances(const DistOptions& o) {
     std::unique_ptr<io::AtomicFile> out;
     if (!to_stdout) out = open_output(o.output, "-o/--output");
 
-    const dist::DistanceNeighbors result =
-        with_progress("neighbors", g.n, o.quiet, nullptr, [&](const ProgressFn& fn) {
-            return dist::neighbors_from_distances(g, !o.no_consistency, o.threads, fn);
-        });
+    const dist::DistanceNeighbors result = [&] {
+        try {
+            return with_progress("neighbors", g.n, o.quiet, nullptr, [&](const ProgressFn& fn) {
+                return dist::neighbors_from_distances(g, !o.no_consistency, o.threads, fn);
+            });
+        } catch (const RangeError& e) {  // "distances: robot 0: out of the exact range ...": name the file
+            throw InputError(file.name + ": " + e.what());
+        }
+    }();
     std::unique_ptr<io::AtomicFile> no_svg;
     return deliver(out, no_svg, [&](std::ostream& os) { write(os, csv, result, g.squared, ids); });
 }

@@ -409,7 +409,12 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
 
         occ, res, org = scene.rasterize(cells)
         return medial_voronoi(OccupancyGrid(occ, res, org), robot_radius, n_workers, min_separation, prune_length)
-    core = _core._gvd_run(scene, cells, robot_radius, n_workers, mode, bool(visibility))
+    try:
+        core = _core._gvd_run(scene, cells, robot_radius, n_workers, mode, bool(visibility))
+    except ValueError as e:  # e.g. out of the exact range: say which file when there is one
+        if isinstance(obstacles, (str, os.PathLike)) and os.fspath(obstacles) not in str(e):
+            raise ValueError(f"{os.fspath(obstacles)}: {e}") from None
+        raise
     return GridVoronoi(core, scene)
 
 

@@ -383,20 +383,30 @@ def cells(points: Any, radius: float, bounds: BoundsArg = None, comm: Any = None
 
 # ------------------------------------------------------------------------------------------ entry
 def _read_points(path: str) -> np.ndarray:
-    """'x y' or 'x,y' per line, '#' comments, an optional header line; errors name file:line."""
+    """'x y' or 'x,y' per line, '#' comments, an optional header line; errors name file:line, and a
+    coordinate must be a finite number (as the CLI's reader: NaN, inf and 1e999 are refused there,
+    not later as an anonymous points[i])."""
     rows = []
-    with open(path, encoding="utf-8") as f:
-        for lineno, line in enumerate(f, 1):
-            text = line.split("#", 1)[0].replace(",", " ").split()
-            if not text:
-                continue
-            try:
-                x, y = float(text[0]), float(text[1])
-            except (ValueError, IndexError):
-                if not rows and lineno == 1:
-                    continue  # a header line
-                raise ValueError(f"{path}:{lineno}: expected 'x y', got {line.strip()!r}") from None
-            rows.append((x, y))
+    with open(path, "rb") as f:
+        raw = f.read()
+    try:
+        content = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        line = raw[:e.start].count(b"\n") + 1
+        raise ValueError(f"{path}:{line}: not UTF-8 text (a point file has 'x y' per line)") from None
+    for lineno, line in enumerate(content.split("\n"), 1):  # lines as the CLI counts them ('\r\n' too)
+        text = line.split("#", 1)[0].replace(",", " ").split()
+        if not text:
+            continue
+        try:
+            x, y = float(text[0]), float(text[1])
+        except (ValueError, IndexError):
+            if not rows and lineno == 1:
+                continue  # a header line
+            raise ValueError(f"{path}:{lineno}: expected 'x y', got {line.strip()!r}") from None
+        if not (math.isfinite(x) and math.isfinite(y)):
+            raise ValueError(f"{path}:{lineno}: coordinates must be finite numbers, got {line.strip()!r}")
+        rows.append((x, y))
     return np.array(rows, dtype=float).reshape(-1, 2)
 
 

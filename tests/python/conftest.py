@@ -19,6 +19,22 @@ from typing import List, Optional, Tuple
 import numpy as np
 import pytest
 
+try:  # the property tests (test_properties*.py, test_fuzz_corpus.py) need hypothesis; the rest do not
+    from hypothesis import HealthCheck, settings as _hypothesis_settings
+except ImportError:  # pragma: no cover - hypothesis missing: those files skip themselves
+    _hypothesis_settings = None
+
+if _hypothesis_settings is not None:
+    # Hypothesis profiles (docs/guarantees.md, "What the tests check"): "ci" is the default, 200 examples
+    # per property; "long" (HYPOTHESIS_PROFILE=long, tools/property_tests_long.sh) runs 5000. No deadline:
+    # the shared 2-core machine's timings vary too much for one.
+    _slow = [HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much]
+    _hypothesis_settings.register_profile("ci", max_examples=200, deadline=None, suppress_health_check=_slow,
+                                          print_blob=True)
+    _hypothesis_settings.register_profile("long", max_examples=5000, deadline=None, suppress_health_check=_slow,
+                                          print_blob=True)
+    _hypothesis_settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "tests" / "data"
 CORPUS = DATA / "degenerate_corpus.txt"

@@ -290,6 +290,10 @@ TEST_CASE(".npy errors name the file and what is wrong") {
     CHECK(contains(msg(npy_bytes("<f8", false, "(2, 3)", raw<double>({1, 2, 3, 4, 5, 6}))), "got (2, 3)"));
     CHECK(contains(msg(npy_bytes("<c16", false, "(1, 2)", std::string(32, '\0'))), "dtype"));
     CHECK(contains(msg(npy_bytes("<f8", false, "(3, 2)", raw<double>({1, 2}))), "truncated"));
+    // n * 16 bytes wraps around to 16 (issue 20's fuzzing): was "out of memory", not an InputError
+    CHECK(contains(msg(npy_bytes("<f8", false, "(1152921504606846977, 2)", raw<double>({1, 2}))),
+                   "truncated .npy data: 1152921504606846977 rows need more bytes than a file can hold"));
+    CHECK(contains(msg(npy_bytes("<i4", false, "(9223372036854775807, 2)", raw<double>({1, 2}))), "truncated"));
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const std::string m = msg(npy_bytes("<f8", false, "(2, 2)", raw<double>({1, 2, nan, 4})));
     CHECK(starts_with(m, "a.npy: "));

@@ -58,3 +58,11 @@ TEST_CASE("syntax errors name the first character of the offending token") {
     CHECK(error_of("{\"a\": 1\n \"b\": 2}").rfind("d.json:2:2: invalid JSON: syntax error", 0) == 0);
     CHECK(error_of("").rfind("d.json:1:1: invalid JSON", 0) == 0);
 }
+
+TEST_CASE("a NUL byte is an error at its place (it ended the parser's input)") {
+    // issue 20's fuzzing: '"type"\0{..., "\0bst\u0061cles": []}' parsed as the string "type", and the
+    // key walk's parse of the escaped key threw nlohmann's parse_error, not an InputError
+    const std::string text("\"type\"\0{\"area\": 1, \"\0bst\\u0061cles\": []}", 40);
+    CHECK(error_of(text) == "d.json:1:7: invalid JSON: a NUL byte (JSON text has none)");
+    CHECK(error_of(std::string("{\"a\": 1}\n\0", 10)) == "d.json:2:1: invalid JSON: a NUL byte (JSON text has none)");
+}

@@ -232,6 +232,10 @@ void edges_from_neighbors(const Vec2& c, const std::vector<Index>& nb, bool unbo
 /// The cell of c among all of `cand` (no disk), by the inner step's own means.
 inline void candidate_cell(const Vec2& c, std::vector<Candidate>& cand, AsrInner inner, CellWorkspace& ws,
                            DelaunayWorkspace& dws, VoronoiCell& out) {
+    // The cell's own agent: measures() works in its frame. (Before, a reused cell kept an earlier
+    // center, or the origin: voronoi_cells' areas and centroids of deferred agents were then summed
+    // far from the cell, losing every digit at coordinates near 1e7.)
+    out.center = c;
     if (inner == AsrInner::Evt) {
         DelaunayCell dc;
         delaunay_star(c, cand, dc, dws);

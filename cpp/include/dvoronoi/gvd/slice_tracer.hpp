@@ -65,6 +65,7 @@
 #include "dvoronoi/gvd/obstacle_index.hpp"
 #include "dvoronoi/gvd/slice_merge.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -499,6 +500,11 @@ private:
         r.x0 -= reach + h; r.y0 -= reach + h; r.x1 += reach + h; r.y1 += reach + h;
         r.x0 = std::max(r.x0, x_lo);
         r.x1 = std::min(r.x1, x_hi);
+        // A probe farther than h/4 + margin_ beyond the grid's rows seeds nothing (seed_around keeps
+        // to the grid): r need not reach further.
+        const double beyond = h + 0.25 * h * (1.0 + 1e-6) + margin_;
+        r.y0 = std::max(r.y0, grid_.y0 - beyond);
+        r.y1 = std::min(r.y1, grid_.y0 + static_cast<double>(grid_.ny) * h + beyond);
         if (!(r.x0 <= r.x1 && r.y0 <= r.y1)) return;
         auto probe = [&](const Vec2& p) {
             if (p.x() < r.x0 || p.x() > r.x1 || p.y() < r.y0 || p.y() > r.y1) return;
@@ -513,11 +519,39 @@ private:
                 for (std::uint32_t k = 0; k < pa.count; ++k) sample_segment(v[k], v[k + 1 == pa.count ? 0 : k + 1], r, probe);
                 break;
             case ShapeKind::Circle: {
-                constexpr double two_pi = 6.283185307179586476925;
-                const auto n = static_cast<std::int64_t>(std::ceil(two_pi * pa.radius / (0.5 * h))) + 1;
+                // Only the arc that can pass through r is sampled (probe ignores the rest), at most h/2
+                // apart: the angles the box r subtends from the center, a step more on each side.
+                // (Before: the whole circle, 2 pi R / (h/2) probes: a radius of 2^31 in a 16-cell grid
+                // took an hour, and a larger one overflowed the count.)
+                constexpr double pi = 3.14159265358979323846, two_pi = 2.0 * pi;
+                const Vec2 c = pa.center;
+                const double R = pa.radius;
+                const double gx = std::max({r.x0 - c.x(), 0.0, c.x() - r.x1}), gy = std::max({r.y0 - c.y(), 0.0, c.y() - r.y1});
+                double far = 0.0;
+                const Vec2 box_corner[4] = {{r.x0, r.y0}, {r.x1, r.y0}, {r.x1, r.y1}, {r.x0, r.y1}};
+                for (const Vec2& q : box_corner) far = std::max(far, (q - c).norm());
+                if (std::sqrt(gx * gx + gy * gy) > R * (1.0 + 1e-9) + h || far + h < R * (1.0 - 1e-9)) break;  // the circle misses r
+                const double step = 0.5 * h / R;
+                double t_lo = 0.0, t_hi = two_pi;
+                if (gx > 0.0 || gy > 0.0) {  // c outside r: r lies within less than pi as seen from c
+                    const double mid = std::atan2(0.5 * (r.y0 + r.y1) - c.y(), 0.5 * (r.x0 + r.x1) - c.x());
+                    double lo = 0.0, hi = 0.0;
+                    for (const Vec2& q : box_corner) {
+                        double turn = std::atan2(q.y() - c.y(), q.x() - c.x()) - mid;
+                        if (turn > pi) turn -= two_pi;
+                        if (turn < -pi) turn += two_pi;
+                        lo = std::min(lo, turn);
+                        hi = std::max(hi, turn);
+                    }
+                    t_lo = mid + lo - step;
+                    t_hi = mid + hi + step;
+                }
+                const double count = std::ceil((t_hi - t_lo) / step);
+                if (!(count < 1e9)) break;  // not reached: r is at most the grid, the arc through it ~ r / (h/2)
+                const auto n = static_cast<std::int64_t>(count) + 1;
                 for (std::int64_t k = 0; k < n; ++k) {
-                    const double t = two_pi * static_cast<double>(k) / static_cast<double>(n);
-                    probe(pa.center + pa.radius * Vec2(std::cos(t), std::sin(t)));
+                    const double t = t_lo + (t_hi - t_lo) * static_cast<double>(k) / static_cast<double>(n);
+                    probe(c + R * Vec2(std::cos(t), std::sin(t)));
                 }
                 break;
             }

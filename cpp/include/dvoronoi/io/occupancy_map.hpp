@@ -13,6 +13,7 @@
 #pragma once
 
 #include "dvoronoi/gvd/occupancy_grid.hpp"
+#include "dvoronoi/io/quote.hpp"
 
 #include <cctype>
 #include <cstdio>
@@ -104,12 +105,12 @@ inline std::vector<double> read_pgm(const std::string& path, std::int32_t& h, st
         return data.substr(start, pos - start);
     };
     const std::string magic = token("magic number");
-    if (magic != "P5" && magic != "P2") throw InputError(path + ": not a PGM image (magic '" + magic + "', expected P5 or P2)");
+    if (magic != "P5" && magic != "P2") throw InputError(path + ": not a PGM image (magic '" + printable(magic) + "', expected P5 or P2)");
     auto number = [&](const char* what, long long least = 1) {
         const std::string t = token(what);
         char* end = nullptr;
         const long long v = std::strtoll(t.c_str(), &end, 10);
-        if (*end != '\0' || v < least) throw InputError(path + ": bad PGM " + what + " '" + t + "'");
+        if (*end != '\0' || v < least) throw InputError(path + ": bad PGM " + what + " '" + printable(t) + "'");
         return v;
     };
     const long long W = number("width"), H = number("height"), maxval = number("maximum grey value");
@@ -118,13 +119,20 @@ inline std::vector<double> read_pgm(const std::string& path, std::int32_t& h, st
     w = static_cast<std::int32_t>(W);
     h = static_cast<std::int32_t>(H);
     const std::size_t n = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
-    std::vector<double> grey(n);
+    // Checked before the pixels are allocated: a header of a few bytes may claim 16383 x 16383.
     if (magic == "P5") {
         ++pos;  // the single whitespace after the header
         const std::size_t bytes = maxval < 256 ? 1 : 2;
         if (data.size() < pos || data.size() - pos < n * bytes)
             throw InputError(path + ": truncated PGM data (" + std::to_string((data.size() > pos ? data.size() - pos : 0) / bytes) +
                              " of " + std::to_string(n) + " pixels)");
+    } else if (data.size() - pos + 1 < 2 * n) {  // n values need n digits and n - 1 separators
+        throw InputError(path + ": truncated PGM data (room for at most " + std::to_string((data.size() - pos + 1) / 2) +
+                         " of " + std::to_string(n) + " pixels)");
+    }
+    std::vector<double> grey(n);
+    if (magic == "P5") {
+        const std::size_t bytes = maxval < 256 ? 1 : 2;
         for (std::size_t i = 0; i < n; ++i) {
             const auto* p = reinterpret_cast<const unsigned char*>(data.data() + pos + i * bytes);
             const unsigned v = bytes == 1 ? p[0] : (static_cast<unsigned>(p[0]) << 8 | p[1]);
@@ -142,6 +150,22 @@ inline std::vector<double> read_pgm(const std::string& path, std::int32_t& h, st
 }
 
 #ifdef DVORONOI_HAVE_PNG
+/// Refuses a PNG whose header claims more pixels than its bytes can hold, before anything is
+/// allocated for them: deflate expands at most 1032-fold, and the image data are at least one filter
+/// byte per row plus the rows' packed pixels (IHDR's bit depth and colour type).
+inline void check_png_data(const std::string& path, const std::string& data, std::uint32_t w, std::uint32_t h) {
+    if (data.size() < 33) return;  // libpng has read the header, so it is there; be safe anyway
+    const auto depth = static_cast<std::uint64_t>(static_cast<unsigned char>(data[24]));
+    const int colour = static_cast<unsigned char>(data[25]);
+    const std::uint64_t channels = colour == 2 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 1;
+    const std::uint64_t row_bytes = (static_cast<std::uint64_t>(w) * depth * channels + 7) / 8;
+    const std::uint64_t raw = static_cast<std::uint64_t>(h) * (1 + row_bytes);
+    if (raw / 1032 > data.size())
+        throw InputError(path + ": truncated PNG image (" + std::to_string(w) + " x " + std::to_string(h) +
+                         " pixels need at least " + std::to_string(raw / 1032) + " bytes of compressed data, the file has " +
+                         std::to_string(data.size()) + ")");
+}
+
 inline std::vector<double> read_png(const std::string& path, std::int32_t& h, std::int32_t& w) {
     png_image img;
     std::memset(&img, 0, sizeof img);
@@ -150,6 +174,7 @@ inline std::vector<double> read_png(const std::string& path, std::int32_t& h, st
     if (!png_image_begin_read_from_memory(&img, data.data(), data.size()))
         throw InputError(path + ": not a readable PNG image (" + img.message + ")");
     check_size(path, img.width, img.height);
+    check_png_data(path, data, img.width, img.height);
     // As map_server reads images: the mean of the colour channels as stored, alpha ignored (libpng's
     // own grey conversion would weight by luminance and composite alpha onto black).
     img.format = PNG_FORMAT_RGBA;
@@ -188,16 +213,16 @@ inline LoadedMap read_movingai(const std::string& path, const MapReadOptions& o)
         if (key == "height" || key == "width") {
             long long v = -1;
             std::string rest;
-            if (!(ls >> v) || (ls >> rest)) fail("expected '" + key + " N', got '" + line + "'");
+            if (!(ls >> v) || (ls >> rest)) fail("expected '" + printable(key) + " N', got '" + printable(line) + "'");
             (key == "height" ? H : W) = v;
         } else {
-            fail("unknown header line '" + line + "'");
+            fail("unknown header line '" + printable(line) + "'");
         }
     }
     if (H < 0 || W < 0) fail("header lacks 'height' or 'width'");
     check_size(path, W, H);
-    LoadedMap out;
-    out.grid = gvd::OccupancyGrid(static_cast<std::int32_t>(H), static_cast<std::int32_t>(W), o.resolution, o.origin);
+    // The rows are read before the grid is allocated: memory follows the file, not its header.
+    std::vector<std::uint8_t> cells;
     for (std::int32_t r = 0; r < H; ++r) {
         ++lineno;
         if (!std::getline(in, line)) fail("map ends after " + std::to_string(r) + " of " + std::to_string(H) + " rows");
@@ -209,9 +234,14 @@ inline LoadedMap read_movingai(const std::string& path, const MapReadOptions& o)
             if (std::strchr(".G@OTSW", ch) == nullptr || ch == '\0')
                 fail("column " + std::to_string(c + 1) + ": unknown map character (code " +
                      std::to_string(static_cast<int>(static_cast<unsigned char>(ch))) + "); expected one of . G @ O T S W");
-            out.grid.occupied[out.grid.at(r, c)] = ch == '.' || ch == 'G' ? 0 : 1;
+            cells.push_back(ch == '.' || ch == 'G' ? 0 : 1);
         }
     }
+    LoadedMap out;
+    out.grid = gvd::OccupancyGrid(static_cast<std::int32_t>(H), static_cast<std::int32_t>(W), o.resolution, o.origin);
+    for (std::int32_t r = 0; r < H; ++r)
+        for (std::int32_t c = 0; c < W; ++c)
+            out.grid.occupied[out.grid.at(r, c)] = cells[static_cast<std::size_t>(r) * static_cast<std::size_t>(W) + static_cast<std::size_t>(c)];
     while (std::getline(in, line)) {
         ++lineno;
         strip(line);
@@ -227,7 +257,9 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
     std::string line, image;
     int lineno = 0;
     bool has_resolution = false;
-    auto fail = [&](const std::string& why) -> void { throw InputError(path + ":" + std::to_string(lineno) + ": " + why); };
+    auto fail = [&](const std::string& why) -> void {
+        throw InputError(path + (lineno > 0 ? ":" + std::to_string(lineno) : std::string()) + ": " + why);
+    };
     auto trim = [](std::string s) {
         const auto a = s.find_first_not_of(" \t\r\n");
         if (a == std::string::npos) return std::string();
@@ -237,7 +269,7 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
     auto number = [&](const std::string& key, const std::string& v) {
         char* end = nullptr;
         const double x = std::strtod(v.c_str(), &end);
-        if (v.empty() || *end != '\0' || !std::isfinite(x)) fail(key + ": expected a finite number, got '" + v + "'");
+        if (v.empty() || *end != '\0' || !std::isfinite(x)) fail(printable(key) + ": expected a finite number, got '" + printable(v) + "'");
         return x;
     };
     while (std::getline(in, line)) {
@@ -247,7 +279,7 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
         line = trim(line);
         if (line.empty()) continue;
         const auto colon = line.find(':');
-        if (colon == std::string::npos) fail("expected 'key: value', got '" + line + "'");
+        if (colon == std::string::npos) fail("expected 'key: value', got '" + printable(line) + "'");
         const std::string key = trim(line.substr(0, colon));
         std::string val = trim(line.substr(colon + 1));
         if (val.size() >= 2 && (val.front() == '"' || val.front() == '\'') && val.back() == val.front())
@@ -256,28 +288,28 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
             image = val;
         } else if (key == "resolution") {
             o.resolution = number(key, val);
-            if (!(o.resolution > 0)) fail("resolution: must be positive, got '" + val + "'");
+            if (!(o.resolution > 0)) fail("resolution: must be positive, got '" + printable(val) + "'");
             has_resolution = true;
         } else if (key == "origin") {
-            if (val.size() < 2 || val.front() != '[' || val.back() != ']') fail("origin: expected [x, y, yaw], got '" + val + "'");
+            if (val.size() < 2 || val.front() != '[' || val.back() != ']') fail("origin: expected [x, y, yaw], got '" + printable(val) + "'");
             std::vector<double> xs;
             std::stringstream ss(val.substr(1, val.size() - 2));
             std::string item;
             while (std::getline(ss, item, ',')) xs.push_back(number("origin", trim(item)));
-            if (xs.size() != 3 && xs.size() != 2) fail("origin: expected [x, y, yaw], got '" + val + "'");
-            if (xs.size() == 3 && xs[2] != 0.0) fail("origin: a rotated map (yaw " + trim(val) + ") is not supported");
+            if (xs.size() != 3 && xs.size() != 2) fail("origin: expected [x, y, yaw], got '" + printable(val) + "'");
+            if (xs.size() == 3 && xs[2] != 0.0) fail("origin: a rotated map (yaw " + printable(trim(val)) + ") is not supported");
             o.origin = Vec2(xs[0], xs[1]);
         } else if (key == "negate") {
             const double v = number(key, val);
-            if (v != 0.0 && v != 1.0) fail("negate: expected 0 or 1, got '" + val + "'");
+            if (v != 0.0 && v != 1.0) fail("negate: expected 0 or 1, got '" + printable(val) + "'");
             o.negate = v != 0.0;
         } else if (key == "occupied_thresh" || key == "free_thresh") {
             const double v = number(key, val);
-            if (v < 0.0 || v > 1.0) fail(key + ": expected a number in [0, 1], got '" + val + "'");
+            if (v < 0.0 || v > 1.0) fail(key + ": expected a number in [0, 1], got '" + printable(val) + "'");
             (key == "occupied_thresh" ? o.occupied_thresh : o.free_thresh) = v;
         } else if (key == "mode") {
             // scale and raw give in-between pixels probabilities, not "unknown": no occupied/free rule here
-            if (val != "trinary") fail("mode: '" + val + "' is not supported (trinary); convert the map or give the array");
+            if (val != "trinary") fail("mode: '" + printable(val) + "' is not supported (trinary); convert the map or give the array");
         }  // other keys: ignored, as map_server does
     }
     lineno = 0;
@@ -292,11 +324,20 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
     std::int32_t h = 0, w = 0;
     const std::string ext = lower_ext(img);
     std::vector<double> grey;
-    if (ext == ".pgm") grey = read_pgm(img, h, w);
+    try {
+        if (ext == ".pgm") grey = read_pgm(img, h, w);
 #ifdef DVORONOI_HAVE_PNG
-    else if (ext == ".png") grey = read_png(img, h, w);
+        else if (ext == ".png") grey = read_png(img, h, w);
 #endif
-    else throw InputError(path + ": image '" + image + "': only PGM" +
+    } catch (const InputError& e) {
+        throw InputError(path + ": image: " + e.what());  // e.what() names the image file
+    }
+    if (ext != ".pgm"
+#ifdef DVORONOI_HAVE_PNG
+        && ext != ".png"
+#endif
+    )
+        throw InputError(path + ": image '" + printable(image) + "': only PGM" +
 #ifdef DVORONOI_HAVE_PNG
                           std::string(" and PNG") +
 #else

@@ -382,10 +382,14 @@ inline PointFile parse_npy(std::string_view bytes, const std::string& name) {
 
     const std::int64_t n = shape[0];
     const std::size_t data_start = header_start + header_len;
-    const std::size_t need = static_cast<std::size_t>(n) * 2u * static_cast<std::size_t>(size);
-    if (bytes.size() - data_start < need)
-        throw fail("truncated .npy data: expected " + std::to_string(need) + " bytes, found " +
-                   std::to_string(bytes.size() - data_start));
+    const std::size_t have = bytes.size() - data_start;
+    const std::size_t per_row = 2u * static_cast<std::size_t>(size);
+    // n is compared by division: n * 16 may overflow (a shape of (2**60, 2) would need 0 bytes)
+    if (static_cast<std::uint64_t>(n) > have / per_row)
+        throw fail("truncated .npy data: " + std::to_string(n) + " rows need " +
+                   (static_cast<std::uint64_t>(n) > SIZE_MAX / per_row ? std::string("more bytes than a file can hold")
+                                                                       : std::to_string(static_cast<std::size_t>(n) * per_row) + " bytes") +
+                   ", found " + std::to_string(have));
     const char* data = bytes.data() + data_start;
     const auto read = [&](std::size_t k) -> double {
         unsigned char b[8];

@@ -69,7 +69,13 @@ inline void check_keys_and_numbers(std::string_view text, const std::string& nam
                 Frame& f = stack.back();
                 f.expect_key = false;
                 std::string key(token.substr(1, token.size() >= 2 ? token.size() - 2 : 0));
-                if (key.find('\\') != std::string::npos) key = nlohmann::json::parse(token).get<std::string>();
+                if (key.find('\\') != std::string::npos) {
+                    try {
+                        key = nlohmann::json::parse(token).get<std::string>();
+                    } catch (const nlohmann::json::exception&) {  // not reached after a full parse; never escapes
+                        throw InputError(json_where(text, i, name) + ": invalid JSON: malformed key " + in_quotes(key));
+                    }
+                }
                 const auto [at, fresh] = f.keys.emplace(key, i);
                 if (!fresh)
                     throw InputError(json_where(text, i, name) + ": duplicate key " + in_quotes(key) +
@@ -103,6 +109,10 @@ inline void check_keys_and_numbers(std::string_view text, const std::string& nam
 /// \note O(size of the text): the text is parsed, then walked once more for keys and numbers.
 inline nlohmann::json parse_json(std::string_view text, const std::string& name) {
     using nlohmann::json;
+    // A NUL byte ended the parser's input early: '"a"\0{...' was the document "a", and the key walk
+    // below then met the rest (a parse_error escaped: RuntimeError in Python, status 1 from the CLI).
+    if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos)
+        throw InputError(detail::json_where(text, nul, name) + ": invalid JSON: a NUL byte (JSON text has none)");
     json doc;
     try {
         doc = json::parse(text);
