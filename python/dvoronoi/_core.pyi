@@ -341,6 +341,9 @@ def _network_simulate(
     anchors: Optional[list],
     radius: float,
     verify: bool,
+    route_discovery: bool,
+    dv_hop_synchronous: bool,
+    anchors_relay: bool,
 ) -> dict: ...
 def _network_batch(
     algorithm: str,
@@ -353,4 +356,5 @@ def _network_batch(
     verify: bool,
     threads: int,
     progress: Optional[Callable[[int, int], object]],
+    route_discovery: bool,
 ) -> dict: ...
