@@ -235,7 +235,7 @@ double tolerance_arg(const py::object& tolerance) {
     return t;
 }
 
-const char* kLimitedCellDoc = R"doc(limited_cell(center, others, radius, method="scan") -> LimitedCell
+const char* kLimitedCellDoc = R"doc(limited_cell(center, others, radius, method="auto") -> LimitedCell
 
 The range-limited Voronoi cell V ∩ B(center, radius) of the agent at `center` among `others`, as a
 robot computes it from the positions it knows.
@@ -249,9 +249,10 @@ others : (m, 2) array-like of float
     farther than 2 * radius are ignored.
 radius : float
     The cell radius R > 0.
-method : {"scan", "chords"}
+method : {"auto", "scan", "chords"}
     "scan": Boundary Scan (He, Feng & Ren 2018), O(m log m). "chords": RCVC (Guruprasad &
-    Dasgupta 2012), O(m^2) worst case. Both return the same cell.
+    Dasgupta 2012), O(m^2) worst case. "auto" (default): for one agent, Boundary Scan. All
+    return the same cell.
 
 Returns
 -------
@@ -272,7 +273,7 @@ Neighbour sets and the order of pieces are decided with exact predicates; vertex
 measures carry floating-point rounding. Thread-safe; the GIL is released for large `others`.
 )doc";
 
-const char* kLimitedCellsDoc = R"doc(limited_cells(points, radius, method="scan", threads=0, progress=None) -> LimitedPartition
+const char* kLimitedCellsDoc = R"doc(limited_cells(points, radius, method="auto", threads=0, progress=None) -> LimitedPartition
 
 Every agent's range-limited Voronoi cell (the compiled core; `dvoronoi.limited_cells` wraps it with a
 progress bar and the shared result surface).
@@ -393,7 +394,7 @@ void bind_cells(py::module_& m) {
             }
             return cell_object(dvoronoi::limited_cell(c, o.ref(), radius, meth));
         },
-        py::arg("center"), py::arg("others"), py::arg("radius"), py::arg("method") = py::str("scan"),
+        py::arg("center"), py::arg("others"), py::arg("radius"), py::arg("method") = py::str("auto"),
         kLimitedCellDoc);
 
     // ------------------------------------------------------------------ LimitedPartition
@@ -404,6 +405,17 @@ void bind_cells(py::module_& m) {
                             "are read-only views that keep this object alive.")
         .def_property_readonly("radius", [](const PyPartition& p) { return p.part.radius; })
         .def_property_readonly("method", [](const PyPartition& p) { return dvoronoi::method_name(p.method); })
+        .def_property_readonly(
+            "computed_by",
+            [](const PyPartition& p) {
+                py::dict d;
+                d["clip"] = p.part.computed_by.clip;
+                d["scan"] = p.part.computed_by.scan;
+                d["chords"] = p.part.computed_by.chords;
+                return d;
+            },
+            "How many cells each algorithm computed: {\"clip\": certified clipping filter (auto), "
+            "\"scan\": Boundary Scan, \"chords\": RCVC}; the values add up to n.")
         .def_property_readonly("points", [](const Self& s) { return view(part_of(s).points, s); },
                                "The agents, shape (n, 2).")
         .def_property_readonly("indptr", [](const Self& s) { return view(part_of(s).indptr, s); },
@@ -473,6 +485,6 @@ void bind_cells(py::module_& m) {
             report.rethrow();
             return result;
         },
-        py::arg("points"), py::arg("radius"), py::arg("method") = "scan", py::arg("threads") = 0,
+        py::arg("points"), py::arg("radius"), py::arg("method") = "auto", py::arg("threads") = 0,
         py::arg("progress") = py::none(), kLimitedCellsDoc);
 }

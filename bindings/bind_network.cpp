@@ -82,8 +82,8 @@ py::dict counts_dict(const nw::TransmissionCounts& c) {
     py::array_t<std::int64_t> s({static_cast<py::ssize_t>(c.nodes), T}), r({static_cast<py::ssize_t>(c.nodes), T});
     std::copy(c.sent.begin(), c.sent.end(), s.mutable_data());
     std::copy(c.received.begin(), c.received.end(), r.mutable_data());
-    d["sent"] = s;
-    d["received"] = r;
+    d["sent"] = s;  // transmissions (a broadcast is one)
+    d["received"] = r;  // link deliveries
     return d;
 }
 
@@ -138,6 +138,8 @@ struct SimArgs {
     std::uint64_t seed = 0;
     std::int64_t budget = 0;
     nw::CcOptions cc;
+    nw::Bd07Options bd07;
+    nw::DvHopOptions dv_hop;
     bool has_bounds = false;
     nw::Box box;
     std::vector<Index> anchors;
@@ -163,7 +165,7 @@ nw::Box bounds_arg(const py::object& obj, const Points& pts, bool& given) {
 
 /// Totals of one run (for batches): transmissions per type, lost messages, correctness.
 struct BatchRow {
-    std::vector<std::int64_t> by_type;
+    std::vector<std::int64_t> by_type, deliveries_by_type;
     std::int64_t lost = 0;
     bool condition = false, exact = false;
 };
@@ -172,7 +174,10 @@ BatchRow run_one(const nw::Network& net, const SimArgs& a, bool verify) {
     nw::RunOptions ro{a.loss, a.seed, a.budget};
     BatchRow row;
     const auto totals = [&](const nw::TransmissionCounts& c) {
-        for (std::size_t t = 0; t < c.types.size(); ++t) row.by_type.push_back(c.sent_of_type(t));
+        for (std::size_t t = 0; t < c.types.size(); ++t) {
+            row.by_type.push_back(c.sent_of_type(t));
+            row.deliveries_by_type.push_back(c.received_of_type(t));
+        }
     };
     if (a.algorithm == "cc") {
         const auto r = nw::run_cc(net, ro, a.cc);
@@ -184,7 +189,7 @@ BatchRow run_one(const nw::Network& net, const SimArgs& a, bool verify) {
             row.exact = nw::wrong_nodes(chk, r.neighbors, &r.on_hull).empty();
         }
     } else if (a.algorithm == "bd07") {
-        const auto r = nw::run_bd07(net, a.box, ro);
+        const auto r = nw::run_bd07(net, a.box, ro, a.bd07);
         totals(r.counts);
         row.lost = r.lost;
         if (verify) row.condition = nw::delaunay_check(net).condition;
@@ -230,7 +235,8 @@ void bind_network(py::module_& m) {
     m.def("_network_simulate", [](const std::string& algorithm, py::handle points, double comm_range, double loss,
                                   const py::object& obstacles, const py::object& bounds, std::uint64_t seed,
                                   std::int64_t budget, bool cap_adjacency, int adjacency_cap, bool forward,
-                                  const std::string& routing, const py::object& anchors, double radius, bool verify) {
+                                  const std::string& routing, const py::object& anchors, double radius, bool verify,
+                                  bool route_discovery, bool dv_hop_synchronous, bool anchors_relay) {
         const PointsArg p = points_arg(points, "points");
         const auto obs = obstacles_arg(obstacles);
         SimArgs a;
@@ -239,6 +245,10 @@ void bind_network(py::module_& m) {
         a.cc.adjacency_cap = adjacency_cap;
         a.cc.forward = forward;
         a.cc.routing = nw::parse_routing(routing);
+        a.cc.route_discovery = route_discovery;
+        a.bd07.route_discovery = route_discovery;
+        a.dv_hop.synchronous = dv_hop_synchronous;
+        a.dv_hop.anchors_relay = anchors_relay;
         nw::RunOptions ro{loss, seed, budget};
         nw::require_run_options(ro);
         if (!anchors.is_none()) a.anchors = anchors.cast<std::vector<Index>>();
@@ -283,7 +293,7 @@ void bind_network(py::module_& m) {
             nw::Bd07Result r;
             {
                 py::gil_scoped_release nogil;
-                r = nw::run_bd07(net, a.box, ro);
+                r = nw::run_bd07(net, a.box, ro, a.bd07);
             }
             d["neighbors"] = csr(r.neighbors);
             d["cells"] = polygons_dict(r.cells);
@@ -291,6 +301,7 @@ void bind_network(py::module_& m) {
             d["lost"] = r.lost;
             d["delivered"] = r.delivered;
             d["probes"] = r.probes;
+            d["discoveries"] = r.discoveries;
             // The region the run used (the points' bounding box when none was given, widened where it
             // is flat); None when there is neither a region nor a node to take one from.
             if (a.has_bounds || net.size() > 0)
@@ -307,7 +318,7 @@ void bind_network(py::module_& m) {
             py::gil_scoped_release nogil;
             nw::DvHopResult dv;
             const bool localise = !a.anchors.empty();
-            if (localise) dv = nw::run_dv_hop(net, a.anchors, ro);
+            if (localise) dv = nw::run_dv_hop(net, a.anchors, ro, a.dv_hop);
             const auto bs = nw::run_distributed_bs(net, localise ? dv.estimates : net.points, R, ro);
             py::gil_scoped_acquire gil;
             d["partition"] = partition_dict(bs.partition);
@@ -328,7 +339,7 @@ void bind_network(py::module_& m) {
     m.def("_network_batch", [](const std::string& algorithm, const std::vector<py::object>& points_list,
                                double comm_range, double loss, const std::vector<py::object>& obstacles_list,
                                const std::vector<double>& bounds, const std::vector<std::uint64_t>& seeds,
-                               bool verify, int threads, py::object progress) {
+                               bool verify, int threads, py::object progress, bool route_discovery) {
         const std::size_t N = points_list.size();
         if (obstacles_list.size() != N || seeds.size() != N)
             throw py::value_error("points_list, obstacles_list and seeds must have the same length");
@@ -341,6 +352,8 @@ void bind_network(py::module_& m) {
         SimArgs a;
         a.algorithm = algorithm;
         a.loss = loss;
+        a.cc.route_discovery = route_discovery;
+        a.bd07.route_discovery = route_discovery;
         if (bounds.size() != 4) throw py::value_error("bounds must be (xmin, ymin, xmax, ymax)");
         a.box = nw::Box{bounds[0], bounds[1], bounds[2], bounds[3]};
         nw::require_box(a.box);
@@ -372,18 +385,23 @@ void bind_network(py::module_& m) {
         }
         prog.rethrow();
         if (failure) std::rethrow_exception(failure);
-        const std::size_t T = N ? rows[0].by_type.size() : (algorithm == "bd07" ? 3 : algorithm == "cc" ? 3 : 0);
+        const std::size_t T = N ? rows[0].by_type.size() : (algorithm == "bd07" ? 4 : algorithm == "cc" ? 3 : 0);
         py::array_t<std::int64_t> by_type({static_cast<py::ssize_t>(N), static_cast<py::ssize_t>(T)});
+        py::array_t<std::int64_t> deliveries({static_cast<py::ssize_t>(N), static_cast<py::ssize_t>(T)});
         py::array_t<std::int64_t> lost(static_cast<py::ssize_t>(N));
         py::array_t<bool> cond(static_cast<py::ssize_t>(N)), exact(static_cast<py::ssize_t>(N));
         for (std::size_t k = 0; k < N; ++k) {
-            for (std::size_t t = 0; t < T; ++t) by_type.mutable_at(static_cast<py::ssize_t>(k), static_cast<py::ssize_t>(t)) = rows[k].by_type[t];
+            for (std::size_t t = 0; t < T; ++t) {
+                by_type.mutable_at(static_cast<py::ssize_t>(k), static_cast<py::ssize_t>(t)) = rows[k].by_type[t];
+                deliveries.mutable_at(static_cast<py::ssize_t>(k), static_cast<py::ssize_t>(t)) = rows[k].deliveries_by_type[t];
+            }
             lost.mutable_at(static_cast<py::ssize_t>(k)) = rows[k].lost;
             cond.mutable_at(static_cast<py::ssize_t>(k)) = rows[k].condition;
             exact.mutable_at(static_cast<py::ssize_t>(k)) = rows[k].exact;
         }
         py::dict d;
         d["by_type"] = by_type;
+        d["deliveries_by_type"] = deliveries;
         d["lost"] = lost;
         d["condition"] = cond;
         d["exact"] = exact;

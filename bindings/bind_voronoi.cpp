@@ -26,9 +26,10 @@ using dvoronoi::VoronoiPartition;
 namespace {
 
 AsrInner parse_inner(const std::string& name) {
+    if (name == "auto") return AsrInner::Auto;
     if (name == "scan") return AsrInner::Scan;
     if (name == "evt") return AsrInner::Evt;
-    throw py::value_error("inner must be \"scan\" or \"evt\", got \"" + name + "\"");
+    throw py::value_error("inner must be \"auto\", \"scan\" or \"evt\", got \"" + name + "\"");
 }
 
 /// bounds=None | (xmin, ymin, xmax, ymax) | (k, 2) convex polygon.
@@ -204,11 +205,11 @@ void bind_voronoi(py::module_& m) {
             const AsrInner in = parse_inner(inner);
             return dvoronoi::asr_cell(c, o.ref(), in, region_arg(bounds));
         },
-        py::arg("center"), py::arg("others"), py::arg("inner") = "scan", py::arg("bounds") = py::none(),
-        "voronoi_cell(center, others, inner=\"scan\", bounds=None) -> VoronoiCell\n\n"
+        py::arg("center"), py::arg("others"), py::arg("inner") = "auto", py::arg("bounds") = py::none(),
+        "voronoi_cell(center, others, inner=\"auto\", bounds=None) -> VoronoiCell\n\n"
         "The exact Voronoi cell of the agent at `center` among `others` by Adjust-Sensing-Radius, with "
-        "the Boundary Scan limited cell (\"scan\") or our exact Delaunay tessellation (\"evt\") as the "
-        "inner step. Edge neighbours are rows of `others`.");
+        "the Boundary Scan limited cell (\"scan\"; \"auto\" is the same for one agent) or our exact "
+        "Delaunay tessellation (\"evt\") as the inner step. Edge neighbours are rows of `others`.");
 
     py::class_<VoronoiPartition>(m, "VoronoiPartition", "Exact Voronoi neighbours and hull flags of n agents (compiled core).")
         .def_property_readonly("points", [](const py::object& s) { return view(s.cast<const VoronoiPartition&>().points, s); })
@@ -218,6 +219,18 @@ void bind_voronoi(py::module_& m) {
         .def_property_readonly("radius_steps", [](const VoronoiPartition& p) { return copy_array<std::int32_t>(p.radius_steps); })
         .def_property_readonly("agents_used", [](const VoronoiPartition& p) { return copy_array<Index>(p.agents_used); })
         .def_property_readonly("areas", [](const VoronoiPartition& p) { return copy_array<double>(p.areas); })
+        .def_property_readonly(
+            "computed_by",
+            [](const VoronoiPartition& p) {
+                py::dict d;
+                d["one_shot"] = p.computed_by.one_shot;
+                d["deferred"] = p.computed_by.deferred;
+                d["asr"] = p.computed_by.asr;
+                return d;
+            },
+            "How the cells were found: {\"one_shot\": one certified clipping (auto), \"deferred\": from "
+            "the triangulation of the agents it left (auto), \"asr\": Adjust-Sensing-Radius with the inner "
+            "step (scan, evt)}; the values add up to n.")
         .def_property_readonly("centroids", [](const py::object& s) { return view(s.cast<const VoronoiPartition&>().centroids, s); })
         .def_property_readonly("bounds", [](const VoronoiPartition& p) -> py::object {
             if (p.bounds.empty()) return py::none();
@@ -245,8 +258,9 @@ void bind_voronoi(py::module_& m) {
             report.rethrow();
             return result;
         },
-        py::arg("points"), py::arg("inner") = "scan", py::arg("threads") = 0, py::arg("progress") = py::none(),
+        py::arg("points"), py::arg("inner") = "auto", py::arg("threads") = 0, py::arg("progress") = py::none(),
         py::arg("bounds") = py::none(),
-        "voronoi_cells(points, inner=\"scan\", threads=0, progress=None, bounds=None) -> VoronoiPartition\n\n"
-        "Every agent's exact Voronoi neighbours and hull flag by Adjust-Sensing-Radius (GIL released).");
+        "voronoi_cells(points, inner=\"auto\", threads=0, progress=None, bounds=None) -> VoronoiPartition\n\n"
+        "Every agent's exact Voronoi neighbours and hull flag: \"scan\" / \"evt\" run Adjust-Sensing-Radius "
+        "with that inner step on every agent, \"auto\" our certified fast path (GIL released).");
 }

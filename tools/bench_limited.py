@@ -207,12 +207,12 @@ def main(argv=None) -> int:
         out("|---|---:|---:|---|")
         out(f"| CGAL Delaunay_triangulation_2 (Epick) + neighbour walk, 1 thread | {r['cgal_s']:.3f} | "
             f"{ns(r['cgal_s']):.0f} | reference |")
-        out(f"| dvoronoi `limited_cells`, Scan, 1 thread | {r['scan1_s']:.3f} | {ns(r['scan1_s']):.0f} | "
+        out(f"| dvoronoi `limited_cells`, auto, 1 thread | {r['scan1_s']:.3f} | {ns(r['scan1_s']):.0f} | "
             f"{r['scan1_s'] / r['cgal_s']:.2f} x CGAL's time |")
-        out(f"| dvoronoi `limited_cells`, Scan, {T} threads | {r['scanT_s']:.3f} | {ns(r['scanT_s']):.0f} | "
+        out(f"| dvoronoi `limited_cells`, auto, {T} threads | {r['scanT_s']:.3f} | {ns(r['scanT_s']):.0f} | "
             f"{r['scan1_s'] / r['scanT_s']:.2f} x speed-up over 1 thread |")
         out(f"| dvoronoi `limited_cells`, Chords (RCVC), 1 thread | {r['chords1_s']:.3f} | "
-            f"{ns(r['chords1_s']):.0f} | {r['chords1_s'] / r['scan1_s']:.2f} x Scan's time |")
+            f"{ns(r['chords1_s']):.0f} | {r['chords1_s'] / r['scan1_s']:.2f} x auto's time |")
         out()
         out("CGAL gives the unlimited Delaunay graph only; dvoronoi gives limited neighbours and every "
             "cell's exact pieces, area, perimeter and centroid. "
@@ -298,9 +298,9 @@ def main(argv=None) -> int:
     out(f"The cell has {len(cell.neighbors)} limited neighbours; timeit, best of "
         f"{max(args.reps, 3)} repeats, Python call overhead included.")
     out()
-    out("| call | µs per call | vs dvoronoi scan |")
+    out("| call | µs per call | vs dvoronoi auto |")
     out("|---|---:|---:|")
-    out(f"| `dv.limited_cell(center, others, R)` (scan) | {lat_scan:.1f} | 1 |")
+    out(f"| `dv.limited_cell(center, others, R)` (auto = Boundary Scan for one agent) | {lat_scan:.1f} | 1 |")
     out(f"| `dv.limited_cell(center, others, R).area` | {lat_area:.1f} | {lat_area / lat_scan:.2f} |")
     out(f"| `dv.limited_cell(..., method=\"chords\")` | {lat_chords:.1f} | {lat_chords / lat_scan:.2f} |")
     out(f"| scipy `Voronoi` of 31 (+4 sentinel) points + shapely clip of one cell | {lat_scipy:.1f} | "

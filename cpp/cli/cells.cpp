@@ -18,7 +18,7 @@ namespace {
 struct CellsOptions {
     std::string points;
     double radius = 0.0;
-    std::string method = "scan";
+    std::string method = "auto";
     std::string columns;
     int threads = 0;
     std::string output;
@@ -84,8 +84,10 @@ Command add_cells(CLI::App& parent) {
                     "2R shape it)")
         ->required();
     sub->add_option("-m,--method", o->method,
-                    "algorithm: scan (Boundary Scan, O(m log m)) or chords (RCVC); same cells")
-        ->check(CLI::IsMember({"scan", "chords"}))
+                    "algorithm: auto (our certified clipping fast path, Boundary Scan where it gives "
+                    "up), scan (Boundary Scan on every agent, O(m log m)) or chords (RCVC on every "
+                    "agent, O(m^2) worst case); same cells")
+        ->check(CLI::IsMember({"auto", "scan", "chords"}))
         ->capture_default_str();
     sub->add_option("-o,--output", o->output,
                     "output file, format from its extension: .json, .geojson (arcs densified) or "

@@ -30,6 +30,7 @@ struct NetworkOptions {
     std::int64_t budget = 0;
     int adjacency_cap = 6;
     bool no_cap = false, no_forward = false, quiet = false;
+    bool no_route_discovery = false, dv_hop_async = false, anchors_relay = false;
 };
 
 network::Box parse_bounds(const std::string& text) {
@@ -104,6 +105,7 @@ int run_network(const NetworkOptions& o) {
     cc.cap_adjacency = !o.no_cap;
     cc.adjacency_cap = o.adjacency_cap;
     cc.forward = !o.no_forward;
+    cc.route_discovery = !o.no_route_discovery;
     try {
         cc.routing = network::parse_routing(o.routing);
     } catch (const InputError& e) {
@@ -184,7 +186,9 @@ int run_network(const NetworkOptions& o) {
         }
         for (std::size_t i = 0; i < r.neighbors.size(); ++i) nb_count[i] = r.neighbors[i].size();
     } else if (o.algorithm == "bd07") {
-        const auto r = network::run_bd07(net, box, run);
+        network::Bd07Options bo;
+        bo.route_discovery = !o.no_route_discovery;
+        const auto r = network::run_bd07(net, box, run, bo);
         counts = r.counts;
         j["lost_messages"] = r.lost;
         j["bounds"] = {box.xmin, box.ymin, box.xmax, box.ymax};
@@ -193,6 +197,7 @@ int run_network(const NetworkOptions& o) {
         for (const auto& c : cells) areas.push_back(c.area());
         j["areas"] = areas;
         j["probes"] = r.probes;
+        j["route_discoveries"] = r.discoveries;
         for (std::size_t i = 0; i < r.neighbors.size(); ++i) nb_count[i] = r.neighbors[i].size();
     } else {
         const double R = o.radius > 0.0 ? o.radius : 0.5 * o.range;
@@ -206,7 +211,10 @@ int run_network(const NetworkOptions& o) {
             std::shuffle(all.begin(), all.end(), rng);
             anchors.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(std::min(k, all.size())));
             std::sort(anchors.begin(), anchors.end());
-            const auto dv = network::run_dv_hop(net, anchors, run);
+            network::DvHopOptions dvo;
+            dvo.synchronous = !o.dv_hop_async;
+            dvo.anchors_relay = o.anchors_relay;
+            const auto dv = network::run_dv_hop(net, anchors, run, dvo);
             positions = dv.estimates;
             dv_counts = dv.counts;
         }
@@ -232,6 +240,7 @@ int run_network(const NetworkOptions& o) {
     j["sent"] = rows(counts.sent, counts.types.size());
     j["received"] = rows(counts.received, counts.types.size());
     j["total_transmissions"] = counts.total_sent() + dv_counts.total_sent();
+    j["total_deliveries"] = counts.total_received() + dv_counts.total_received();
 
     std::string text;
     if (ext == ".csv") {
@@ -262,7 +271,8 @@ int run_network(const NetworkOptions& o) {
     if (code != 0) return code;
     if (!o.quiet)
         std::cerr << "network " << o.algorithm << ": " << net.size() << " nodes, " << net.link_count() << " links, "
-                  << (counts.total_sent() + dv_counts.total_sent()) << " transmissions\n";
+                  << (counts.total_sent() + dv_counts.total_sent()) << " transmissions, "
+                  << (counts.total_received() + dv_counts.total_received()) << " link deliveries\n";
     return 0;
 }
 
@@ -287,10 +297,16 @@ Command add_network(CLI::App& parent) {
     sub->add_option("--adjacency-cap", o->adjacency_cap, "CC: adjacency list entries sent along")->capture_default_str();
     sub->add_flag("--no-forward", o->no_forward, "CC: notify both nodes of a new vertex (Section 2.3, optimisation 2 off)");
     sub->add_option("--routing", o->routing, "CC: gpsr or shortest")->check(CLI::IsMember({"gpsr", "shortest"}))->capture_default_str();
+    sub->add_flag("--no-route-discovery", o->no_route_discovery,
+                  "cc, bd07: where GPSR cannot deliver to a node, lose the message instead of finding a route by flooding");
     sub->add_option("--radius", o->radius, "bs: cell radius (default range / 2)");
     sub->add_option("--anchor-fraction", o->anchor_fraction, "bs: fraction of anchor nodes; the others localise themselves by DV-Hop");
+    sub->add_flag("--dv-hop-async", o->dv_hop_async,
+                  "bs: DV-Hop floods in random asynchronous order, every improvement passed on (default: "
+                  "breadth-first rounds, each node forwards each anchor's flood once)");
+    sub->add_flag("--anchors-relay", o->anchors_relay, "bs: anchors forward other anchors' DV-Hop floods (the paper: they do not)");
     sub->add_option("--columns", o->columns, "X,Y: the fields of POINTS holding x and y");
-    sub->add_option("-o,--output", o->output, "output file: .json (the result) or .csv (one row per node: neighbours, area, transmissions by type); default JSON on stdout");
+    sub->add_option("-o,--output", o->output, "output file: .json (the result) or .csv (one row per node: neighbours, area, transmissions (sent_*) and link deliveries (received_*) by type); default JSON on stdout");
     sub->add_option("--svg", o->svg, "also draw the network (cells, links, obstacles) into this SVG file");
     sub->add_flag("-q,--quiet", o->quiet, "no summary on stderr");
     return {sub, [o] { return run_network(*o); }};

@@ -16,7 +16,7 @@ namespace {
 
 struct VoronoiOptions {
     std::string points;
-    std::string inner = "scan";
+    std::string inner = "auto";
     std::vector<double> bounds;
     std::string columns;
     int threads = 0;
@@ -49,7 +49,7 @@ int run_voronoi(const VoronoiOptions& o) {
             throw UsageError(e.what());
         }
     }
-    const AsrInner inner = o.inner == "evt" ? AsrInner::Evt : AsrInner::Scan;
+    const AsrInner inner = o.inner == "evt" ? AsrInner::Evt : o.inner == "scan" ? AsrInner::Scan : AsrInner::Auto;
     const bool to_stdout = o.output.empty() || o.output == "-";
     const Format format = to_stdout ? Format::Json : output_format(o.output, "-o/--output");
     if (!to_stdout && !o.svg.empty() && o.output == o.svg)
@@ -85,9 +85,10 @@ Command add_voronoi(CLI::App& parent) {
                     "unbounded; without bounds they have no area and are drawn as rays)")
         ->expected(4);
     sub->add_option("--inner", o->inner,
-                    "inner step of ASR: scan (Boundary Scan limited cell) or evt (exact tessellation of "
-                    "the agents in range); same cells")
-        ->check(CLI::IsMember({"scan", "evt"}))
+                    "auto (our fast path: one certified clipping per agent, a Delaunay triangulation of "
+                    "the few it leaves), or ASR on every agent with inner step scan (Boundary Scan, "
+                    "ASR+BS) or evt (exact tessellation of the agents in range, ASR+EVT); same cells")
+        ->check(CLI::IsMember({"auto", "scan", "evt"}))
         ->capture_default_str();
     sub->add_option("-o,--output", o->output,
                     "output file, format from its extension: .json, .geojson (polygons; null for "

@@ -47,7 +47,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     demo = sub.add_parser("demo", help="limited cells of the built-in Intel lab data, with a PNG picture")
     demo.add_argument("--out", default="dvoronoi_demo.png", help="PNG file to write (default: %(default)s)")
     demo.add_argument("--radius", type=float, default=3.0, help="cell radius R in metres (default: %(default)s)")
-    demo.add_argument("--method", choices=["scan", "chords"], default="scan")
+    demo.add_argument("--method", choices=["auto", "scan", "chords"], default="auto")
     args = parser.parse_args(argv)
     if args.command == "demo":
         try:

@@ -1,5 +1,5 @@
 """Type stubs of the compiled core dvoronoi._core (see bindings/)."""
-from typing import Any, Callable, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -68,6 +68,8 @@ class LimitedPartition:
     @property
     def method(self) -> str: ...
     @property
+    def computed_by(self) -> Dict[str, int]: ...
+    @property
     def points(self) -> npt.NDArray[np.float64]: ...
     @property
     def indptr(self) -> npt.NDArray[np.int64]: ...
@@ -98,12 +100,12 @@ class LimitedPartition:
     def to_geojson(self, tolerance: Optional[float] = None) -> str: ...
 
 def limited_cell(
-    center: npt.ArrayLike, others: npt.ArrayLike, radius: float, method: str = "scan"
+    center: npt.ArrayLike, others: npt.ArrayLike, radius: float, method: str = "auto"
 ) -> LimitedCell: ...
 def limited_cells(
     points: npt.ArrayLike,
     radius: float,
-    method: str = "scan",
+    method: str = "auto",
     threads: int = 0,
     progress: Optional[Callable[[int, int], object]] = None,
 ) -> LimitedPartition: ...
@@ -189,8 +191,8 @@ class DistanceNeighbors:
     def cell(self, i: int) -> VoronoiCell: ...
     def __len__(self) -> int: ...
 
-def voronoi_cell(center: Any, others: Any, inner: str = "scan", bounds: Any = None) -> VoronoiCell: ...
-def voronoi_cells(points: Any, inner: str = "scan", threads: int = 0,
+def voronoi_cell(center: Any, others: Any, inner: str = "auto", bounds: Any = None) -> VoronoiCell: ...
+def voronoi_cells(points: Any, inner: str = "auto", threads: int = 0,
                   progress: Optional[Callable[[int, int], None]] = None, bounds: Any = None) -> VoronoiPartition: ...
 # Grid Voronoi diagram of obstacles (private; use dvoronoi.grid_voronoi / dvoronoi.GridVoronoi)
 class _GvdScene:
@@ -339,6 +341,9 @@ def _network_simulate(
     anchors: Optional[list],
     radius: float,
     verify: bool,
+    route_discovery: bool,
+    dv_hop_synchronous: bool,
+    anchors_relay: bool,
 ) -> dict: ...
 def _network_batch(
     algorithm: str,
@@ -351,4 +356,5 @@ def _network_batch(
     verify: bool,
     threads: int,
     progress: Optional[Callable[[int, int], object]],
+    route_discovery: bool,
 ) -> dict: ...

@@ -26,7 +26,11 @@ class VoronoiPartition(Result):
     ----------
     points : (n, 2) float64
     inner : str
-        The inner step of Adjust-Sensing-Radius: ``"scan"`` (Boundary Scan) or ``"evt"``.
+        ``"auto"`` (our certified fast path), or the inner step Adjust-Sensing-Radius runs on every
+        agent: ``"scan"`` (Boundary Scan) or ``"evt"``.
+    computed_by : dict
+        How the cells were found: ``{"one_shot": ..., "deferred": ..., "asr": ...}`` (see
+        :func:`voronoi_cells`); the values add up to n.
     indptr, indices : int64
         Voronoi neighbours in scipy's CSR layout (ascending per agent).
     on_hull : (n,) bool
@@ -50,6 +54,10 @@ class VoronoiPartition(Result):
     def __init__(self, core: "_core.VoronoiPartition", inner: str) -> None:
         self._core = core
         self.inner = inner
+
+    @property
+    def computed_by(self) -> dict:
+        return self._core.computed_by
 
     @cached_property
     def points(self) -> np.ndarray:
@@ -214,16 +222,16 @@ class VoronoiPartition(Result):
 BoundsArg = Any  # None | (xmin, ymin, xmax, ymax) | (k, 2) convex polygon
 
 
-def voronoi_cell(center: Any, others: Any, inner: str = "scan", bounds: BoundsArg = None) -> "_core.VoronoiCell":
+def voronoi_cell(center: Any, others: Any, inner: str = "auto", bounds: BoundsArg = None) -> "_core.VoronoiCell":
     """The exact Voronoi cell of the agent at `center` among `others` (rows of `others` name the
-    neighbours), by Adjust-Sensing-Radius with Boundary Scan (``inner="scan"``) or our exact Delaunay
-    tessellation (``inner="evt"``) as the inner step. ``on_hull`` says whether it is unbounded; its
+    neighbours), by Adjust-Sensing-Radius with Boundary Scan (``inner="scan"``; ``"auto"`` is the same
+    for one agent) or our exact Delaunay tessellation (``inner="evt"``) as the inner step. ``on_hull`` says whether it is unbounded; its
     ``edges`` then run from one ray to the other. With ``bounds`` (a box ``(xmin, ymin, xmax, ymax)``
     or a ``(k, 2)`` convex polygon) the cell is also clipped: ``clipped``, ``area``, ``centroid``."""
     return _core.voronoi_cell(center, others, _args.text(inner, "inner"), bounds)
 
 
-def voronoi_cells(points: Any, method: str = "asr", inner: str = "scan", bounds: BoundsArg = None,
+def voronoi_cells(points: Any, method: str = "asr", inner: str = "auto", bounds: BoundsArg = None,
                   workers: Optional[int] = None, progress: ProgressArg = None, *,
                   threads: Optional[int] = None) -> VoronoiPartition:
     """Every agent's exact Voronoi cell by Adjust-Sensing-Radius (``method="asr"``, see
@@ -231,7 +239,20 @@ def voronoi_cells(points: Any, method: str = "asr", inner: str = "scan", bounds:
     cells clipped to ``bounds`` (a box, or a convex polygon whose ring may be closed: a last vertex
     equal to the first is dropped; of the bounded cells when no bounds are given). ``workers`` None
     or -1 uses every core, k >= 1 uses k (``threads`` is a deprecated alias, 0 = every core);
-    ``progress`` as in :func:`limited_cells`. Raises ValueError for bad shapes, NaN/inf, coinciding
+    ``progress`` as in :func:`limited_cells`.
+
+    ``inner`` chooses what runs; all give the same neighbours and hull flags (``computed_by`` says
+    which route found each cell):
+
+    - ``"auto"`` (default): our fast path, not a published algorithm. One certified clipping per
+      agent at 1.5 mean spacings certifies ~97% of a uniform swarm's cells; the rest are finished
+      from a Delaunay triangulation of just those agents.
+    - ``"scan"``: ASR+BS, Adjust-Sensing-Radius with Boundary Scan on every radius step of every agent
+      (the Boundary Scan paper's route).
+    - ``"evt"``: ASR+EVT, the same schedule with our exact Delaunay tessellation of the agents in range.
+
+    Both ASR routes add, from a few radius steps on, a certificate by empty vertex circles and the
+    global hull, so hull agents do not sweep every agent. Raises ValueError for bad shapes, NaN/inf, coinciding
     agents, bounds that are not a box or a convex polygon, or coordinates so far apart in scale that
     an exact test would over- or underflow (see :func:`limited_cells`)."""
     if method != "asr":

@@ -3,7 +3,7 @@ count what that costs (SPEC "Networks of agents").
 
 >>> import dvoronoi as dv
 >>> res = dv.network.simulate("cc", points, comm_range=20.0, loss=0.2, seed=1)
->>> res.neighbors(0), res.on_hull, res.total_transmissions, res.transmissions_by_type
+>>> res.neighbors(0), res.on_hull, res.total_transmissions, res.total_deliveries
 >>> res.plot_messages()
 
 Algorithms (the simulator is C++: ``cpp/include/dvoronoi/network/``):
@@ -19,14 +19,29 @@ Algorithms (the simulator is C++: ``cpp/include/dvoronoi/network/``):
     widened by 1 where it is flat), refined by probing cell vertices through GPSR. An empty network
     gives an empty result (``bounds`` None unless given).
 ``"bs"``
-    Distributed Boundary Scan: every node sends its position once and computes its limited cell of
-    radius ``radius`` (default ``comm_range / 2``). With ``anchors`` (node indices) or
-    ``anchor_fraction`` the other nodes first localise themselves by DV-Hop and the cells are built
-    from the estimated positions.
+    Distributed Boundary Scan: every node broadcasts its position once and computes its limited cell
+    of radius ``radius`` (default ``comm_range / 2``) by Boundary Scan. With ``anchors`` (node
+    indices) or ``anchor_fraction`` the other nodes first localise themselves by DV-Hop and the cells
+    are built from the estimated positions. DV-Hop's floods run in breadth-first rounds, each node
+    forwarding each anchor's flood once (``dv_hop="sync"``, default) or in random asynchronous order
+    passing on every improvement (``"async"``); anchors forward other anchors' floods only with
+    ``anchors_relay=True`` (the Boundary Scan paper: anchors broadcast twice, their position and
+    their hop size).
+
+Route discovery (``route_discovery=True``, default, for CC and BD07 alike): where GPSR cannot deliver a
+message addressed to a node (obstacles make the planar subgraph fail), the node floods a route request
+and the message follows the answer; counted as message type ``discovery``. Neither paper has it; off,
+such a message is lost (``lost_messages``).
+
+Two counts (docs/spec.md), per node and message type: ``sent`` = **transmissions** (radio sends: a
+broadcast to all neighbours is one, a unicast one per hop, every try counted) and ``received`` =
+**link deliveries** (one per message per link that receives it). ``total_transmissions`` and
+``total_deliveries`` sum them.
 
 Links are the unit-disk graph (``|p - q| <= comm_range``) minus the links whose segment meets an
 obstacle segment (``obstacles``: an ``(m, 4)`` array ``x0, y0, x1, y1``). Each try over a link fails
-with probability ``loss`` and is repeated; every try is counted. Messages are delivered in a random
+with probability ``loss`` and is repeated (a broadcast until every neighbour has it); every try is
+counted. Messages are delivered in a random
 order drawn from ``seed`` (one seed, one reproducible interleaving). A run that would send more than
 ``budget`` transmissions raises :class:`BudgetExceeded`.
 """
@@ -94,17 +109,26 @@ class _NetworkMixin:
         self.sent = np.asarray(counts["sent"], dtype=np.int64)
         self.received = np.asarray(counts["received"], dtype=np.int64)
         self.lost_messages = int(d.get("lost", 0))
-        #: CC only: route discoveries (floods) after GPSR could not deliver (obstacles)
+        #: CC and BD07: route discoveries (floods) after GPSR could not deliver (obstacles)
         self.route_discoveries = int(d.get("discoveries", 0))
 
     @property
     def total_transmissions(self) -> int:
-        """Every try of every message over every link."""
+        """Radio sends: a broadcast is one, a unicast one per hop, every try counted."""
         return int(self.sent.sum())
 
     @property
     def transmissions_by_type(self) -> Dict[str, int]:
         return {t: int(self.sent[:, k].sum()) for k, t in enumerate(self.message_types)}
+
+    @property
+    def total_deliveries(self) -> int:
+        """Link deliveries: one per message per link that receives it."""
+        return int(self.received.sum())
+
+    @property
+    def deliveries_by_type(self) -> Dict[str, int]:
+        return {t: int(self.received[:, k].sum()) for k, t in enumerate(self.message_types)}
 
     @property
     def sent_per_node(self) -> np.ndarray:
@@ -120,7 +144,8 @@ class _NetworkMixin:
             "links": self.links.tolist(), "blocked_links": self.blocked_links,
             "obstacles": self.obstacles.tolist(), "message_types": list(self.message_types),
             "sent": self.sent.tolist(), "received": self.received.tolist(),
-            "total_transmissions": self.total_transmissions, "lost_messages": self.lost_messages,
+            "total_transmissions": self.total_transmissions, "total_deliveries": self.total_deliveries,
+            "lost_messages": self.lost_messages,
         }
 
     def plot_network(self, ax: Any = None, **kwargs: Any) -> Any:
@@ -260,7 +285,8 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
         Only with ``bounds``: cells clipped to the box (hull cells are unbounded otherwise: their area
         is ``inf`` and ``cell(i)`` raises).
     sent, received : (n, T) int64
-        Transmissions per node and message type (``message_types``: location, notify, discovery).
+        Transmissions and link deliveries per node and message type (``message_types``: location,
+        notify, discovery).
         ``discovery`` counts the route discoveries (floods and answers) that take over where GPSR
         cannot deliver (obstacles); ``route_discoveries`` is how many there were.
     """
@@ -501,6 +527,16 @@ class BoundaryScanResult(_CellsMixin, _NetworkMixin, CellResult):
         return out
 
     @property
+    def total_deliveries(self) -> int:
+        return int(self.received.sum() + self.dv_hop_received.sum())
+
+    @property
+    def deliveries_by_type(self) -> Dict[str, int]:
+        out = {t: int(self.dv_hop_received[:, k].sum()) for k, t in enumerate(self.dv_hop_types)}
+        out.update({t: int(self.received[:, k].sum()) for k, t in enumerate(self.message_types)})
+        return out
+
+    @property
     def sent_per_node(self) -> np.ndarray:
         return self.sent.sum(axis=1) + self.dv_hop_sent.sum(axis=1)
 
@@ -592,7 +628,8 @@ def _bounds(bounds: Any) -> Optional[tuple]:
 def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, obstacles: Any = None,
              bounds: Any = None, seed: int = 0, *, budget: Optional[int] = None, cap_adjacency: bool = True,
              adjacency_cap: int = 6, forward: bool = True, routing: str = "gpsr", radius: Optional[float] = None,
-             anchors: Any = None, anchor_fraction: Optional[float] = None, verify: bool = True):
+             anchors: Any = None, anchor_fraction: Optional[float] = None, verify: bool = True,
+             route_discovery: bool = True, dv_hop: str = "sync", anchors_relay: bool = False):
     """Run one network algorithm and return its result (see the module docstring).
 
     Parameters
@@ -620,6 +657,13 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
     verify : bool
         CC and BD07: also compute the exact diagram centrally and report Theorem 2's condition
         (``condition``) and, for CC, the nodes that got a wrong answer (``wrong_nodes``).
+    route_discovery : bool
+        CC and BD07: where GPSR cannot deliver to a node, find a route by flooding (default);
+        False loses the message.
+    dv_hop : "sync" or "async"; anchors_relay : bool
+        Boundary Scan with DV-Hop: breadth-first rounds with each node forwarding each anchor's flood
+        once (default), or asynchronous delivery passing on every improvement; whether anchors forward
+        other anchors' floods (default False, as the paper's anchors "broadcast twice").
     """
     if algorithm not in ALGORITHMS:
         raise ValueError(f"algorithm must be one of {ALGORITHMS}, got {algorithm!r}")
@@ -632,6 +676,9 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
     budget = 0 if budget is None else _args.integer(budget, "budget", 1, 2**63 - 1)
     adjacency_cap = _args.integer(adjacency_cap, "adjacency_cap", 0, _args.MAX_COUNT)
     routing = _args.text(routing, "routing")
+    dv_hop = _args.text(dv_hop, "dv_hop")
+    if dv_hop not in ("sync", "async"):
+        raise ValueError(f'dv_hop must be "sync" or "async", got {dv_hop!r}')
     obs = _obstacles(obstacles)
     b = _bounds(bounds)
     anchor_arr = None
@@ -652,7 +699,8 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
         raise ValueError("anchors / anchor_fraction apply to algorithm='bs' only")
     d = _core._network_simulate(algorithm, pts, comm_range, loss, obs if len(obs) else None, b, seed,
                                 budget, bool(cap_adjacency), adjacency_cap, bool(forward), routing,
-                                None if anchor_arr is None else anchor_arr.tolist(), radius or 0.0, bool(verify))
+                                None if anchor_arr is None else anchor_arr.tolist(), radius or 0.0, bool(verify),
+                                bool(route_discovery), dv_hop == "sync", bool(anchors_relay))
     if algorithm == "cc":
         return CcResult(d, pts, comm_range, loss, seed, obs, b)
     if algorithm == "bd07":
@@ -690,11 +738,13 @@ def random_bars(rng: np.random.Generator, count: int, length: float, bounds: Seq
 
 def batch(algorithm: str, networks: Sequence[Any], comm_range: float, loss: float, obstacles: Sequence[Any],
           bounds: Sequence[float], seeds: Sequence[int], verify: bool = True, workers: Optional[int] = None,
-          progress: Any = None, *, threads: Optional[int] = None) -> Dict[str, np.ndarray]:
+          progress: Any = None, *, threads: Optional[int] = None,
+          route_discovery: bool = True) -> Dict[str, np.ndarray]:
     """Run ``cc`` or ``bd07`` on many independent networks in parallel (C++ threads over networks), or
-    ``check`` Theorem 2's condition only.
+    ``check`` Theorem 2's condition only. ``route_discovery`` as in :func:`simulate`.
 
-    Returns per network: ``by_type`` (transmissions per message type), ``lost``, ``condition``
+    Returns per network: ``by_type`` (transmissions per message type: cc location, notify,
+    discovery; bd07 location, probe, reply, discovery), ``deliveries_by_type`` (link deliveries), ``lost``, ``condition``
     (Theorem 2's, when verified or checked) and ``exact`` (CC only: every node's neighbours and hull
     flag exact).
     ``progress`` is a callable (done, total) called from the calling thread. ``workers``: None or -1
@@ -704,4 +754,5 @@ def batch(algorithm: str, networks: Sequence[Any], comm_range: float, loss: floa
     obs = [o if o is not None and len(o) else None for o in (_obstacles(o) for o in obstacles)]
     return _core._network_batch(algorithm, [_points(p) for p in networks], _args.positive(comm_range, "comm_range"),
                                 _args.real(loss, "loss"), obs, [_args.real(v, "bounds") for v in bounds],
-                                [_args.seed(v, "seeds") for v in seeds], bool(verify), team, progress)
+                                [_args.seed(v, "seeds") for v in seeds], bool(verify), team, progress,
+                                bool(route_discovery))

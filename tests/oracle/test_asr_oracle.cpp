@@ -127,13 +127,13 @@ TEST_CASE("voronoi_cells (all agents, grid index, 2 threads) equals the oracle")
         const auto exact = dvoronoi_oracle::compute_oracle(pts, 1.0);
         dvoronoi::Points P(static_cast<Eigen::Index>(pts.size()), 2);
         for (std::size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) << pts[i][0], pts[i][1];
-        for (auto inner : {dvoronoi::AsrInner::Scan, dvoronoi::AsrInner::Evt}) {
+        for (auto inner : {dvoronoi::AsrInner::Auto, dvoronoi::AsrInner::Scan, dvoronoi::AsrInner::Evt}) {
             const dvoronoi::VoronoiPartition part = dvoronoi::voronoi_cells(P, inner, 2);
             for (std::size_t i = 0; i < pts.size(); ++i) {
                 const auto [b, e] = part.neighbors(static_cast<dvoronoi::Index>(i));
                 const std::vector<std::size_t> got(b, e);
                 if (got != exact.voronoi_neighbors[i] || (part.on_hull[i] != 0) != static_cast<bool>(exact.on_hull[i])) {
-                    if (bad < 5) MESSAGE(label << (inner == dvoronoi::AsrInner::Scan ? " scan" : " evt") << ": agent " << i);
+                    if (bad < 5) MESSAGE(label << " inner " << static_cast<int>(inner) << ": agent " << i);
                     ++bad;
                 }
             }
@@ -173,7 +173,7 @@ TEST_CASE("voronoi_cells: cells that reach far (hull runs, convex arcs, cocircul
                 const auto exact = dvoronoi_oracle::compute_oracle(pts, 1.0);
                 dvoronoi::Points P(static_cast<Eigen::Index>(pts.size()), 2);
                 for (std::size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) << pts[i][0], pts[i][1];
-                for (auto inner : {dvoronoi::AsrInner::Scan, dvoronoi::AsrInner::Evt}) {
+                for (auto inner : {dvoronoi::AsrInner::Auto, dvoronoi::AsrInner::Scan, dvoronoi::AsrInner::Evt}) {
                     const auto part = dvoronoi::voronoi_cells(P, inner, 2);
                     for (std::size_t i = 0; i < pts.size(); ++i) {
                         const auto [b, e] = part.neighbors(static_cast<dvoronoi::Index>(i));

@@ -230,7 +230,7 @@ void compare_single_cells(Report& rep, const std::vector<XY>& input, double radi
     }
 }
 
-constexpr dvoronoi::Method kMethods[] = {dvoronoi::Method::Scan, dvoronoi::Method::Chords};
+constexpr dvoronoi::Method kMethods[] = {dvoronoi::Method::Auto, dvoronoi::Method::Scan, dvoronoi::Method::Chords};
 
 /// Runs every check on one input and its transformed copies.
 /// Most inputs are small (one block of the partition), so they run on one thread: an OpenMP team per

@@ -11,7 +11,7 @@ import pytest
 import dvoronoi as dv
 from conftest import (densified_disk, disk_deficit, grid_points, neighbor_sets, random_points)
 
-METHODS = ["scan", "chords"]
+METHODS = ["auto", "scan", "chords"]
 
 
 def dyadic_points(seed: int, n: int, bits: int = 20) -> np.ndarray:
@@ -428,3 +428,30 @@ def test_areas_sum_to_union_of_disks(seed, n, radius):
     total = float(np.sum(part.areas))
     # Union of inscribed k-gons <= union of disks <= it + n * deficit.
     assert union - 1e-12 * total <= total <= union + n * disk_deficit(radius, k) + 1e-12 * total
+
+
+def test_methods_name_what_runs():
+    # "auto" (default) is the certified filter with Boundary Scan behind it; "scan" runs Boundary Scan
+    # on every agent, "chords" RCVC; computed_by counts which algorithm computed each cell.
+    uniform = random_points(7, 2000)
+    lattice = grid_points(0, 400, 20)
+    for pts, radius in ((uniform, 0.03), (lattice, 0.75)):
+        n = len(pts)
+        auto = dv.limited_cells(pts, radius)
+        scan = dv.limited_cells(pts, radius, method="scan")
+        chords = dv.limited_cells(pts, radius, method="chords")
+        assert auto.method == "auto"
+        assert scan.computed_by == {"clip": 0, "scan": n, "chords": 0}
+        assert chords.computed_by == {"clip": 0, "scan": 0, "chords": n}
+        assert auto.computed_by["clip"] + auto.computed_by["scan"] == n and auto.computed_by["chords"] == 0
+        for other in (scan, chords):
+            np.testing.assert_array_equal(auto.indptr, other.indptr)
+            np.testing.assert_array_equal(auto.indices, other.indices)
+        np.testing.assert_array_equal(auto.areas, scan.areas)
+    assert dv.limited_cells(uniform, 0.03).computed_by["clip"] == len(uniform)  # the filter never gives up here
+    vor = {inner: dv.voronoi_cells(uniform, inner=inner, workers=2) for inner in ("auto", "scan", "evt")}
+    assert vor["scan"].computed_by == {"one_shot": 0, "deferred": 0, "asr": len(uniform)}
+    assert vor["auto"].computed_by["one_shot"] > len(uniform) // 2 and vor["auto"].inner == "auto"
+    for inner in ("scan", "evt"):
+        np.testing.assert_array_equal(vor[inner].indices, vor["auto"].indices)
+        np.testing.assert_array_equal(vor[inner].on_hull, vor["auto"].on_hull)

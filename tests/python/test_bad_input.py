@@ -90,7 +90,7 @@ def test_bad_radius(radius):
 
 @pytest.mark.parametrize("method", ["fast", "", "Scan", "voronoi"])
 def test_bad_method(method):
-    with pytest.raises(ValueError, match=rf'method must be "scan" or "chords", got "{method}"'):
+    with pytest.raises(ValueError, match=rf'method must be "auto", "scan" or "chords", got "{method}"'):
         dv.limited_cells(GOOD, 1.0, method=method)
     with pytest.raises(ValueError, match="method"):
         dv.limited_cell((0.5, 0.5), GOOD, 1.0, method=method)

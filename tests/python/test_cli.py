@@ -85,7 +85,10 @@ def shoelace(ring):
 def test_both_methods_give_the_same_neighbours_and_areas(points_file):
     scan = cells_json(points_file, "--radius", "0.9", "--method", "scan", "-q")
     chords = cells_json(points_file, "--radius", "0.9", "--method", "chords", "-q")
-    assert scan["method"] == "scan" and chords["method"] == "chords"
+    auto = cells_json(points_file, "--radius", "0.9", "-q")  # the default
+    assert scan["method"] == "scan" and chords["method"] == "chords" and auto["method"] == "auto"
+    assert auto["indptr"] == scan["indptr"] and auto["indices"] == scan["indices"]
+    assert auto["areas"] == scan["areas"]  # the filter gives Boundary Scan's cells bit for bit
     assert scan["indptr"] == chords["indptr"]
     assert scan["indices"] == chords["indices"]
     assert scan["areas"] == pytest.approx(chords["areas"], rel=1e-9)
@@ -408,7 +411,7 @@ def test_voronoi_json_equals_the_python_result(points_file):
 
     pts = np.array(sample_points())
     for extra, bounds in (((), None), (("--bounds", -1, -2, 110, 105), (-1, -2, 110, 105))):
-        for inner in ("scan", "evt"):
+        for inner in ("auto", "scan", "evt"):
             r = run("voronoi", points_file, "--inner", inner, *extra)
             assert r.returncode == 0, r.stderr
             got = json.loads(r.stdout)

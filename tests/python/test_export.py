@@ -28,7 +28,7 @@ def part():
 
 def test_json_fields_round_trip(part):
     doc = json.loads(part.to_json())
-    assert doc["kind"] == "limited_partition" and doc["method"] == "scan" and doc["radius"] == 3.0
+    assert doc["kind"] == "limited_partition" and doc["method"] == "auto" and doc["radius"] == 3.0
     # Doubles round-trip exactly.
     np.testing.assert_array_equal(np.array(doc["points"]), part.points)
     np.testing.assert_array_equal(doc["indptr"], part.indptr)
@@ -79,7 +79,7 @@ def test_json_equals_cli(tmp_path):
     pts = random_points(31, 400)
     pfile = tmp_path / "points.txt"
     write_points(pfile, pts)
-    for method in ("scan", "chords"):
+    for method in ("auto", "scan", "chords"):
         part = dv.limited_cells(pts, 0.05, method=method)
         for ext, write in ((".json", part.to_json), (".geojson", part.to_geojson)):
             out = tmp_path / f"cli{ext}"

@@ -66,10 +66,13 @@ def test_cc_exact_random_networks(oracle, seed):
             res, cond = check_cc(oracle, pts, comm_range, f"seed {seed} range {comm_range}", loss=loss,
                                  seed=seed * 7 + int(comm_range), cap_adjacency=cap, forward=fwd)
             held += cond
-            # Every try counted: with loss each delivery costs 1 + geometric tries.
-            assert res.sent.sum() >= res.received.sum()
+            # Locations: one broadcast per node (repeated under loss), one delivery per link and
+            # direction; notifications: unicast hops, one transmission per try.
+            by, dl = res.transmissions_by_type, res.deliveries_by_type
+            assert dl["location"] == 2 * len(res.links)
+            assert by["notify"] >= dl["notify"]
             if loss == 0.0:
-                assert res.sent.sum() == res.received.sum()
+                assert by["location"] == len(pts) and by["notify"] == dl["notify"]
             assert res.lost_messages == 0
     assert held >= 4  # the condition holds on most of these networks: the exactness check ran
 
@@ -323,9 +326,11 @@ def test_distributed_bs_equals_centralised(seed):
     ref = dv.limited_cells(pts, r / 2)
     assert np.array_equal(res.indptr, ref.indptr) and np.array_equal(res.indices, ref.indices)
     assert np.allclose(res.areas, ref.areas, rtol=1e-12, atol=0)
-    # Each node sends its position once per link (plus repeated tries when links lose them).
-    assert res.received.sum() == 2 * len(res.links)
-    assert (res.sent.sum() == res.received.sum()) == (seed == 0)
+    # Each node broadcasts its position once (repeated until every neighbour has it when links lose
+    # tries): one transmission per try, one link delivery per link and direction.
+    assert res.received.sum() == 2 * len(res.links) == res.total_deliveries
+    assert (res.sent.sum() == len(pts)) == (seed == 0)
+    assert res.sent.sum() >= len(pts)
 
 
 def test_dv_hop_then_cells():
@@ -352,8 +357,8 @@ def test_simulator_reproducible_budget_and_errors():
     a = net.simulate("cc", pts, 20.0, loss=0.3, seed=5)
     b = net.simulate("cc", pts, 20.0, loss=0.3, seed=5)
     assert np.array_equal(a.sent, b.sent) and np.array_equal(a.received, b.received)
-    # Loss 0.3: about 1 / 0.7 tries per delivered hop.
-    ratio = a.sent.sum() / a.received.sum()
+    # Loss 0.3: about 1 / 0.7 tries per delivered unicast hop.
+    ratio = a.transmissions_by_type["notify"] / a.deliveries_by_type["notify"]
     assert 1.3 < ratio < 1.6
     with pytest.raises(net.BudgetExceeded, match="budget of 100 transmissions exceeded"):
         net.simulate("bd07", pts, 20.0, budget=100)
@@ -414,6 +419,7 @@ def test_batch_matches_single_runs():
         assert out["by_type"][k].tolist() == [one.transmissions_by_type["location"],
                                               one.transmissions_by_type["notify"],
                                               one.transmissions_by_type["discovery"]]
+        assert out["deliveries_by_type"][k].tolist() == list(one.deliveries_by_type.values())
         assert bool(out["condition"][k]) == one.condition
         assert bool(out["exact"][k]) == one.exact
     b = net.batch("bd07", nets, 25.0, 0.0, [None] * 6, (0, 0, 100, 100), seeds, workers=2)
@@ -433,3 +439,25 @@ def test_plots(tmp_path):
         ax2 = res.plot_messages()
         assert len(ax2.patches) == len(pts) * (len(res.message_types) + len(getattr(res, "dv_hop_types", ())))
         ax.figure.savefig(tmp_path / f"{res.algorithm}.png")
+
+
+def test_counts_by_hand_and_route_discovery_switch():
+    # A path of four nodes 0-1-2-3: CC's four location broadcasts are 4 transmissions and 1+2+2+1 = 6
+    # link deliveries; DV-Hop with anchors 0 and 3 (rounds, anchors relay nothing): each anchor's
+    # flood is sent by the anchor and the two normal nodes (3 transmissions, 5 deliveries).
+    path = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]])
+    cc = net.simulate("cc", path, 1.0)
+    assert (cc.total_transmissions, cc.total_deliveries) == (4, 6)
+    bs = net.simulate("bs", path, 1.0, anchors=[0, 3])
+    assert bs.transmissions_by_type["anchor_flood"] == 6 and bs.deliveries_by_type["anchor_flood"] == 10
+    relay = net.simulate("bs", path, 1.0, anchors=[0, 3], anchors_relay=True)
+    assert relay.transmissions_by_type["anchor_flood"] == 8 and relay.deliveries_by_type["anchor_flood"] == 12
+    with pytest.raises(ValueError, match="dv_hop"):
+        net.simulate("bs", path, 1.0, anchors=[0, 3], dv_hop="bfs")
+    # Route discovery off: no discovery traffic, for CC and BD07 alike.
+    rng = np.random.default_rng(3)
+    pts = rng.uniform(0, 100, (100, 2))
+    bars = net.random_bars(rng, 50, 5.0, (0, 0, 100, 100))
+    for alg in ("cc", "bd07"):
+        off = net.simulate(alg, pts, 18.0, obstacles=bars, route_discovery=False, verify=False)
+        assert off.route_discoveries == 0 and off.transmissions_by_type["discovery"] == 0

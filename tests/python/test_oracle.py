@@ -12,7 +12,7 @@ import pytest
 import dvoronoi as dv
 from conftest import CORPUS, grid_points, neighbor_sets, random_points, read_corpus
 
-METHODS = ["scan", "chords"]
+METHODS = ["auto", "scan", "chords"]
 AREA_RTOL = 1e-9
 
 

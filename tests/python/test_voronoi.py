@@ -14,7 +14,7 @@ def check(oracle, points: np.ndarray, label: str) -> None:
     exact = oracle(points, 1.0)
     want = [set(nb) for nb in exact["voronoi_neighbors"]]
     want_hull = np.asarray(exact["on_hull"], dtype=bool)
-    for inner in ("scan", "evt"):
+    for inner in ("auto", "scan", "evt"):
         part = dv.voronoi_cells(points, inner=inner, workers=2)
         got = neighbor_sets(part.indptr, part.indices)
         bad = [i for i in range(len(points)) if got[i] != want[i]]

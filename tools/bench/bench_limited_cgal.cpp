@@ -9,7 +9,7 @@
 //       every agent, circulate its incident vertices and write the neighbour indices into CSR arrays
 //       (input order, ascending per agent, like dvoronoi's). This is the full, unlimited Delaunay
 //       graph: no cell geometry, no areas.
-//   (b) dvoronoi::limited_cells(Method::Scan, 1 thread): limited neighbours (CSR) and every cell's
+//   (b) dvoronoi::limited_cells(Method::Auto, the certified fast path, 1 thread): limited neighbours (CSR) and every cell's
 //       boundary pieces, area, perimeter and centroid, exact combinatorics.
 //   (c) the same with --threads threads (default 2).
 //   (d) dvoronoi::limited_cells(Method::Chords, 1 thread): RCVC, same output.
@@ -20,7 +20,7 @@
 // Points: n uniform in [0,1)^2 (std::mt19937_64, --seed). R = sqrt(k / (4 pi n)) so that about k agents
 // (--k, default 30) lie within 2R of each agent.
 //
-// Sanity (outside the timings): Scan, Chords, 1 and T threads give identical neighbour CSR, and every
+// Sanity (outside the timings): Auto, Chords, 1 and T threads give identical neighbour CSR, and every
 // limited neighbour is a Delaunay neighbour. A mismatch is printed and the exit code is 2.
 //
 // Usage:
@@ -92,10 +92,10 @@ Timing run(Index n, double k, int reps, double window, int threads, std::uint64_
                           best_call);
         return keep(std::move(p));
     };
-    note("dvoronoi Scan, 1 thread");
-    const Kept scan1 = dv_run(dvoronoi::Method::Scan, 1, t.scan1, &t.scan1_call);
-    note("dvoronoi Scan, T threads");
-    const Kept scant = dv_run(dvoronoi::Method::Scan, threads, t.scant);
+    note("dvoronoi auto, 1 thread");
+    const Kept scan1 = dv_run(dvoronoi::Method::Auto, 1, t.scan1, &t.scan1_call);
+    note("dvoronoi auto, T threads");
+    const Kept scant = dv_run(dvoronoi::Method::Auto, threads, t.scant);
     note("dvoronoi Chords, 1 thread");
     const Kept chords1 = dv_run(dvoronoi::Method::Chords, 1, t.chords1);
 
@@ -268,22 +268,22 @@ int main(int argc, char** argv) {
         char buf[128];
         row("(a) CGAL Delaunay + neighbour walk, 1 thread", t.cgal, "1 (reference)");
         std::snprintf(buf, sizeof buf, "%.2f x CGAL time", t.scan1 / t.cgal);
-        row("(b) dvoronoi Scan, 1 thread", t.scan1, buf);
+        row("(b) dvoronoi auto, 1 thread", t.scan1, buf);
         char what[64];
-        std::snprintf(what, sizeof what, "(c) dvoronoi Scan, %d threads", t.threads);
+        std::snprintf(what, sizeof what, "(c) dvoronoi auto, %d threads", t.threads);
         std::snprintf(buf, sizeof buf, "%.2f x speed-up over (b)", t.scan1 / t.scant);
         row(what, t.scant, buf);
-        std::snprintf(buf, sizeof buf, "%.2f x CGAL, %.2f x Scan", t.chords1 / t.cgal, t.chords1 / t.scan1);
+        std::snprintf(buf, sizeof buf, "%.2f x CGAL, %.2f x auto", t.chords1 / t.cgal, t.chords1 / t.scan1);
         row("(d) dvoronoi Chords (RCVC), 1 thread", t.chords1, buf);
         std::printf("\n(a) gives the full Delaunay graph only; (b)-(d) give limited neighbours plus every cell's\n"
                     "pieces, area, perimeter and centroid. Checks: %s\n",
-                    t.ok ? "Scan = Chords = multi-threaded, limited neighbours within Delaunay ones: ok"
+                    t.ok ? "auto = Chords = multi-threaded, limited neighbours within Delaunay ones: ok"
                          : ("FAILED:" + t.problem).c_str());
     } else {
         std::printf("seed %llu; time per agent in ns (flat = linear scaling)\n\n",
                     static_cast<unsigned long long>(seed));
         std::printf("| %10s | %10s | %8s | %10s | %12s | %12s | %12s | %13s |\n", "n", "R", "in 2R",
-                    "CGAL", "Scan 1 thr", "Scan T thr", "Chords 1 thr", "Scan1 / CGAL");
+                    "CGAL", "auto 1 thr", "auto T thr", "Chords 1 thr", "auto1 / CGAL");
         std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|\n", std::string(12, '-').c_str(), std::string(12, '-').c_str(),
                     std::string(10, '-').c_str(), std::string(12, '-').c_str(), std::string(14, '-').c_str(),
                     std::string(14, '-').c_str(), std::string(14, '-').c_str(), std::string(15, '-').c_str());
@@ -300,7 +300,7 @@ int main(int argc, char** argv) {
             const Timing& a = rows.front();
             const Timing& b = rows.back();
             const auto per = [](double s, Index m) { return s / static_cast<double>(m); };
-            std::printf("Scan 1 thread, time per agent at n = %lld against n = %lld: %+.1f%% (rounds of %g agents), "
+            std::printf("auto 1 thread, time per agent at n = %lld against n = %lld: %+.1f%% (rounds of %g agents), "
                         "%+.1f%% (fastest single calls)\n",
                         static_cast<long long>(b.n), static_cast<long long>(a.n),
                         100.0 * (per(b.scan1, b.n) / per(a.scan1, a.n) - 1.0), window,

@@ -4,7 +4,7 @@
 // What is timed (best of --reps runs each):
 //   (a) CGAL: Delaunay_triangulation_2 (Epick), range insert with spatial sort, then the neighbour
 //       walk into CSR arrays (bench_common.hpp).
-//   (b) dvoronoi::voronoi_cells(AsrInner::Scan, 1 thread): exact Voronoi neighbours (CSR), hull flags,
+//   (b) dvoronoi::voronoi_cells(AsrInner::Auto, the fast path, 1 thread): exact Voronoi neighbours (CSR), hull flags,
 //       areas and centroids of the bounded cells, per-agent radius steps and agents used.
 //   (c) the same with --threads threads.
 //   (d) dvoronoi::voronoi_cells(AsrInner::Evt, 1 thread).
@@ -51,7 +51,7 @@ Row run(Index n, int reps, int threads, std::uint64_t seed) {
     cg.dt.reset();
     dvoronoi::VoronoiPartition p;
     std::fprintf(stderr, "  n = %lld: dvoronoi ASR+BS, 1 thread ...\n", static_cast<long long>(n));
-    r.scan1 = best_of(reps, [&] { return dvoronoi::voronoi_cells(pts, dvoronoi::AsrInner::Scan, 1); }, p);
+    r.scan1 = best_of(reps, [&] { return dvoronoi::voronoi_cells(pts, dvoronoi::AsrInner::Auto, 1); }, p);
     double steps = 0;
     for (Index i = 0; i < n; ++i) steps += p.radius_steps[static_cast<std::size_t>(i)];
     r.mean_steps = steps / static_cast<double>(n);
@@ -61,7 +61,7 @@ Row run(Index n, int reps, int threads, std::uint64_t seed) {
     r.median_used = n > 0 ? static_cast<double>(used[used.size() / 2]) : 0.0;
     const Csr scan1 = csr_of(std::move(p));
     std::fprintf(stderr, "  n = %lld: dvoronoi ASR+BS, %d threads ...\n", static_cast<long long>(n), threads);
-    r.scant = best_of(reps, [&] { return dvoronoi::voronoi_cells(pts, dvoronoi::AsrInner::Scan, threads); }, p);
+    r.scant = best_of(reps, [&] { return dvoronoi::voronoi_cells(pts, dvoronoi::AsrInner::Auto, threads); }, p);
     const Csr scant = csr_of(std::move(p));
     std::fprintf(stderr, "  n = %lld: dvoronoi ASR+EVT, 1 thread ...\n", static_cast<long long>(n));
     r.evt1 = best_of(reps, [&] { return dvoronoi::voronoi_cells(pts, dvoronoi::AsrInner::Evt, 1); }, p);

@@ -65,7 +65,7 @@ LimitedCell cell_by(Route r, const Sensor& s, double R, int* steps) {
             detail::evt_limited_cell(s.c, detail::candidates_within_2r(s.c, s.nearby, R), R, out, ws, dws);
             return out;
         }
-        case Route::Bs: return limited_cell(s.c, s.nearby, R);
+        case Route::Bs: return limited_cell(s.c, s.nearby, R, Method::Scan);  // Boundary Scan itself
         case Route::AsrEvt: return asr_limited_cell(s.c, s.nearby, R, LimitedInner::Evt, steps);
         case Route::AsrBs: return asr_limited_cell(s.c, s.nearby, R, LimitedInner::Scan, steps);
     }

@@ -10,12 +10,21 @@ receives, anchors sending fewer than normal nodes, and the Boundary Scan phase a
 ("anchor nodes broadcast their information twice ... all the nodes implementing the BS algorithm just
 need to transmit their positions to their neighbours once").
 
-Here: ``dv.network.simulate("bs", points, 20, anchor_fraction=0.3)`` (C++ simulator: anchors flood
-their positions with hop counts - a node passes on every improvement, in a random asynchronous order -,
-then their hop sizes - passed on once -, least-squares multilateration, then one position message per
-link). Our cell radius is R = r / 2 = 10 (docs/spec.md). One network (the paper's figures) is written per
-node to the CSV and drawn; --networks more networks give the summary (mean position error and
-transmissions per node, anchors vs normal nodes).
+Here: ``dv.network.simulate("bs", points, 20, anchor_fraction=0.3)`` (C++ simulator). DV-Hop as the
+paper describes it: anchors flood their positions with hop counts in breadth-first rounds, each normal
+node forwarding each anchor's flood once (the first time it hears it: its minimum hop count); anchors
+relay nothing ("anchor nodes will broadcast their information twice": their position and their hop
+size); the hop sizes are passed on once per node; least-squares multilateration; then every node
+broadcasts its position once and runs Boundary Scan. Our cell radius is R = r / 2 = 10 (docs/spec.md).
+Both counts of docs/spec.md are reported: transmissions (a broadcast is one) and link deliveries (one
+per neighbour that receives it; what a per-link count would call "messages").
+
+Variants (the same networks, for the modelling choices that change the counts): ``paper`` (the above,
+used for the figure), ``relay`` (anchors forward other anchors' floods too), ``async`` (anchors relay,
+floods delivered in a random asynchronous order and every improvement re-flooded: what this script did
+before issue 21). One network (the paper's figures) is written per node to the CSV and drawn;
+--networks more networks give the summary (mean position error and counts per node, anchors vs normal
+nodes).
 
 Outputs: out/bs_dvhop.csv (per node of the first network), out/bs_dvhop_summary.csv and
 out/bs_dvhop.png (or *_quick.* with --quick).
@@ -53,34 +62,50 @@ def main(argv=None) -> int:
     summary = []
     first = None
     t0 = time.time()
+    variants = {"paper": dict(dv_hop="sync", anchors_relay=False),
+                "relay": dict(dv_hop="sync", anchors_relay=True),
+                "async": dict(dv_hop="async", anchors_relay=True)}
     for k in tqdm(range(n_net), desc="networks", unit="net"):
         pts = rng.uniform(0, 100, (100, 2))
-        res = dv.network.simulate("bs", pts, 20.0, anchor_fraction=0.3, seed=k)
         true = dv.network.simulate("bs", pts, 20.0, seed=k)
-        if first is None:
-            first = (pts, res, true)
-        anchor = np.zeros(100, dtype=bool)
-        anchor[res.anchors] = True
-        err = res.position_error
-        loc = res.localized & ~anchor
-        same = [set(res.neighbors(i).tolist()) == set(true.neighbors(i).tolist()) for i in range(100)]
-        summary.append({
-            "network": k,
-            "localized_normal": int(loc.sum()), "normal": int((~anchor).sum()),
-            "mean_error": float(np.mean(err[loc])) if loc.any() else float("nan"),
-            "median_error": float(np.median(err[loc])) if loc.any() else float("nan"),
-            "error_over_range": float(np.mean(err[loc])) / 20.0 if loc.any() else float("nan"),
-            "sent_anchor": float(res.sent_per_node[anchor].mean()),
-            "sent_normal": float(res.sent_per_node[~anchor].mean()),
-            "received_anchor": float(res.received_per_node[anchor].mean()),
-            "received_normal": float(res.received_per_node[~anchor].mean()),
-            "bs_share": res.transmissions_by_type["position"] / res.total_transmissions,
-            "flood": res.transmissions_by_type["anchor_flood"], "hop_size": res.transmissions_by_type["hop_size"],
-            "position": res.transmissions_by_type["position"],
-            "same_neighbours_fraction": float(np.mean(same)),
-        })
+        for variant, opts in variants.items():
+            res = dv.network.simulate("bs", pts, 20.0, anchor_fraction=0.3, seed=k, **opts)
+            if first is None:
+                first = (pts, res, true)
+            summary.append(summarise(k, variant, res, true))
     elapsed = time.time() - t0
+    write_outputs(args, suffix, first, summary, n_net, elapsed, list(variants))
+    return 0
 
+
+def summarise(k, variant, res, true):
+    """One network's numbers."""
+    anchor = np.zeros(100, dtype=bool)
+    anchor[res.anchors] = True
+    err = res.position_error
+    loc = res.localized & ~anchor
+    same = [set(res.neighbors(i).tolist()) == set(true.neighbors(i).tolist()) for i in range(100)]
+    tx, dl = res.transmissions_by_type, res.deliveries_by_type
+    return {
+        "network": k, "variant": variant,
+        "localized_normal": int(loc.sum()), "normal": int((~anchor).sum()),
+        "mean_error": float(np.mean(err[loc])) if loc.any() else float("nan"),
+        "median_error": float(np.median(err[loc])) if loc.any() else float("nan"),
+        "error_over_range": float(np.mean(err[loc])) / 20.0 if loc.any() else float("nan"),
+        "sent_anchor": float(res.sent_per_node[anchor].mean()),
+        "sent_normal": float(res.sent_per_node[~anchor].mean()),
+        "received_anchor": float(res.received_per_node[anchor].mean()),
+        "received_normal": float(res.received_per_node[~anchor].mean()),
+        "bs_share": tx["position"] / res.total_transmissions,
+        "flood": tx["anchor_flood"], "hop_size": tx["hop_size"], "position": tx["position"],
+        "flood_deliveries": dl["anchor_flood"], "hop_size_deliveries": dl["hop_size"],
+        "position_deliveries": dl["position"],
+        "bs_share_deliveries": dl["position"] / res.total_deliveries,
+        "same_neighbours_fraction": float(np.mean(same)),
+    }
+
+
+def write_outputs(args, suffix, first, summary, n_net, elapsed, variants):
     pts, res, true = first
     anchor = np.zeros(100, dtype=bool)
     anchor[res.anchors] = True
@@ -141,16 +166,28 @@ def main(argv=None) -> int:
     png = OUT / f"bs_dvhop{suffix}.png"
     fig.savefig(png, dpi=110)
 
-    mean = {k: float(np.nanmean([s[k] for s in summary])) for k in summary[0] if k != "network"}
-    print(f"{n_net} networks in {elapsed:.1f} s; wrote {per_node}, {summ}, {png}")
-    print(f"mean position error of normal nodes {mean['mean_error']:.2f} ({mean['error_over_range']:.0%} of r); "
-          f"localised {mean['localized_normal']:.1f}/{mean['normal']:.0f}")
-    print(f"transmissions sent per node: anchors {mean['sent_anchor']:.0f}, normal {mean['sent_normal']:.0f}; "
-          f"received: anchors {mean['received_anchor']:.0f}, normal {mean['received_normal']:.0f}")
-    print(f"per network: anchor flood {mean['flood']:.0f}, hop size {mean['hop_size']:.0f}, BS positions "
-          f"{mean['position']:.0f} ({mean['bs_share']:.1%} of the total); nodes whose limited neighbours are "
-          f"unchanged by localisation errors: {mean['same_neighbours_fraction']:.0%}")
-    return 0
+    print(f"{n_net} networks x {len(variants)} variants in {elapsed:.1f} s; wrote {per_node}, {summ}, {png}")
+    keys = [k for k in summary[0] if k not in ("network", "variant")]
+    print("| quantity (mean per network) | " + " | ".join(variants) + " |")
+    print("|---|" + "---:|" * len(variants))
+    mean = {v: {k: float(np.nanmean([s[k] for s in summary if s["variant"] == v])) for k in keys} for v in variants}
+    rows = [("position error of normal nodes (% of r)", "error_over_range", "{:.0%}"),
+            ("normal nodes localised (of ~70)", "localized_normal", "{:.1f}"),
+            ("transmissions sent per anchor", "sent_anchor", "{:.1f}"),
+            ("transmissions sent per normal node", "sent_normal", "{:.1f}"),
+            ("link deliveries received per anchor", "received_anchor", "{:.1f}"),
+            ("link deliveries received per normal node", "received_normal", "{:.1f}"),
+            ("anchor-flood transmissions", "flood", "{:,.0f}"),
+            ("anchor-flood link deliveries", "flood_deliveries", "{:,.0f}"),
+            ("hop-size transmissions", "hop_size", "{:,.0f}"),
+            ("hop-size link deliveries", "hop_size_deliveries", "{:,.0f}"),
+            ("BS position transmissions", "position", "{:,.0f}"),
+            ("BS position link deliveries", "position_deliveries", "{:,.0f}"),
+            ("BS share of transmissions", "bs_share", "{:.1%}"),
+            ("BS share of link deliveries", "bs_share_deliveries", "{:.1%}"),
+            ("nodes with unchanged limited neighbours", "same_neighbours_fraction", "{:.0%}")]
+    for label, key, fmt in rows:
+        print(f"| {label} | " + " | ".join(fmt.format(mean[v][key]) for v in variants) + " |")
 
 
 if __name__ == "__main__":

@@ -149,7 +149,8 @@ TEST_CASE("nearly collinear and nearly cocircular sets, tangent chords") {
 TEST_CASE("limited_cells through the filter equals the per-agent Boundary Scan") {
     const Points P = uniform(9, 2000, 10.0, Vec2(-5.0, 3.0));
     for (double R : {0.08, 0.2, 0.6}) {
-        const LimitedPartition part = limited_cells(P, R, Method::Scan, 2);
+        const LimitedPartition part = limited_cells(P, R, Method::Auto, 2);  // the filter's route
+        CHECK(part.computed_by.clip > 0);
         for (Index i = 0; i < P.rows(); i += 7) {
             Points others(P.rows() - 1, 2);
             for (Index j = 0, k = 0; j < P.rows(); ++j)

@@ -10,6 +10,8 @@
 #include <numeric>
 #include <random>
 #include <vector>
+#include <string>
+#include <utility>
 #include <stdexcept>
 
 using namespace dvoronoi;
@@ -278,4 +280,88 @@ TEST_CASE("vertices of nearly parallel bisectors are constructed accurately, not
             CHECK((v - Vec2(P.row(out.neighbor).transpose())).norm() == doctest::Approx(d).epsilon(1e-12));
         }
     }
+}
+
+namespace {
+/// Inputs for the method comparison: uniform, clustered (Gaussian blobs: dense cores, sparse
+/// gaps), and degenerate lattices (square: four cocircular agents per vertex; hexagonal: three).
+std::vector<std::pair<const char*, Points>> method_inputs() {
+    std::vector<std::pair<const char*, Points>> out;
+    out.emplace_back("uniform", random_points(3000, 21, 30.0));
+    std::mt19937 rng(22);
+    std::uniform_real_distribution<double> u(0.0, 30.0);
+    std::normal_distribution<double> g(0.0, 0.4);
+    Points C(2000, 2);
+    for (int k = 0; k < 20; ++k) {
+        const double cx = u(rng), cy = u(rng);
+        for (int t = 0; t < 100; ++t) C.row(100 * k + t) << cx + g(rng), cy + g(rng);
+    }
+    out.emplace_back("clustered", C);
+    Points S(40 * 40, 2);
+    for (int a = 0; a < 40; ++a)
+        for (int b = 0; b < 40; ++b) S.row(a * 40 + b) << a, b;
+    out.emplace_back("square lattice", S);
+    Points H(30 * 30, 2);
+    for (int a = 0; a < 30; ++a)
+        for (int b = 0; b < 30; ++b) H.row(a * 30 + b) << b + 0.5 * (a % 2), a * std::sqrt(0.75);
+    out.emplace_back("hexagonal lattice", H);
+    return out;
+}
+}  // namespace
+
+TEST_CASE("methods: auto, scan and chords give the same cells, and each runs the algorithm it names") {
+    for (const auto& [name, P] : method_inputs()) {
+        for (double R : {0.75, 1.6}) {
+            INFO(name, " R = ", R);
+            const LimitedPartition a = limited_cells(P, R, Method::Auto, 2);
+            const LimitedPartition s = limited_cells(P, R, Method::Scan, 2);
+            const LimitedPartition c = limited_cells(P, R, Method::Chords, 2);
+            const Index n = P.rows();
+            // Which algorithm computed the cells.
+            CHECK(s.computed_by.scan == n);
+            CHECK(s.computed_by.clip == 0);
+            CHECK(s.computed_by.chords == 0);
+            CHECK(c.computed_by.chords == n);
+            CHECK(c.computed_by.clip + c.computed_by.scan == 0);
+            CHECK(a.computed_by.clip + a.computed_by.scan == n);
+            CHECK(a.computed_by.chords == 0);
+            if (std::string(name) == "uniform" || std::string(name) == "clustered") CHECK(a.computed_by.clip > n / 2);
+            // Auto's filter gives Boundary Scan's cells bit for bit.
+            using LP = LimitedPartition;
+            for (auto column : {&LP::indptr, &LP::indices, &LP::piece_ptr, &LP::piece_neighbor, &LP::candidates})
+                CHECK(a.*column == s.*column);
+            for (auto column : {&LP::piece_x, &LP::piece_y, &LP::piece_span, &LP::areas, &LP::perimeters})
+                CHECK(a.*column == s.*column);
+            // RCVC: the same neighbours and pieces, vertices and measures to rounding.
+            CHECK(c.indptr == s.indptr);
+            CHECK(c.indices == s.indices);
+            CHECK(c.piece_ptr == s.piece_ptr);
+            CHECK(c.piece_neighbor == s.piece_neighbor);
+            double worst = 0.0;
+            for (std::size_t k = 0; k < s.piece_x.size(); ++k)
+                worst = std::max({worst, std::fabs(c.piece_x[k] - s.piece_x[k]), std::fabs(c.piece_y[k] - s.piece_y[k])});
+            for (std::size_t i = 0; i < s.areas.size(); ++i)
+                worst = std::max(worst, std::fabs(c.areas[i] - s.areas[i]) / (R * R));
+            CHECK(worst < 1e-12 * 40.0);
+        }
+    }
+    // On the square lattice with R = 0.75 every inner vertex is where four bisectors meet: the
+    // filter cannot certify that, so Auto hands those cells to Boundary Scan.
+    const LimitedPartition lattice = limited_cells(method_inputs()[2].second, 0.75, Method::Auto, 1);
+    CHECK(lattice.computed_by.scan > lattice.size() / 2);
+}
+
+TEST_CASE("method names: auto is the default and parses; limited_cell's auto is Boundary Scan") {
+    CHECK(parse_method("auto") == Method::Auto);
+    CHECK(parse_method("scan") == Method::Scan);
+    CHECK(parse_method("chords") == Method::Chords);
+    CHECK(std::string(method_name(Method::Auto)) == "auto");
+    CHECK_THROWS_AS(parse_method("fast"), InputError);
+    const Points P = random_points(200, 5, 5.0);
+    CHECK(limited_cells(P, 0.5).method == Method::Auto);
+    Points others = P.bottomRows(199);
+    const LimitedCell one = limited_cell(P.row(0).transpose(), others, 0.5);
+    const LimitedCell bs = boundary_scan_cell(P.row(0).transpose(), others, 0.5);
+    CHECK(one.neighbors() == bs.neighbors());
+    CHECK(one.measures().area == bs.measures().area);
 }

@@ -60,12 +60,16 @@ std::vector<std::pair<std::string, Points>> families() {
     return out;
 }
 
+const char* io_name(AsrInner inner) {
+    return inner == AsrInner::Auto ? "auto" : inner == AsrInner::Scan ? "scan" : "evt";
+}
+
 }  // namespace
 
 TEST_CASE("radius steps and agents in range equal the one-agent ASR's, for both inner steps") {
     for (const auto& [name, P] : families()) {
         const Index n = P.rows();
-        for (AsrInner inner : {AsrInner::Scan, AsrInner::Evt}) {
+        for (AsrInner inner : {AsrInner::Auto, AsrInner::Scan, AsrInner::Evt}) {
             const VoronoiPartition part = voronoi_cells(P, inner, 1);
             int bad = 0, deep = 0, all = 0;
             for (Index i = 0; i < n; ++i) {
@@ -77,7 +81,7 @@ TEST_CASE("radius steps and agents in range equal the one-agent ASR's, for both 
                 deep += cell.radius_steps >= 4;
                 all += cell.agents_used == n - 1;
             }
-            INFO(name, " inner ", inner == AsrInner::Scan ? "scan" : "evt");
+            INFO(name, " inner ", io_name(inner));
             CHECK(bad == 0);
             CHECK(all > 0);  // hull agents use every agent
             if (n == 5) CHECK(part.radius_steps[4] == 1);  // the center of the square: certified at once
@@ -108,7 +112,7 @@ TEST_CASE("scaled far from 1: the same neighbours, or a RangeError beyond the ra
     std::uniform_real_distribution<double> u(0.0, 5.0);
     for (int k = 0; k < 36; ++k) P.row(k) << k % 6, k / 6;
     for (int k = 36; k < 66; ++k) P.row(k) << u(rng), u(rng);
-    for (AsrInner inner : {AsrInner::Scan, AsrInner::Evt}) {
+    for (AsrInner inner : {AsrInner::Auto, AsrInner::Scan, AsrInner::Evt}) {
         const VoronoiPartition ref = voronoi_cells(P, inner, 1);
         for (int k : {-480, -300, 300, 480}) {
             const VoronoiPartition got = voronoi_cells(P * std::ldexp(1.0, k), inner, 2);
@@ -121,5 +125,43 @@ TEST_CASE("scaled far from 1: the same neighbours, or a RangeError beyond the ra
                                  doctest::Contains("Adjust-Sensing-Radius starts its radii at that distance, and they must "
                                                    "lie between 1e-150 and 1e150"),
                                  RangeError);
+    }
+}
+
+TEST_CASE("inner steps: auto, scan and evt give the same neighbours and hull flags; each runs its route") {
+    std::vector<std::pair<std::string, Points>> inputs = families();
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> g(0.0, 0.02);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Vec2> v;
+    for (int k = 0; k < 10; ++k) {  // clustered: Gaussian blobs
+        const Vec2 c(u(rng), u(rng));
+        for (int t = 0; t < 60; ++t) v.push_back(c + Vec2(g(rng), g(rng)));
+    }
+    inputs.emplace_back("clustered", from(v));
+    v.clear();
+    for (int a = 0; a < 20; ++a)
+        for (int b = 0; b < 20; ++b) v.emplace_back(b + 0.5 * (a % 2), a * std::sqrt(0.75));
+    inputs.emplace_back("hexagonal lattice", from(v));
+    for (const auto& [name, P] : inputs) {
+        INFO(name);
+        const Index n = P.rows();
+        const VoronoiPartition a = voronoi_cells(P, AsrInner::Auto, 2);
+        const VoronoiPartition s = voronoi_cells(P, AsrInner::Scan, 2);
+        const VoronoiPartition e = voronoi_cells(P, AsrInner::Evt, 2);
+        for (const VoronoiPartition* o : {&s, &e}) {
+            CHECK(o->indptr == a.indptr);
+            CHECK(o->indices == a.indices);
+            CHECK(o->on_hull == a.on_hull);
+            CHECK(o->radius_steps == a.radius_steps);
+            CHECK(o->agents_used == a.agents_used);
+            CHECK(o->computed_by.asr == n);  // ASR with the inner step on every agent
+            CHECK(o->computed_by.one_shot + o->computed_by.deferred == 0);
+        }
+        if (n > 3) {
+            CHECK(a.computed_by.asr == 0);
+            CHECK(a.computed_by.one_shot + a.computed_by.deferred == n);
+        }
+        if (name == "uniform") CHECK(a.computed_by.one_shot > n / 2);
     }
 }

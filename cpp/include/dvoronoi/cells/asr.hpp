@@ -81,8 +81,10 @@ struct VoronoiCell {
 
 /// The inner step of Adjust-Sensing-Radius: the limited cell by Boundary Scan (ASR+BS), or the
 /// exact Voronoi tessellation of the agent and its current neighbours by our incremental Delaunay
-/// triangulation (ASR+EVT, cells/delaunay.hpp), the baseline of the Boundary Scan paper.
-enum class AsrInner { Scan, Evt };
+/// triangulation (ASR+EVT, cells/delaunay.hpp), the baseline of the Boundary Scan paper. Auto is
+/// the all-agents driver's fast path (partition/voronoi_partition.hpp); for one agent (asr_cell and
+/// the steps here) it is ASR+BS.
+enum class AsrInner { Auto, Scan, Evt };
 
 namespace detail {
 
@@ -411,7 +413,7 @@ void asr(const Vec2& c, Query&& query, Index total, double first_radius, AsrInne
 /// \note Thread-safe (pure function). Each radius step is O(m_k log m_k) for the m_k agents in range
 ///       (selected in O(m) per step); a bounded cell needs O(log(rho / d_1)) steps, rho its farthest
 ///       vertex; an unbounded one ends with all m agents.
-inline VoronoiCell asr_cell(const Vec2& center, PointsRef others, AsrInner inner = AsrInner::Scan,
+inline VoronoiCell asr_cell(const Vec2& center, PointsRef others, AsrInner inner = AsrInner::Auto,
                            const ConvexRegion& bounds = ConvexRegion()) {
     detail::require_finite_point(center, "center");
     detail::require_finite_points(others, "others");

@@ -9,19 +9,27 @@
 
 namespace dvoronoi {
 
-/// Which published algorithm computes the limited cell. Both return the same cell.
+/// Which algorithm computes the limited cell (docs/spec.md, API conventions). All three return the
+/// same cells.
 enum class Method {
-    Scan,    ///< Boundary Scan (He, Feng & Ren 2018): O(m log m).
-    Chords,  ///< RCVC (Guruprasad & Dasgupta 2012): checkChords is O(m^2) in the worst case.
+    /// Our certified fast path (default): in the all-agents drivers, incremental clipping with
+    /// certified floating-point decisions (cells/certified_clip.hpp), Boundary Scan where it gives
+    /// up; for one agent (limited_cell), Boundary Scan. Not a published algorithm.
+    Auto,
+    Scan,    ///< Boundary Scan (He, Feng & Ren 2018) on every agent: O(m log m).
+    Chords,  ///< RCVC (Guruprasad & Dasgupta 2012) on every agent: checkChords is O(m^2) worst case.
 };
 
 inline Method parse_method(const std::string& name) {
+    if (name == "auto") return Method::Auto;
     if (name == "scan") return Method::Scan;
     if (name == "chords") return Method::Chords;
-    throw InputError("method must be \"scan\" or \"chords\", got \"" + name + "\"");
+    throw InputError("method must be \"auto\", \"scan\" or \"chords\", got \"" + name + "\"");
 }
 
-inline const char* method_name(Method m) { return m == Method::Scan ? "scan" : "chords"; }
+inline const char* method_name(Method m) {
+    return m == Method::Auto ? "auto" : m == Method::Scan ? "scan" : "chords";
+}
 
 /// The limited cell of the agent at `center` among the agents `others` (any frame; only positions
 /// closer than 2*radius matter, the rest are ignored).
@@ -37,15 +45,18 @@ inline const char* method_name(Method m) { return m == Method::Scan ? "scan" : "
 /// \throws RangeError if `radius` lies outside [kMinRadius, kMaxRadius], an exact test over- or
 ///         underflows (coordinates far outside the exact range, core/expansion.hpp), or Chords has
 ///         more than kMaxChordsCandidates agents within 2*radius.
-/// \note Thread-safe (pure function). Complexity O(m log m) for Scan, O(m^2) worst case for Chords,
+/// \note Thread-safe (pure function). Complexity O(m log m) for Auto and Scan (both run Boundary
+///       Scan here), O(m^2) worst case for Chords,
 ///       m = agents within 2*radius (at most kMaxChordsCandidates for Chords).
 inline LimitedCell limited_cell(const Vec2& center, PointsRef others, double radius,
-                                Method method = Method::Scan) {
+                                Method method = Method::Auto) {
     detail::require_finite_radius(radius);
     detail::require_finite_point(center, "center");
     detail::require_finite_points(others, "others");
-    return method == Method::Scan ? boundary_scan_cell(center, others, radius)
-                                  : rcvc_cell(center, others, radius);
+    // One agent: Auto is Boundary Scan (the clipping filter needs candidates known to be distinct,
+    // and Boundary Scan's errors name coinciding agents).
+    return method == Method::Chords ? rcvc_cell(center, others, radius)
+                                    : boundary_scan_cell(center, others, radius);
 }
 
 }  // namespace dvoronoi

@@ -29,7 +29,9 @@ namespace dvoronoi::io {
 
 namespace detail {
 
-inline const char* inner_name(AsrInner inner) { return inner == AsrInner::Evt ? "evt" : "scan"; }
+inline const char* inner_name(AsrInner inner) {
+    return inner == AsrInner::Evt ? "evt" : inner == AsrInner::Scan ? "scan" : "auto";
+}
 
 /// The polygon drawn and exported for a cell: the clipped cell, or the bounded cell; empty for an
 /// unbounded cell without bounds (or a cell that misses the region).

@@ -15,9 +15,11 @@
 // `adjacency_cap` entries (its nearest adjacent nodes) and no notification goes to two nodes one of
 // which lists the other; (2) a notification goes to one of the two nodes only (the one nearer to the
 // notifying node), which tells the other if the news changed its own cell.
-// Notifications travel by GPSR (the paper uses it for fairness with BD07) or, optionally, along
-// hop-shortest paths; each hop is one transmission. Where GPSR cannot deliver (obstacles make the
-// graph non-planar), a route discovery by flooding takes over (NodeRouter), counted separately.
+// Locations are broadcasts (one transmission each, one link delivery per neighbour). Notifications
+// travel by GPSR (the paper uses it for fairness with BD07) or, optionally, along hop-shortest paths;
+// each hop is one transmission. Where GPSR cannot deliver (obstacles make the graph non-planar), a
+// route discovery by flooding takes over (NodeRouter; our addition, not in the paper, switchable:
+// `route_discovery`), counted separately; without it such a notification is lost.
 #pragma once
 
 #include "dvoronoi/cells/delaunay.hpp"
@@ -45,6 +47,9 @@ struct CcOptions {
     int adjacency_cap = 6;       ///< entries of the adjacency list sent along (the paper: 6)
     bool forward = true;         ///< Section 2.3 optimisation 2: notify one node, let it forward
     Routing routing = Routing::Gpsr;
+    /// Where GPSR cannot deliver to a node, find a route by flooding (not in the paper; BD07 has the
+    /// same switch). Off: the message is lost (its hops counted), and cells may end wrong.
+    bool route_discovery = true;
 };
 
 /// The CC result: every node's Voronoi neighbours (counter-clockwise; a hull node's list runs from
@@ -188,17 +193,23 @@ inline std::vector<std::vector<Index>> capped_adjacency(const Network& net, int 
 /// node. A node whose packet GPSR cannot deliver then does what on-demand routing protocols do
 /// (AODV's route discovery): it floods a route request through its connected component (every
 /// node forwards it once to each neighbour), the addressee answers back along the shortest path,
-/// and the packet follows that path. Every hop of the flood and of the answer is counted as a
-/// "discovery" transmission, so nothing is lost on a connected network and the cost is honest.
+/// and the packet follows that path. The flood is one broadcast per node of the component
+/// (`flood`), the answer one transmission per hop (`discovery`), all counted as "discovery", so
+/// nothing is lost on a connected network and the cost is honest. With `discover` off, a packet GPSR
+/// cannot deliver is lost.
 class NodeRouter {
 public:
-    NodeRouter(const Network& net, Routing r) : net_(net), routing_(r), parent_(static_cast<std::size_t>(net.size())) {
+    NodeRouter(const Network& net, Routing r, bool discover = true)
+        : net_(net), routing_(r), discover_(discover), parent_(static_cast<std::size_t>(net.size())) {
         if (r == Routing::Gpsr) gpsr_.emplace(net);
     }
-    /// False when the message cannot be delivered (different components). `path` holds the hops
-    /// the message takes (GPSR's attempt included), `discovery` the hops of a route discovery.
-    bool route(Index from, Index to, std::vector<Index>& path, std::vector<std::pair<Index, Index>>& discovery) {
+    /// False when the message cannot be delivered (different components, or GPSR failed and route
+    /// discovery is off). `path` holds the hops the message takes (GPSR's attempt included),
+    /// `flood` the nodes that broadcast a route request, `discovery` the hops of the answer.
+    bool route(Index from, Index to, std::vector<Index>& path, std::vector<Index>& flood,
+               std::vector<std::pair<Index, Index>>& discovery) {
         discovery.clear();
+        flood.clear();
         if (from == to) {
             path.assign(1, from);
             return true;
@@ -212,11 +223,11 @@ public:
             return append_shortest(from, to, path);
         }
         if (gpsr_->route(from, net_.pos(to), path) && path.back() == to) return true;
+        if (!discover_) return false;
         // GPSR gave up at path.back(): route discovery from there.
         const Index stuck = path.back();
         const auto& comp = component_of(stuck);
-        for (Index u : comp)
-            for (Index w : net_.adj[static_cast<std::size_t>(u)]) discovery.emplace_back(u, w);
+        flood.assign(comp.begin(), comp.end());
         const std::size_t before = path.size();
         if (!append_shortest(stuck, to, path)) return false;
         for (std::size_t h = path.size() - 1; h > before - 1; --h) discovery.emplace_back(path[h], path[h - 1]);  // the answer
@@ -255,6 +266,7 @@ private:
 
     const Network& net_;
     Routing routing_;
+    bool discover_;
     std::optional<Gpsr> gpsr_;
     std::vector<std::vector<Index>> parent_;
     std::vector<Index> comp_id_;
@@ -279,7 +291,7 @@ inline CcResult run_cc(const Network& net, const RunOptions& run, const CcOption
         bool forward;  // optimisation 2: the receiver tells `about` of itself if the news was new
     };
     Simulator<Msg> sim(n, {"location", "notify", "discovery"}, run);
-    detail::NodeRouter router(net, opt.routing);
+    detail::NodeRouter router(net, opt.routing, opt.route_discovery);
     const auto capped = opt.cap_adjacency ? detail::capped_adjacency(net, opt.adjacency_cap)
                                           : std::vector<std::vector<Index>>{};
     const auto lists = [&](Index a, Index b) {  // does a's capped list name b, or b's name a?
@@ -290,11 +302,13 @@ inline CcResult run_cc(const Network& net, const RunOptions& run, const CcOption
     };
     std::vector<detail::CcCell> cells(static_cast<std::size_t>(n));
     CcResult res;
-    std::vector<Index> path;
+    std::vector<Index> path, flood;
     std::vector<std::pair<Index, Index>> discovery;
-    // A message that cannot be delivered (addressee in another component) costs its hops and is lost.
+    // A message that cannot be delivered (addressee in another component, or GPSR failed without
+    // route discovery) costs its hops and is lost.
     const auto send = [&](Index from, Index to, Index about, bool forward) {
-        const bool ok = router.route(from, to, path, discovery);
+        const bool ok = router.route(from, to, path, flood, discovery);
+        for (Index u : flood) sim.count_broadcast(u, net.adj[static_cast<std::size_t>(u)], kDiscovery);
         for (const auto& [u, w] : discovery) sim.count_hop(u, w, kDiscovery);
         if (ok) {
             sim.send_along(path, kNotify, Msg{to, about, forward});
@@ -303,8 +317,9 @@ inline CcResult run_cc(const Network& net, const RunOptions& run, const CcOption
             ++res.lost;
         }
     };
+    // Every node broadcasts its location once.
     for (Index s = 0; s < n; ++s)
-        for (Index t : net.adj[static_cast<std::size_t>(s)]) sim.send(s, t, kLocation, Msg{t, s, false});
+        sim.broadcast(s, net.adj[static_cast<std::size_t>(s)], kLocation, [&](Index t) { return Msg{t, s, false}; });
 
     std::vector<dvoronoi::detail::Candidate> cand;
     DelaunayCell star;

@@ -1,5 +1,5 @@
-// Distributed Boundary Scan (He, Feng & Ren 2018, Section 4.2): every node sends its position once to
-// each adjacent node and computes its limited cell (radius R = range / 2, SPEC "Range-limited cell")
+// Distributed Boundary Scan (He, Feng & Ren 2018, Section 4.2): every node broadcasts its position
+// once to its adjacent nodes and computes its limited cell (radius R = range / 2, SPEC "Range-limited cell")
 // from what it received, with the library's Boundary Scan (cells/limited_cell.hpp). Without obstacles
 // the unit-disk links reach every node that can shape the cell (closer than 2R = range), so the cells
 // equal the centralised limited_cells; with obstacles a node sees only its linked neighbours.
@@ -38,16 +38,16 @@ inline DistributedBsResult run_distributed_bs(const Network& net, PointsRef posi
     };
     Simulator<Msg> sim(n, {"position"}, run);
     const auto known = [&](Index i) { return std::isfinite(positions(i, 0)) && std::isfinite(positions(i, 1)); };
+    // Every localised node broadcasts its position once (one transmission, a delivery per neighbour).
     for (Index s = 0; s < n; ++s)
-        if (known(s))
-            for (Index t : net.adj[static_cast<std::size_t>(s)]) sim.send(s, t, kPosition, Msg{t, s});
+        if (known(s)) sim.broadcast(s, net.adj[static_cast<std::size_t>(s)], kPosition, [&](Index t) { return Msg{t, s}; });
     std::vector<std::vector<Index>> heard(static_cast<std::size_t>(n));
     sim.run([&](const Msg& m) { heard[static_cast<std::size_t>(m.to)].push_back(m.from); });
 
     DistributedBsResult res;
     LimitedPartition& out = res.partition;
     out.radius = radius;
-    out.method = Method::Scan;
+    out.method = Method::Scan;  // Boundary Scan on every node
     out.points = positions;
     out.areas.assign(static_cast<std::size_t>(n), 0.0);
     out.perimeters.assign(static_cast<std::size_t>(n), 0.0);
@@ -73,7 +73,7 @@ inline DistributedBsResult run_distributed_bs(const Network& net, PointsRef posi
             }
             others.resize(static_cast<Index>(ids.size()), 2);
             for (std::size_t k = 0; k < ids.size(); ++k) others.row(static_cast<Index>(k)) = positions.row(ids[k]);
-            const LimitedCell cell = limited_cell(c, others, radius);
+            const LimitedCell cell = limited_cell(c, others, radius, Method::Scan);  // Boundary Scan
             const CellMeasures& m = cell.measures();
             out.areas[ii] = m.area;
             out.perimeters[ii] = m.perimeter;

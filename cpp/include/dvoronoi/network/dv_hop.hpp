@@ -1,10 +1,21 @@
 // DV-Hop localisation (Niculescu & Nath 2003), as the Boundary Scan paper pairs it with distributed
-// cells (Section 4.2): anchors (nodes that know their position) flood their position with a hop count
-// (a node keeps the smallest count per anchor and passes on each improvement), each anchor turns the
-// counts to the other anchors into an average hop size and floods it (a node passes on the first one
-// it receives and uses the one of its nearest anchor), and every other node estimates its distances to
-// the anchors as hops x hop size and its position by linear least squares (multilateration: the
-// circle equations minus the last one; Eigen's column-pivoting QR, rank 2 required).
+// cells (Section 4.2): anchors (nodes that know their position) flood their position with a hop count,
+// each anchor turns the counts to the other anchors into an average hop size and floods it (a node
+// passes on the first one it receives and uses the one of its nearest anchor), and every other node
+// estimates its distances to the anchors as hops x hop size and its position by linear least squares
+// (multilateration: the circle equations minus the last one; Eigen's column-pivoting QR, rank 2).
+//
+// How the floods run (DvHopOptions):
+// - synchronous (default): breadth-first rounds; every node forwards each anchor's flood once, the
+//   first time it hears it, which in rounds carries its minimum hop count. One broadcast per node per
+//   anchor: at most n x anchors flood transmissions.
+// - asynchronous: messages arrive in a seeded random order; a node keeps the smallest count per
+//   anchor and passes on every improvement (many more broadcasts, the same final counts).
+// - anchors_relay: whether anchors forward other anchors' floods. The Boundary Scan paper: "anchor
+//   nodes will broadcast their information twice in the DV-Hop algorithm" (their position and their
+//   hop size), i.e. they relay nothing; off by default. Hop counts are then the fewest hops over paths
+//   whose inner nodes are normal nodes. Anchors never relay hop sizes (they use their own).
+// Every broadcast is one transmission and one link delivery per neighbour (docs/spec.md).
 #pragma once
 
 #include "dvoronoi/network/network.hpp"
@@ -18,6 +29,11 @@
 
 namespace dvoronoi::network {
 
+struct DvHopOptions {
+    bool synchronous = true;      ///< breadth-first rounds, each node forwards each anchor once
+    bool anchors_relay = false;   ///< anchors forward other anchors' floods (the paper: they do not)
+};
+
 struct DvHopResult {
     Points estimates;                 ///< anchors: true position; others: estimate (NaN if not localised)
     std::vector<char> localized;      ///< has a position (anchors always)
@@ -30,7 +46,8 @@ struct DvHopResult {
 /// unlocalised (NaN estimate, localized = 0).
 ///
 /// \throws InputError for an anchor index out of range or repeated.
-inline DvHopResult run_dv_hop(const Network& net, const std::vector<Index>& anchors, const RunOptions& run) {
+inline DvHopResult run_dv_hop(const Network& net, const std::vector<Index>& anchors, const RunOptions& run,
+                              const DvHopOptions& opt = {}) {
     const Index n = net.size();
     const auto A = anchors.size();
     std::vector<Index> anchor_of(static_cast<std::size_t>(n), -1);
@@ -52,23 +69,48 @@ inline DvHopResult run_dv_hop(const Network& net, const std::vector<Index>& anch
     std::vector<Index> hops(static_cast<std::size_t>(n) * A, kInf);
     const auto H = [&](Index i, std::size_t k) -> Index& { return hops[static_cast<std::size_t>(i) * A + k]; };
     const auto broadcast = [&](Index s, const Msg& proto) {
-        for (Index t : net.adj[static_cast<std::size_t>(s)]) {
+        sim.broadcast(s, net.adj[static_cast<std::size_t>(s)], proto.kind, [&](Index t) {
             Msg m = proto;
             m.to = t;
-            sim.send(s, t, proto.kind, m);
-        }
+            return m;
+        });
+    };
+    // Does node u pass on anchor k's flood?
+    const auto relays = [&](Index u, std::size_t k) {
+        return opt.anchors_relay || anchor_of[static_cast<std::size_t>(u)] < 0 || anchors[k] == u;
     };
     // Phase 1: anchor positions with hop counts.
-    for (std::size_t k = 0; k < A; ++k) {
-        H(anchors[k], k) = 0;
-        broadcast(anchors[k], Msg{-1, static_cast<Index>(k), 1, 0.0, kFlood});
+    if (opt.synchronous) {
+        std::vector<Index> frontier, next;
+        for (std::size_t k = 0; k < A; ++k) {
+            H(anchors[k], k) = 0;
+            frontier.assign(1, anchors[k]);
+            while (!frontier.empty()) {  // one round: the nodes that first heard the flood last round
+                next.clear();
+                for (Index u : frontier) {
+                    if (!relays(u, k)) continue;
+                    sim.count_broadcast(u, net.adj[static_cast<std::size_t>(u)], kFlood);
+                    for (Index t : net.adj[static_cast<std::size_t>(u)])
+                        if (H(t, k) == kInf) {
+                            H(t, k) = H(u, k) + 1;
+                            next.push_back(t);
+                        }
+                }
+                frontier.swap(next);
+            }
+        }
+    } else {
+        for (std::size_t k = 0; k < A; ++k) {
+            H(anchors[k], k) = 0;
+            broadcast(anchors[k], Msg{-1, static_cast<Index>(k), 1, 0.0, kFlood});
+        }
+        sim.run([&](const Msg& m) {
+            Index& h = H(m.to, static_cast<std::size_t>(m.anchor));
+            if (m.hops >= h) return;
+            h = m.hops;
+            if (relays(m.to, static_cast<std::size_t>(m.anchor))) broadcast(m.to, Msg{-1, m.anchor, m.hops + 1, 0.0, kFlood});
+        });
     }
-    sim.run([&](const Msg& m) {
-        Index& h = H(m.to, static_cast<std::size_t>(m.anchor));
-        if (m.hops >= h) return;
-        h = m.hops;
-        broadcast(m.to, Msg{-1, m.anchor, m.hops + 1, 0.0, kFlood});
-    });
     // Phase 2: each anchor's average hop size, flooded; a node passes on the first one only.
     DvHopResult res;
     res.anchors = anchors;
@@ -90,10 +132,11 @@ inline DvHopResult run_dv_hop(const Network& net, const std::vector<Index>& anch
         broadcast(a, Msg{-1, static_cast<Index>(k), 0, size, kHopSize});
     }
     std::vector<char> forwarded(static_cast<std::size_t>(n), 0);
-    sim.run([&](const Msg& m) {
+    // A normal node takes the hop size of the nearest anchor heard from (fewest hops, then lowest
+    // index); returns whether it hears one for the first time (it then passes one on, once).
+    const auto hear = [&](const Msg& m) {
         const auto t = static_cast<std::size_t>(m.to);
-        if (anchor_of[t] >= 0) return;
-        // Use the hop size of the nearest anchor heard from (fewest hops, then lowest index).
+        if (anchor_of[t] >= 0) return false;
         const Index cur = size_from[t];
         const auto k = static_cast<std::size_t>(m.anchor);
         if (cur < 0 || H(m.to, k) < H(m.to, static_cast<std::size_t>(cur)) ||
@@ -101,11 +144,32 @@ inline DvHopResult run_dv_hop(const Network& net, const std::vector<Index>& anch
             size_from[t] = m.anchor;
             res.hop_size[t] = m.size;
         }
-        if (!forwarded[t]) {
-            forwarded[t] = 1;
-            broadcast(m.to, Msg{-1, m.anchor, 0, m.size, kHopSize});
+        if (forwarded[t]) return false;
+        forwarded[t] = 1;
+        return true;
+    };
+    if (opt.synchronous) {
+        // Rounds: the broadcasts of one round are delivered, then the nodes that first heard a hop
+        // size pass on the one they hold (the same one as in the asynchronous case when one anchor is
+        // nearest; ties within a round go to the lowest anchor index).
+        std::vector<Msg> round;
+        sim.run([&](const Msg& m) { round.push_back(m); });  // the anchors' own broadcasts
+        while (!round.empty()) {
+            std::vector<Index> first;
+            for (const Msg& m : round)
+                if (hear(m)) first.push_back(m.to);
+            round.clear();
+            for (Index u : first) {
+                const auto uu = static_cast<std::size_t>(u);
+                broadcast(u, Msg{-1, size_from[uu], 0, res.hop_size[uu], kHopSize});
+            }
+            sim.run([&](const Msg& m) { round.push_back(m); });
         }
-    });
+    } else {
+        sim.run([&](const Msg& m) {
+            if (hear(m)) broadcast(m.to, Msg{-1, m.anchor, 0, m.size, kHopSize});
+        });
+    }
     // Multilateration.
     res.estimates = Points::Constant(n, 2, std::nan(""));
     res.localized.assign(static_cast<std::size_t>(n), 0);

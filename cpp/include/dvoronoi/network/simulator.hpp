@@ -2,12 +2,15 @@
 // delivered one at a time in a seeded random order (asynchronous: any message in flight may arrive
 // next, so one seed is one reproducible interleaving and different seeds exercise different ones),
 // links that fail per transmission with a given probability (the sender repeats until delivery and
-// every try is counted), transmissions counted per node and message type, termination detected when
-// no message is in flight, and a message budget that stops a run with an error instead of a hang.
+// every try is counted), both counts of docs/spec.md per node and message type — transmissions (radio
+// sends: a broadcast to all neighbours is one, a unicast hop is one, every try counted) and link
+// deliveries (one per message per link that receives it) —, termination detected when no message is
+// in flight, and a message budget that stops a run with an error instead of a hang.
 #pragma once
 
 #include "dvoronoi/core/types.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -22,12 +25,14 @@ public:
     using Error::Error;
 };
 
-/// Transmissions per node and message type. A transmission is one try of one message over one link
-/// (SPEC: a multi-hop route costs one per hop; a lost try is repeated and counted again).
+/// The two counts of docs/spec.md per node and message type. A transmission is one radio send: a
+/// broadcast to all neighbours is one (repeated until every neighbour has it: one per try), a unicast
+/// over a link one per try, a multi-hop route one per hop. A link delivery is one message received
+/// over one link (a broadcast to k neighbours makes k; a repeated try is not delivered twice).
 struct TransmissionCounts {
     std::vector<std::string> types;          ///< message type names (columns)
-    std::vector<std::int64_t> sent;          ///< n x types, row-major: tries sent by the node
-    std::vector<std::int64_t> received;      ///< n x types: messages the node received (successful tries)
+    std::vector<std::int64_t> sent;          ///< n x types, row-major: transmissions by the node
+    std::vector<std::int64_t> received;      ///< n x types: link deliveries to the node
     Index nodes = 0;
 
     void reset(Index n, std::vector<std::string> names) {
@@ -49,6 +54,11 @@ struct TransmissionCounts {
     std::int64_t sent_of_type(std::size_t type) const {
         std::int64_t t = 0;
         for (Index i = 0; i < nodes; ++i) t += sent[static_cast<std::size_t>(i) * types.size() + type];
+        return t;
+    }
+    std::int64_t received_of_type(std::size_t type) const {
+        std::int64_t t = 0;
+        for (Index i = 0; i < nodes; ++i) t += received[static_cast<std::size_t>(i) * types.size() + type];
         return t;
     }
 };
@@ -78,17 +88,34 @@ public:
         if (loss_ > 0.0) fails_ = std::geometric_distribution<std::int64_t>(1.0 - loss_);
     }
 
-    /// One hop of a message of `type` from `from` to `to` (a link): counts the tries and the reception.
+    /// One hop of a message of `type` from `from` to `to` (a link): counts the tries (transmissions)
+    /// and the link delivery.
     void count_hop(Index from, Index to, std::size_t type) {
         const std::int64_t tries = 1 + (loss_ > 0.0 ? fails_(rng_) : 0);
         const std::size_t T = counts_.types.size();
-        counts_.sent[static_cast<std::size_t>(from) * T + type] += tries;
         counts_.received[static_cast<std::size_t>(to) * T + type] += 1;
-        total_ += tries;
-        if (total_ > budget_)
-            throw BudgetExceeded("message budget of " + std::to_string(budget_) +
-                                 " transmissions exceeded with " + std::to_string(inflight_.size()) +
-                                 " messages still in flight; raise budget= or check the network");
+        add_transmissions(from, type, tries);
+    }
+
+    /// A broadcast of one message of `type` from `from` to every node of `to` (its neighbours): one
+    /// transmission per try, repeated until each neighbour has received it (each link fails
+    /// independently per try), and one link delivery per neighbour. A node without neighbours still
+    /// transmits once.
+    void count_broadcast(Index from, const std::vector<Index>& to, std::size_t type) {
+        std::int64_t tries = 1;
+        const std::size_t T = counts_.types.size();
+        for (Index t : to) {
+            if (loss_ > 0.0) tries = std::max<std::int64_t>(tries, 1 + fails_(rng_));
+            counts_.received[static_cast<std::size_t>(t) * T + type] += 1;
+        }
+        add_transmissions(from, type, tries);
+    }
+
+    /// count_broadcast, and the message make(t) put in flight to every t of `to`.
+    template <class Make>
+    void broadcast(Index from, const std::vector<Index>& to, std::size_t type, Make&& make) {
+        count_broadcast(from, to, type);
+        for (Index t : to) inflight_.push_back(make(t));
     }
 
     /// Puts a message in flight along a route of nodes (route[0] the sender, route.back() the receiver;
@@ -127,6 +154,15 @@ public:
     std::int64_t total() const { return total_; }
 
 private:
+    void add_transmissions(Index from, std::size_t type, std::int64_t tries) {
+        counts_.sent[static_cast<std::size_t>(from) * counts_.types.size() + type] += tries;
+        total_ += tries;
+        if (total_ > budget_)
+            throw BudgetExceeded("message budget of " + std::to_string(budget_) +
+                                 " transmissions exceeded with " + std::to_string(inflight_.size()) +
+                                 " messages still in flight; raise budget= or check the network");
+    }
+
     std::mt19937_64 rng_;
     double loss_;
     std::int64_t budget_, total_ = 0;

@@ -27,6 +27,13 @@
 
 namespace dvoronoi {
 
+/// How many cells each algorithm computed in one limited_cells call (they add up to n).
+struct AlgorithmCounts {
+    Index clip = 0;    ///< the certified clipping filter (cells/certified_clip.hpp; Method::Auto only)
+    Index scan = 0;    ///< Boundary Scan (every cell under Method::Scan; the filter's give-ups under Auto)
+    Index chords = 0;  ///< RCVC (Method::Chords)
+};
+
 /// The range-limited Voronoi partition of n agents (the result of limited_cells).
 ///
 /// Cells are stored flat: agent i owns pieces [piece_ptr[i], piece_ptr[i+1]); a piece starts at
@@ -35,7 +42,8 @@ namespace dvoronoi {
 /// Limited neighbours are the CSR pair (indptr, indices), ascending per agent (scipy's layout).
 struct LimitedPartition {
     double radius = 0.0;
-    Method method = Method::Scan;
+    Method method = Method::Auto;
+    AlgorithmCounts computed_by;  ///< which algorithm computed how many of the cells
     Points points;  ///< the agents, as given
     std::vector<Index> piece_ptr{0};
     std::vector<Index> piece_neighbor;
@@ -409,13 +417,19 @@ inline void require_distinct(const GridIndex& index, const Points& pts) {
 ///         (coordinates far outside the exact range of core/expansion.hpp) or a Chords cell with more
 ///         than kMaxChordsCandidates agents within 2R. The agent named is the first in grid order
 ///         that fails, whatever the thread count.
-/// \note Scan gives Boundary Scan's cells bit for bit; most are computed by the certified clipping
-///       filter of cells/certified_clip.hpp (O(m) per agent in a swarm: the nearest agents shrink
-///       the cell, the others fail a one-comparison screen), the rest by Boundary Scan itself
-///       (O(m log m)); m = agents within 2R. Chords is O(m^2) per agent in the worst case. The
-///       duplicate check is O(n) expected (identical points share a grid cell). Memory O(n m).
-///       Thread-safe.
-inline LimitedPartition limited_cells(PointsRef points, double radius, Method method = Method::Scan,
+/// \note Methods (docs/spec.md, API conventions); all three give the same cells, and
+///       `computed_by` counts which algorithm computed each:
+///       - Auto (default), our fast path, not a published algorithm: the certified clipping filter of
+///         cells/certified_clip.hpp (O(m) per agent in a swarm: the nearest agents shrink the cell,
+///         the others fail a one-comparison screen), Boundary Scan where the filter gives up (ties,
+///         concurrent bisectors, vertices on the circle: none in a uniform swarm). Bit-identical to
+///         Scan's cells.
+///       - Scan: Boundary Scan (He, Feng & Ren 2018) on every agent, O(m log m) (it sorts all m
+///         bisectors); about twice Auto's time in a uniform swarm.
+///       - Chords: RCVC (Guruprasad & Dasgupta 2012) on every agent, O(m^2) in the worst case.
+///       m = agents within 2R. The duplicate check is O(n) expected (identical points share a grid
+///       cell). Memory O(n m). Thread-safe.
+inline LimitedPartition limited_cells(PointsRef points, double radius, Method method = Method::Auto,
                                       int threads = 0, const ProgressFn& progress = nullptr) {
     detail::require_finite_radius(radius);
     detail::require_finite_points(points, "points");
@@ -478,6 +492,7 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         LimitedCell cell;
         detail::CellWorkspace ws;
         detail::ClipWorkspace clip_ws;
+        AlgorithmCounts ran;  // this thread's
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             const Index lo = b * block, hi = std::min(n, lo + block);
@@ -497,19 +512,27 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
                         detail::prefetch_for_write(&source[a]);
                     }
                     const Vec2 c = index.point_at(pp);
-                    if (method == Method::Scan) {
+                    if (method == Method::Auto) {
                         // Boundary Scan's cell: the certified clipping filter on the candidates as the
                         // query finds them (agents are distinct: checked above), Boundary Scan itself
                         // when the filter gives up. The previous agent's count sets the near radius.
                         clip_ws.start(c, detail::near_first_sq(radius, clip_ws.m));
                         index.for_each_batch_within_at(pp, radius, [&](auto... batch) { clip_ws.add_batch(batch...); });
-                        if (!detail::certified_clip_loaded(radius, cell, clip_ws)) {
+                        if (detail::certified_clip_loaded(radius, cell, clip_ws)) {
+                            ++ran.clip;
+                        } else {
                             clip_ws.candidates(cand);
                             detail::boundary_scan(c, cand, radius, cell, ws);
+                            ++ran.scan;
                         }
+                    } else if (method == Method::Scan) {
+                        index.within_at(pp, radius, cand);
+                        detail::boundary_scan(c, cand, radius, cell, ws);
+                        ++ran.scan;
                     } else {
                         index.within_at(pp, radius, cand);
                         detail::rcvc(c, cand, radius, cell, ws);
+                        ++ran.chords;
                     }
                     const CellMeasures m = cell.measures();
                     const auto i = static_cast<std::size_t>(order[pp]);
@@ -529,6 +552,12 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
                 tracker.fail(pos, order[static_cast<std::size_t>(pos)]);
             }
             tracker.block_done(hi - lo);
+        }
+#pragma omp critical(dvoronoi_limited_counts)
+        {
+            out.computed_by.clip += ran.clip;
+            out.computed_by.scan += ran.scan;
+            out.computed_by.chords += ran.chords;
         }
     }
     tracker.rethrow_if_failed();

@@ -43,6 +43,12 @@ struct VoronoiPartition {
     /// cell misses it), else of the bounded cell (NaN for hull agents).
     std::vector<double> areas;
     Points centroids;
+    /// How the cells were found (they add up to n): `one_shot` by one certified clipping at a fixed
+    /// radius and `deferred` from the triangulation of the agents it did not certify (AsrInner::Auto),
+    /// `asr` by Adjust-Sensing-Radius with the inner step on every radius (AsrInner::Scan and Evt).
+    struct ComputedBy {
+        Index one_shot = 0, deferred = 0, asr = 0;
+    } computed_by;
 
     Index size() const noexcept { return static_cast<Index>(points.rows()); }
 
@@ -91,10 +97,13 @@ struct VoronoiPartition {
 };
 
 
-/// Every agent's exact Voronoi neighbours and hull flag by ASR (inner step Boundary Scan or EVT, see
-/// AsrInner): each agent starts from its nearest-neighbour distance and doubles its sensing radius
-/// until its cell certifies itself (cells/asr.hpp); hull agents end with every agent. `radius_steps`
-/// and `agents_used` are that schedule's numbers for each agent, however the cell was found.
+/// Every agent's exact Voronoi neighbours and hull flag. Scan and Evt run ASR with that inner step
+/// (Boundary Scan, ASR+BS, or the exact tessellation, ASR+EVT) on every agent: each agent starts
+/// from its nearest-neighbour distance and doubles its sensing radius until its cell certifies
+/// itself (cells/asr.hpp); hull agents end with every agent. Auto (default) is our fast path, not a
+/// published algorithm (see the note). All three give the same neighbours and hull flags.
+/// `radius_steps` and `agents_used` are ASR's schedule numbers for each agent, however the cell was
+/// found; `computed_by` says which route found how many cells.
 ///
 /// \param threads number of OpenMP threads; 0 = all cores. Results do not depend on it.
 /// \param bounds  a convex region (box or polygon) to clip every cell to: `areas` and `centroids`
@@ -103,19 +112,19 @@ struct VoronoiPartition {
 ///         when an exact test over- or underflows (coordinates far outside the exact range of
 ///         core/expansion.hpp), naming the agent whose cell needed it ("points[17]: ...") or
 ///         "points" for the steps over all agents.
-/// \note With the Boundary Scan inner step, each agent first tries one certified clipping at a
+/// \note With Auto, each agent first tries one certified clipping at a
 ///       radius R of 1.5 mean spacings (cells/certified_exact_cell.hpp), from one grid query (about
 ///       28 agents within 2R in a uniform swarm); that certifies ~97% of a uniform swarm's cells. The
 ///       others (a vertex beyond R, near the swarm's edge, on its hull, ties) are finished together:
 ///       their neighbours beyond 2R are their neighbours in a Delaunay triangulation of just them
 ///       (the comment at that step says why), so the loaded agents and those give the exact cell.
-///       With inner = Evt every agent runs the radius schedule of cells/asr.hpp; from step
+///       With inner = Scan or Evt every agent runs the radius schedule of cells/asr.hpp; from step
 ///       EmptyCircleCertificate::kFromStep on, a cell that the radius does not certify is certified
 ///       by empty vertex circles and the global convex hull (partition/empty_circle_certificate.hpp),
 ///       so agents near the hull do not sweep most agents. Uniform agents cost O(1) each in
 ///       expectation; inputs where k agents are (nearly) cocircular around a shared vertex cost O(k)
 ///       exact tests per agent there. Thread-safe.
-inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInner::Scan,
+inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInner::Auto,
                                       int threads = 0, const ProgressFn& progress = nullptr,
                                       const ConvexRegion& bounds = ConvexRegion()) {
     detail::require_finite_points(points, "points");
@@ -163,9 +172,9 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     detail::assign_scattered(by_pos, static_cast<std::size_t>(n), Result{});
     std::vector<std::vector<Index>> columns(static_cast<std::size_t>(team));
     detail::ProgressTracker tracker(progress, n);
-    // With the Boundary Scan inner step, the agents the one-shot clip does not certify are deferred
+    // With Auto, the agents the one-shot clip does not certify are deferred
     // and finished together after the first pass (see below).
-    const bool deferring = inner == AsrInner::Scan && n > 3;
+    const bool deferring = inner == AsrInner::Auto && n > 3;
     std::vector<Index> deferred;  // their grid positions
 
     // Per-thread scratch; the lambdas below are the steps every agent's result ends with.
@@ -288,8 +297,9 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
                             for (const detail::Candidate& q : sc.cand) best = std::min(best, (q.p - c).squaredNorm());
                             first = std::sqrt(best);
                         }
+                        // Scan: Boundary Scan itself on every radius step (no clipping filter).
                         detail::asr(c, query, n - 1, first, inner, sc.ws, sc.dws, sc.cand, sc.limited, sc.cell, i, cert,
-                                    &sc.clip_ws);
+                                    inner == AsrInner::Auto ? &sc.clip_ws : nullptr);
                         from_cell(sc, c, first, r);
                     }
                     finish(sc, c, me, r);
@@ -413,6 +423,10 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     detail::move_runs(
         out.indices.data(), columns[0].data(), out.indptr,
         [&](Index i) { return static_cast<std::size_t>(source[static_cast<std::size_t>(i)]); }, team, [](Index, const Index*, std::size_t) {});
+    const auto nd = static_cast<Index>(deferred.size());
+    out.computed_by.one_shot = deferring ? n - nd : 0;
+    out.computed_by.deferred = nd;
+    out.computed_by.asr = deferring ? 0 : n;
     tracker.report_all();
     return out;
 }
