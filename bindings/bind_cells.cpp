@@ -178,6 +178,8 @@ py::tuple partition_state(const PyPartition& pp) {
     d["perimeters"] = np_of(p.perimeters);
     d["centroids"] = np_of(p.centroids);
     d["candidates"] = np_of(p.candidates);
+    d["computed_by"] = np_of(std::vector<Index>{static_cast<Index>(p.computed_by.clip), static_cast<Index>(p.computed_by.scan),
+                                                static_cast<Index>(p.computed_by.chords)});
     return make_state(d);
 }
 
@@ -200,6 +202,11 @@ std::unique_ptr<PyPartition> partition_from_state(const py::tuple& t) {
     p.perimeters = vec_of<double>(d, "perimeters");
     p.centroids = points_of(d, "centroids");
     p.candidates = vec_of<Index>(d, "candidates");
+    const auto ran = vec_of<Index>(d, "computed_by");
+    if (ran.size() != 3) throw py::value_error("pickled LimitedPartition: computed_by is not 3 counts");
+    p.computed_by.clip = static_cast<decltype(p.computed_by.clip)>(ran[0]);
+    p.computed_by.scan = static_cast<decltype(p.computed_by.scan)>(ran[1]);
+    p.computed_by.chords = static_cast<decltype(p.computed_by.chords)>(ran[2]);
     const auto n = static_cast<std::size_t>(p.points.rows());
     if (p.indptr.size() != n + 1 || p.piece_ptr.size() != n + 1 || p.areas.size() != n || p.perimeters.size() != n ||
         static_cast<std::size_t>(p.centroids.rows()) != n || p.candidates.size() != n ||

@@ -116,6 +116,8 @@ py::tuple voronoi_partition_state(const VoronoiPartition& p) {
     d["bounds"] = np_of(p.bounds.empty() ? std::vector<Vec2>{} : p.bounds.vertices());
     d["areas"] = np_of(p.areas);
     d["centroids"] = np_of(p.centroids);
+    d["computed_by"] = np_of(std::vector<Index>{static_cast<Index>(p.computed_by.one_shot),
+                                                static_cast<Index>(p.computed_by.deferred), static_cast<Index>(p.computed_by.asr)});
     return make_state(d);
 }
 
@@ -133,6 +135,11 @@ VoronoiPartition voronoi_partition_from_state(const py::tuple& t) {
     if (b.rows() > 0) p.bounds = ConvexRegion::polygon(b, "bounds");
     p.areas = vec_of<double>(d, "areas");
     p.centroids = points_of(d, "centroids");
+    const auto ran = vec_of<Index>(d, "computed_by");
+    if (ran.size() != 3) throw py::value_error("pickled VoronoiPartition: computed_by is not 3 counts");
+    p.computed_by.one_shot = static_cast<decltype(p.computed_by.one_shot)>(ran[0]);
+    p.computed_by.deferred = static_cast<decltype(p.computed_by.deferred)>(ran[1]);
+    p.computed_by.asr = static_cast<decltype(p.computed_by.asr)>(ran[2]);
     const auto n = static_cast<std::size_t>(p.points.rows());
     if (p.indptr.size() != n + 1 || p.on_hull.size() != n || p.radius_steps.size() != n || p.agents_used.size() != n ||
         p.areas.size() != n || static_cast<std::size_t>(p.centroids.rows()) != n ||

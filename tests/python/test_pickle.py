@@ -40,6 +40,7 @@ def test_limited_partition(method):
     r = dv.limited_cells(P, 0.2, method=method)
     for s in _round_trips(r):
         assert type(s) is type(r) and s.radius == r.radius and s.method == r.method
+        assert s._core.computed_by == r._core.computed_by
         _same_arrays(r, s, CELL_ARRAYS + ["perimeters", "candidates"])
         assert s.to_json() == r.to_json() and s.to_geojson() == r.to_geojson()
         for i in (0, 17, 39):
@@ -64,6 +65,7 @@ def test_voronoi_partition(bounds):
     r = dv.voronoi_cells(P, bounds=bounds)
     for s in _round_trips(r):
         _same_arrays(r, s, ["points", "indptr", "indices", "on_hull", "areas", "centroids"])
+        assert s._core.computed_by == r._core.computed_by
         assert s.to_json() == r.to_json()
         for i in (0, 5, 33):
             a, b = r.cell(i), s.cell(i)
