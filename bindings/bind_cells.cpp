@@ -98,16 +98,7 @@ py::array neighbors_array(const LimitedCell& c) {
     return a;
 }
 
-py::array vertices_array(const LimitedCell& c) {
-    const std::vector<Vec2> v = c.vertices();
-    py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{2}});
-    double* out = a.mutable_data();
-    for (std::size_t k = 0; k < v.size(); ++k) {
-        out[2 * k] = v[k].x();
-        out[2 * k + 1] = v[k].y();
-    }
-    return a;
-}
+py::array vertices_array(const LimitedCell& c) { return xy_array(c.vertices()); }
 
 template <class F>
 py::array piece_array(const LimitedCell& c, F f) {

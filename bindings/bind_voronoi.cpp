@@ -66,16 +66,16 @@ py::tuple voronoi_cell_state(const VoronoiCell& c) {
         to_inf.push_back(e.to_infinity ? 1 : 0);
     }
     d["edge_neighbor"] = np_of(nb);
-    d["edge_start"] = np_of(start);
-    d["edge_end"] = np_of(end);
-    d["edge_direction"] = np_of(dir);
+    d["edge_start"] = xy_array(start);
+    d["edge_end"] = xy_array(end);
+    d["edge_direction"] = xy_array(dir);
     d["edge_from_infinity"] = np_of(from_inf);
     d["edge_to_infinity"] = np_of(to_inf);
     d["on_hull"] = c.on_hull;
     d["radius_steps"] = c.radius_steps;
     d["agents_used"] = c.agents_used;
     d["is_clipped"] = c.is_clipped;
-    d["clipped_vertices"] = np_of(c.clipped.vertices);
+    d["clipped_vertices"] = xy_array(c.clipped.vertices);
     d["clipped_side_neighbor"] = np_of(c.clipped.side_neighbor);
     d["clipped_area"] = c.clipped.area;
     d["clipped_centroid"] = np_of(c.clipped.centroid);
@@ -113,7 +113,7 @@ py::tuple voronoi_partition_state(const VoronoiPartition& p) {
     d["on_hull"] = np_of(std::vector<std::uint8_t>(p.on_hull.begin(), p.on_hull.end()));
     d["radius_steps"] = np_of(p.radius_steps);
     d["agents_used"] = np_of(p.agents_used);
-    d["bounds"] = np_of(p.bounds.empty() ? std::vector<Vec2>{} : p.bounds.vertices());
+    d["bounds"] = xy_array(p.bounds.empty() ? std::vector<Vec2>{} : p.bounds.vertices());
     d["areas"] = np_of(p.areas);
     d["centroids"] = np_of(p.centroids);
     d["computed_by"] = np_of(std::vector<Index>{static_cast<Index>(p.computed_by.one_shot),

@@ -71,16 +71,7 @@ inline Vec2 vec2_of(const py::dict& d, const char* key) {
 
 inline py::array_t<double> np_of(const Vec2& v) { return np_of(std::vector<double>{v.x(), v.y()}); }
 
-/// Points as an (n, 2) array and back, for vectors of Vec2.
-inline py::array_t<double> np_of(const std::vector<Vec2>& v) {
-    py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{2}});
-    double* out = a.mutable_data();
-    for (std::size_t k = 0; k < v.size(); ++k) {
-        out[2 * k] = v[k].x();
-        out[2 * k + 1] = v[k].y();
-    }
-    return a;
-}
+/// (n, 2) points back into a vector of Vec2 (written with arrays.hpp's xy_array).
 inline std::vector<Vec2> vec2s_of(const py::dict& d, const char* key) {
     const Points p = points_of(d, key);
     std::vector<Vec2> out;
