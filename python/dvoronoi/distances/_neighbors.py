@@ -61,6 +61,16 @@ def _edge_list(arr: np.ndarray, n: Optional[int]):
     rows, cols = idx[:, 0].astype(np.int64), idx[:, 1].astype(np.int64)
     need = int(max(rows.max(initial=-1), cols.max(initial=-1))) + 1
     if n is None:
+        # Indices are positions 0..n-1, so the robot count would follow the largest index: IDs such as
+        # serial numbers would size every per-robot array by the largest ID (2e9 robots for one row).
+        # Refuse sparse IDs clearly instead; the CLI, which reads files of IDs, renumbers them itself.
+        present = len(np.unique(np.concatenate([rows, cols]))) if len(rows) else 0
+        if need > max(4 * present, present + 65536):
+            raise ValueError(
+                f"distances edge list: robot indices go up to {need - 1} but only {present} robots appear; "
+                "indices are positions 0..n-1, not IDs. Renumber IDs such as serial numbers first: "
+                "ids, inv = np.unique(edges[:, :2], return_inverse=True); edges[:, :2] = inv.reshape(-1, 2) "
+                "(robot k is then ids[k]), or pass n to size the team explicitly")
         n = need
     return int(n), rows, cols, np.ascontiguousarray(arr[:, 2], dtype=np.float64), "edges"
 
@@ -344,7 +354,10 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
         collinear and cocircular robots, with rounded distances it is exact except where rounding
         moves an exactly degenerate configuration (see the C++ header distance_predicates.hpp).
     n
-        Number of robots for an edge list (default: largest index + 1).
+        Number of robots for an edge list (default: largest index + 1). Indices are positions, not
+        IDs: an edge list whose largest index is far above the number of robots it mentions (IDs
+        such as serial numbers) is refused with the renumbering to apply (the CLI renumbers IDs
+        itself).
     workers
         Threads: None or -1 = all cores, k >= 1 = k (``threads`` is a deprecated alias, 0 = all
         cores). ``progress``: as in :func:`dvoronoi.limited_cells`.
