@@ -273,6 +273,7 @@ void bind_gvd(py::module_& m) {
             d["peak_worker_bytes"] = s.peak_worker_bytes;
             d["worker_seconds"] = s.worker_seconds;
             d["worker_cpu_seconds"] = s.worker_cpu_seconds;
+            d["worker_evaluations"] = s.worker_evaluations;
             return d;
         })
         .def("to_json", [](PyResult& p, int indent) { return dvoronoi::io::gvd_to_json(p.graph()).dump(indent); },
