@@ -45,9 +45,9 @@ def _readonly(value: Any) -> Any:
 class LoadedResult(Result):
     """A result read back from JSON whose inputs the file does not record (see :func:`load`).
 
-    Read-only: each top-level JSON field is an attribute (numeric lists as read-only numpy arrays,
-    ``int64`` or ``float64``; everything else as parsed), ``kind`` is the file's kind and ``path`` the
-    file. Where the file holds the neighbour relation (``indptr``/``indices``), ``neighbors(i)``,
+    Read-only: each top-level JSON field is ``result[name]`` and, unless a method has its name (a
+    single cell's ``neighbors``), ``result.name`` (numeric lists as read-only numpy arrays, ``int64``
+    or ``float64``; everything else as parsed); ``kind`` is the file's kind and ``path`` the file. Where the file holds the neighbour relation (``indptr``/``indices``), ``neighbors(i)``,
     ``to_csr()`` and ``len()`` work as on every result. ``to_json()`` writes the same document.
     """
 
@@ -58,12 +58,30 @@ class LoadedResult(Result):
         self.__dict__["_doc"] = doc
         self.__dict__["kind"] = doc["kind"]
         self.__dict__["path"] = path
-        self.__dict__["_fields"] = {k: _readonly(v) for k, v in doc.items()}
+        fields = {k: _readonly(v) for k, v in doc.items()}
+        cells = doc.get("cells")
+        if "indptr" not in fields and isinstance(cells, list) and all(
+                isinstance(c, dict) and isinstance(c.get("neighbors"), list) for c in cells):
+            # Coverage results list each cell's neighbours: the same relation as CSR arrays.
+            counts = [len(c["neighbors"]) for c in cells]
+            indptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+            indices = np.array([j for c in cells for j in c["neighbors"]], dtype=np.int64)
+            indptr.flags.writeable = indices.flags.writeable = False
+            fields.setdefault("indptr", indptr)
+            fields.setdefault("indices", indices)
+        self.__dict__["_fields"] = fields
 
     @property
     def fields(self) -> List[str]:
-        """The top-level field names of the file, in its order."""
+        """The top-level field names of the file, in its order (``indptr``/``indices`` are also
+        attributes of a coverage result, built from its cells' ``neighbors``)."""
         return list(self._doc)
+
+    def __getitem__(self, name: str) -> Any:
+        try:
+            return self._fields[name]
+        except KeyError:
+            raise KeyError(f"a loaded {self.kind!r} result has no field {name!r}; it has {self.fields}") from None
 
     def __getattr__(self, name: str) -> Any:
         fields = self.__dict__.get("_fields", {})

@@ -245,6 +245,7 @@ class CoverageCells(CellResult):
     def _json_doc(self) -> dict:
         return {"kind": "coverage_cells", "radius": self.radius,  # "kind": what dv.load reads back
                 "bounds": None if self.bounds is None else self.bounds.tolist(),
+                "points": self.points.tolist(),  # the agents, as the CLI's lloyd JSON has them
                 "cells": [{"agent": i, **{k: v for k, v in self.cell(i).items() if k != "vertices"},
                            "neighbors": self.neighbors(i).tolist()} for i in range(len(self))]}
 
