@@ -31,8 +31,12 @@ if TYPE_CHECKING:  # pragma: no cover
 class Result:
     """Base of every result that relates agents (neighbour relation as CSR arrays)."""
 
-    indptr: np.ndarray
-    indices: np.ndarray
+    if TYPE_CHECKING:  # what every result has; subclasses provide them as attributes or (cached) properties
+        @property
+        def indptr(self) -> np.ndarray: ...
+
+        @property
+        def indices(self) -> np.ndarray: ...
 
     def __len__(self) -> int:
         return int(len(self.indptr) - 1)
@@ -143,15 +147,33 @@ class GeoMixin:
 class CellResult(GeoMixin, Result):
     """Base of every result with cells: ``areas``, ``centroids``, ``cell(i)``, GeoJSON export."""
 
-    areas: np.ndarray
-    centroids: np.ndarray
-    points: np.ndarray
-    radius: float
-    piece_ptr: np.ndarray
-    piece_neighbor: np.ndarray
-    piece_x: np.ndarray
-    piece_y: np.ndarray
-    piece_span: np.ndarray
+    if TYPE_CHECKING:  # provided by subclasses as attributes or (cached) properties
+        @property
+        def areas(self) -> np.ndarray: ...
+
+        @property
+        def centroids(self) -> np.ndarray: ...
+
+        @property
+        def points(self) -> np.ndarray: ...
+
+        @property
+        def radius(self) -> float: ...
+
+        @property
+        def piece_ptr(self) -> np.ndarray: ...
+
+        @property
+        def piece_neighbor(self) -> np.ndarray: ...
+
+        @property
+        def piece_x(self) -> np.ndarray: ...
+
+        @property
+        def piece_y(self) -> np.ndarray: ...
+
+        @property
+        def piece_span(self) -> np.ndarray: ...
 
     def cell(self, i: int) -> Any:  # pragma: no cover - abstract
         raise NotImplementedError
