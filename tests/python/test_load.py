@@ -128,6 +128,12 @@ def test_read_only_kinds_from_python(tmp_path):
                                          {"type": "point", "position": [75, 75]}],
                                         area=(0, 0, 100, 100), cells=32),
     }
+    occupied = np.zeros((30, 40), dtype=bool)
+    occupied[10:20, 15:25] = True
+    medial = dv.grid_voronoi(occupied, resolution=0.5)  # an occupancy grid's medial diagram
+    path = tmp_path / "medial.json"
+    medial.to_json(path)
+    _read_only_checks(dv.load(path), "grid_voronoi", json.loads(path.read_text()))
     for kind, r in results.items():
         path = tmp_path / f"{kind}.json"
         text = r.to_json()
