@@ -45,17 +45,20 @@ def _readonly(value: Any) -> Any:
 class LoadedResult(Result):
     """A result read back from JSON whose inputs the file does not record (see :func:`load`).
 
-    Read-only: each top-level JSON field is ``result[name]`` and, unless a method has its name (a
-    single cell's ``neighbors``), ``result.name`` (numeric lists as read-only numpy arrays, ``int64``
-    or ``float64``; everything else as parsed); ``kind`` is the file's kind and ``path`` the file. Where the file holds the neighbour relation (``indptr``/``indices``), ``neighbors(i)``,
-    ``to_csr()`` and ``len()`` work as on every result. ``to_json()`` writes the same document.
+    Each top-level JSON field is ``result[name]`` and, unless a method has its name (a single cell's
+    ``neighbors``), ``result.name``: numeric lists as read-only numpy arrays (``int64`` or
+    ``float64``), everything else as parsed. ``kind`` is the file's kind and ``path`` the file. Where
+    the file holds the neighbour relation (``indptr``/``indices``, or a coverage result's cells),
+    ``neighbors(i)``, ``to_csr()`` and ``len()`` work as on every result. Attributes cannot be set,
+    and ``to_json()`` writes the document as it was read, whatever is done to the parsed fields.
     """
 
     kind: str
     path: str
 
     def __init__(self, doc: Dict[str, Any], path: str) -> None:
-        self.__dict__["_doc"] = doc
+        self.__dict__["_text"] = json.dumps(doc)  # what to_json() writes, apart from the fields handed out
+        self.__dict__["_names"] = list(doc)
         self.__dict__["kind"] = doc["kind"]
         self.__dict__["path"] = path
         fields = {k: _readonly(v) for k, v in doc.items()}
@@ -75,7 +78,7 @@ class LoadedResult(Result):
     def fields(self) -> List[str]:
         """The top-level field names of the file, in its order (``indptr``/``indices`` are also
         attributes of a coverage result, built from its cells' ``neighbors``)."""
-        return list(self._doc)
+        return list(self._names)
 
     def __getitem__(self, name: str) -> Any:
         try:
@@ -105,13 +108,14 @@ class LoadedResult(Result):
         return super().neighbors(i)
 
     def _json_text(self, indent: Optional[int]) -> str:
-        return json.dumps(self._doc, indent=indent)
+        text: str = self._text
+        return text if indent is None else json.dumps(json.loads(text), indent=indent)
 
     def __getstate__(self) -> Dict[str, Any]:
-        return {"doc": self._doc, "path": self.path}
+        return {"text": self._text, "path": self.path}
 
     def __setstate__(self, state: Dict[str, Any]) -> None:
-        LoadedResult.__init__(self, state["doc"], state["path"])
+        LoadedResult.__init__(self, json.loads(state["text"]), state["path"])
 
     def __repr__(self) -> str:
         return f"LoadedResult(kind={self.kind!r}, path={self.path!r}, fields={self.fields})"
