@@ -460,7 +460,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         if args.output:
             from ._io import atomic_write_text
 
-            doc = {"stats": s, "cost": out["cost"].tolist(), "radius": args.radius, "bounds": bounds,
+            doc = {"kind": "lloyd", "stats": s, "cost": out["cost"].tolist(), "radius": args.radius, "bounds": bounds,
                    "points": out["trajectory"][-1].tolist()}
             atomic_write_text(args.output, json.dumps(doc) + "\n")
     return 0
