@@ -140,6 +140,14 @@ class Frames:
         hit = (self._ekeys[pos] == q) if len(self._ekeys) else np.zeros(np.shape(q), bool)
         return np.where(hit, self._eperm[pos] if len(self._eperm) else -1, -1)
 
+    def measured_sq(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Measured squared distances of the pairs (a, b), NaN where not measured."""
+        q = a * self.n + b
+        if len(self._gkeys) == 0:
+            return np.full(np.shape(q), np.nan)
+        pos = np.minimum(np.searchsorted(self._gkeys, q), len(self._gkeys) - 1)
+        return np.where(self._gkeys[pos] == q, self._gval[pos], np.nan)
+
     def _local_coordinates(self, graph: Any) -> None:
         """Every robot's path neighbours in its local frame, as LocalRegion.positions (local_region.hpp):
         the law of cosines on consecutive path triangles, angles summed along the path."""
@@ -150,12 +158,8 @@ class Frames:
         if not graph.squared:
             gval = gval * gval
 
-        def sq(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-            q = a * n + b
-            if len(gkeys) == 0:
-                return np.full(q.shape, np.nan)
-            pos = np.minimum(np.searchsorted(gkeys, q), len(gkeys) - 1)
-            return np.where(gkeys[pos] == q, gval[pos], np.nan)
+        self._gkeys, self._gval = gkeys, gval
+        sq = self.measured_sq
 
         plen = self.path_length
         owner = np.repeat(np.arange(n, dtype=np.int64), plen)
@@ -226,7 +230,21 @@ class Frames:
             fit = c[eid] * np.where(flip[eid], np.conj(b), b) + tr[eid]
             resid = np.sqrt(gsum(np.abs(a - fit) ** 2) / cnt)
         sent_back = self.edge(v, u) >= 0           # v sends its coordinates to u only if u is in v's row
-        valid = sent_back & (cnt >= 3) & (np.minimum(pa, pb) > PLANARITY_TOL) & (np.abs(s) > 0)
+        planar = (cnt >= 3) & (np.minimum(pa, pb) > PLANARITY_TOL)
+        valid = sent_back & planar & (np.abs(s) > 0)
+        # Collinear common robots (i and j alone: four cocircular robots, whose diagonal is no Voronoi
+        # edge, e.g. on lattices) fix the rotation up to the flip; a measured distance between a robot
+        # only u places and one only v places decides it (beyond the paper).
+        line = np.flatnonzero(sent_back & ~planar & (cnt >= 2) & (np.abs(s_rot) > 0))
+        if len(line):
+            f2, ok = self._flip_by_distance(line, u[line], v[line], s_rot[line], s_flip[line], abar[line], bbar[line])
+            flip[line] = f2
+            c[line] = np.where(f2, s_flip[line], s_rot[line]) / np.abs(s_rot[line])
+            tr[line] = abar[line] - c[line] * np.where(f2, np.conj(bbar[line]), bbar[line])
+            fit = c[eid] * np.where(flip[eid], np.conj(b), b) + tr[eid]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                resid = np.sqrt(gsum(np.abs(a - fit) ** 2) / cnt)
+            valid[line] = ok
         self.c = np.where(valid, c, np.nan)
         self.t = np.where(valid, tr, np.nan)
         self.flip = flip & valid
@@ -234,6 +252,38 @@ class Frames:
         self.count = cnt.astype(np.int64)
         self.valid = valid
         self._common = (eid, mem)
+
+    def _flip_by_distance(self, e, u, v, s_rot, s_flip, abar, bbar):
+        """For edges e (u fits v's frame) whose common robots are collinear: under each flip, map
+        every robot of v's table into u's frame and compare its distance to every robot of u's table
+        with the measurement; the pair that tells the two hypotheses apart best decides."""
+        n = self.n
+        lu = self.tab_ptr[u + 1] - self.tab_ptr[u]
+        lv = self.tab_ptr[v + 1] - self.tab_ptr[v]
+        m = lu * lv
+        g = np.repeat(np.arange(len(e), dtype=np.int64), m)
+        w = np.arange(int(m.sum()), dtype=np.int64) - np.repeat(np.cumsum(m) - m, m)
+        iu = self.tab_ptr[u][g] + w // lv[g]
+        iv = self.tab_ptr[v][g] + w % lv[g]
+        ru, rv = self.tab_member[iu], self.tab_member[iv]
+        meas = np.sqrt(self.measured_sq(ru, rv))
+        za, zb = self.tab_z[iu], self.tab_z[iv]
+        c_rot, c_flip = s_rot / np.abs(s_rot), s_flip / np.abs(s_flip)
+        p_rot = np.abs(za - (c_rot[g] * (zb - bbar[g]) + abar[g]))
+        p_flip = np.abs(za - (c_flip[g] * np.conj(zb - bbar[g]) + abar[g]))
+        gap = np.abs(p_rot - p_flip)
+        gap = np.where(np.isfinite(meas) & (ru != rv) & np.isfinite(gap), gap, -1.0)
+        best = np.full(len(e), -1, np.int64)
+        if len(g):
+            order = np.lexsort((gap, g))              # per edge, the largest gap last
+            last = np.r_[np.flatnonzero(np.diff(g[order])), len(g) - 1] if len(g) else np.zeros(0, np.int64)
+            best[g[order[last]]] = order[last]
+        has = best >= 0
+        k = np.where(has, best, 0)
+        scale = np.abs(za[k]) + np.abs(zb[k]) + np.abs(abar) + np.abs(bbar)
+        ok = has & (gap[k] > 1e-12 * scale)
+        flip = ok & (np.abs(p_flip[k] - meas[k]) < np.abs(p_rot[k] - meas[k]))
+        return flip, ok
 
     # ---------------------------------------------------------------------------- results
     def rotation_matrices(self, k: np.ndarray) -> np.ndarray:
@@ -276,8 +326,8 @@ class Frames:
         g = sp.csr_matrix((np.ones(len(k)), (self.erow[k], self.indices[k])), shape=(n, n))
         hops, pred = shortest_path(g, method="D", directed=True, unweighted=True, indices=anchor,
                                    return_predecessors=True)
-        gc = np.full(n, np.nan + 0j)
-        gt = np.full(n, np.nan + 0j)
+        gc = np.full(n, complex(np.nan, np.nan))
+        gt = np.full(n, complex(np.nan, np.nan))
         gf = np.zeros(n, bool)
         gc[anchor], gt[anchor], gf[anchor] = np.exp(1j * heading), complex(*position), bool(flip)
         reached = np.flatnonzero(np.isfinite(hops) & (np.arange(n) != anchor))
