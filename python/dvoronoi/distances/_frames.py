@@ -12,7 +12,8 @@ apexes of the Delaunay triangles on edge ij): an orthogonal Procrustes fit with 
 exact (up to rounding) when the distances are, least squares when they are noisy.
 
 Everything is vectorised with numpy over all robots and directed Voronoi edges, O(sum over robots of
-degree x path length); 1e5 robots take about a second.
+degree x path length); for 1e5 robots (about 6e5 directed edges) the fits take about 2 s and
+`localize` 0.2 s on one core of the development machine.
 """
 from __future__ import annotations
 
