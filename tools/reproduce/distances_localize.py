@@ -16,7 +16,7 @@ Per trial: share of robots localised (connected to the anchor through valid fits
 against the truth (median, 90 %, max, cm), RMS error after the best rigid motion of the whole team
 (the shape error, independent of the anchor), share of valid transforms whose flip is wrong, median
 fit residual, and the messages of the second round. Default: N = 200, 600, 1000, 10 trials each
-(~15 s); `--trials`, `--sizes`. Outputs: out/distances_localize.csv and out/distances_localize.png.
+(~10 s); `--trials`, `--sizes`, `--quick` (2 trials of N = 200, 600). Outputs: out/distances_localize.csv and out/distances_localize.png.
 """
 from __future__ import annotations
 
@@ -92,14 +92,18 @@ def main(argv=None) -> int:
     ap.add_argument("--trials", type=int, default=10, help="trials per N and noise level")
     ap.add_argument("--sizes", default="200,600,1000")
     ap.add_argument("--seed", type=int, default=2017)
+    ap.add_argument("--quick", action="store_true", help="2 trials of N = 200, 600")
     args = ap.parse_args(argv)
     sizes = [int(s) for s in args.sizes.split(",")]
+    tag = ""
+    if args.quick:
+        sizes, args.trials, tag = [200, 600], 2, "_quick"
     OUT.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     rows = [one_trial(n, args.seed + 1000 * n + t, model, sigma)
             for n in sizes for t in range(args.trials) for model, sigma in NOISES]
     elapsed = time.perf_counter() - t0
-    csv_path = OUT / "distances_localize.csv"
+    csv_path = OUT / f"distances_localize{tag}.csv"
     with open(csv_path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -148,7 +152,7 @@ def main(argv=None) -> int:
     axes[1].legend(fontsize=7)
     fig.suptitle(f"Second round: team placed from one robot's pose ({SIDE:g} cm square, {RANGE:g} cm range)")
     fig.tight_layout()
-    png = OUT / "distances_localize.png"
+    png = OUT / f"distances_localize{tag}.png"
     fig.savefig(png, dpi=130)
     print("paper: no figure or number for the second round (Sections I and IV-A describe it; IV-A warns that noise "
           "may make it less accurate than other methods because it does not use all measurements)")
