@@ -68,6 +68,13 @@ def test_localize_on_lattices_with_exact_squared_distances():
     res = dv.neighbors_from_distances(dense_distances(full, squared=True), squared=True)
     got, _ = localize_truly(full, res, 27)
     assert np.max(np.hypot(*(got - full).T)) <= REL_TOL * diameter(full)
+    # There two neighbours share no neighbour (the diagonals are not Voronoi edges): only i and j are
+    # common, and a measured distance between robots only one of them places decides the flip.
+    ft = res.frame_transforms()
+    rows = np.repeat(np.arange(len(full)), np.diff(res.indptr))
+    assert ft.valid.all() and (ft.common == 2).all()
+    hand = np.array([local_frame_handedness(full, res, i) for i in range(len(full))])
+    assert np.array_equal(ft.flip, hand[rows] != hand[res.indices])
 
 
 @pytest.mark.parametrize("mirror", [False, True])

@@ -12,7 +12,7 @@ apexes of the Delaunay triangles on edge ij): an orthogonal Procrustes fit with 
 exact (up to rounding) when the distances are, least squares when they are noisy.
 
 Everything is vectorised with numpy over all robots and directed Voronoi edges, O(sum over robots of
-degree x path length); for 1e5 robots (about 6e5 directed edges) the fits take about 2 s and
+degree x path length); for 1e5 robots (about 6e5 directed edges) the fits take about 3 s and
 `localize` 0.2 s on one core of the development machine.
 """
 from __future__ import annotations
@@ -267,18 +267,23 @@ class Frames:
         iu = self.tab_ptr[u][g] + w // lv[g]
         iv = self.tab_ptr[v][g] + w % lv[g]
         ru, rv = self.tab_member[iu], self.tab_member[iv]
+        # u and v lie on the line of the common robots: distances to them cannot tell a flip.
+        off = (ru != rv) & (ru != u[g]) & (ru != v[g]) & (rv != u[g]) & (rv != v[g])
+        g, iu, iv, ru, rv = g[off], iu[off], iv[off], ru[off], rv[off]
         meas = np.sqrt(self.measured_sq(ru, rv))
         za, zb = self.tab_z[iu], self.tab_z[iv]
         c_rot, c_flip = s_rot / np.abs(s_rot), s_flip / np.abs(s_flip)
         p_rot = np.abs(za - (c_rot[g] * (zb - bbar[g]) + abar[g]))
         p_flip = np.abs(za - (c_flip[g] * np.conj(zb - bbar[g]) + abar[g]))
         gap = np.abs(p_rot - p_flip)
-        gap = np.where(np.isfinite(meas) & (ru != rv) & np.isfinite(gap), gap, -1.0)
+        gap = np.where(np.isfinite(meas) & np.isfinite(gap), gap, -1.0)
         best = np.full(len(e), -1, np.int64)
-        if len(g):
-            order = np.lexsort((gap, g))              # per edge, the largest gap last
-            last = np.r_[np.flatnonzero(np.diff(g[order])), len(g) - 1] if len(g) else np.zeros(0, np.int64)
-            best[g[order[last]]] = order[last]
+        if len(g):                                    # g is grouped: the largest gap of each group
+            starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
+            top = np.maximum.reduceat(gap, starts)
+            at = np.flatnonzero((gap == np.repeat(top, np.diff(np.r_[starts, len(g)]))) & (gap >= 0))
+            first = at[np.r_[True, g[at][1:] != g[at][:-1]]]
+            best[g[first]] = first
         has = best >= 0
         k = np.where(has, best, 0)
         scale = np.abs(za[k]) + np.abs(zb[k]) + np.abs(abar) + np.abs(bbar)
