@@ -144,6 +144,25 @@ def test_transforms_carry_neighbour_frames_and_invert():
     assert np.array_equal(all_t.rotation[k], one.rotation) and np.array_equal(all_t.translation[k], one.translation)
 
 
+def test_two_hop_places_neighbours_of_neighbours():
+    pts = random_points(14, 120, scale=30.0)
+    res = dv.neighbors_from_distances(dense_distances(pts))
+    for i in range(0, 120, 11):
+        robots, xy = res.two_hop(i)
+        nb = set(res.neighbors(i).tolist())
+        want = nb | {i} | {k for j in nb for k in res.neighbors(j).tolist()}
+        assert robots.tolist() == sorted(want)
+        # i's frame mapped to the truth with i's true pose gives the true positions.
+        heading, flip = true_pose(pts, res, i)
+        z = xy[:, 0] + 1j * xy[:, 1]
+        g = np.exp(1j * heading) * (np.conj(z) if flip else z) + complex(*pts[i])
+        assert np.max(np.abs(g - (pts[robots, 0] + 1j * pts[robots, 1]))) <= REL_TOL * diameter(pts)
+        own = dict(zip(res.region(i).neighbors.tolist(), res.region(i).positions))
+        at = {r: k for k, r in enumerate(robots.tolist())}
+        assert all(np.allclose(xy[at[j]], own[j], rtol=0, atol=1e-12 * 30.0) for j in nb)  # i's own coordinates
+        assert np.array_equal(xy[at[i]], [0.0, 0.0])
+
+
 def test_local_coordinates_match_regions():
     """The second round sends exactly the coordinates region(i) reports (one convention)."""
     pts = random_points(8, 90, scale=10.0)

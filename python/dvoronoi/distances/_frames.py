@@ -317,6 +317,29 @@ class Frames:
         return FrameTransforms(self.rotation_matrices(k), np.column_stack([self.t.real, self.t.imag]),
                                self.flip.copy(), self.residual.copy(), self.count.copy(), self.valid.copy())
 
+    def two_hop(self, i: int) -> Tuple[np.ndarray, np.ndarray]:
+        """Robots i or its neighbours place, in i's frame (mean where several neighbours place one)."""
+        lo, hi = self.tab_ptr[i], self.tab_ptr[i + 1]
+        ids, zs = [self.tab_member[lo:hi]], [self.tab_z[lo:hi]]
+        for k in range(int(self.indptr[i]), int(self.indptr[i + 1])):
+            if not self.valid[k]:
+                continue
+            j = int(self.indices[k])
+            a, b = self.tab_ptr[j], self.tab_ptr[j + 1]
+            z = self.tab_z[a:b]
+            ids.append(self.tab_member[a:b])
+            zs.append(self.c[k] * (np.conj(z) if self.flip[k] else z) + self.t[k])
+        idv, zv = np.concatenate(ids), np.concatenate(zs)
+        own = np.zeros(len(idv), bool)
+        own[: hi - lo] = True
+        # i's own coordinates where it has them; the neighbours' mean for the others.
+        known = np.isin(idv, idv[own])
+        idv, zv = np.concatenate([idv[own], idv[~known]]), np.concatenate([zv[own], zv[~known]])
+        uniq, inv = np.unique(idv, return_inverse=True)
+        cnt = np.bincount(inv, minlength=len(uniq))
+        mean = (np.bincount(inv, zv.real, len(uniq)) + 1j * np.bincount(inv, zv.imag, len(uniq))) / cnt
+        return uniq.astype(np.int64), np.column_stack([mean.real, mean.imag])
+
     def second_round(self) -> SecondRound:
         sent = np.diff(self.indptr)
         received = np.bincount(self.indices, minlength=self.n).astype(np.int64)

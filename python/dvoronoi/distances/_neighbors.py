@@ -256,6 +256,14 @@ class DistanceNeighbors(Result):
         :class:`~dvoronoi.distances.FrameTransforms`)."""
         return self._frames.all_transforms()
 
+    def two_hop(self, i: int) -> Tuple[np.ndarray, np.ndarray]:
+        """What robot i knows after the second round: ``(robots, xy)``, every robot that i or one of
+        its Voronoi neighbours places (its neighbours and its neighbours' neighbours), ascending, with
+        coordinates in i's local frame (:meth:`region`): i's own for itself and its neighbours, the
+        neighbours' coordinates mapped by :meth:`frame_transform` for the others (the mean where
+        several neighbours place one robot; neighbours without a valid fit are left out)."""
+        return self._frames.two_hop(self._index(i))
+
     @property
     def second_round(self) -> SecondRound:
         """Message counts of the second round (one message per directed Voronoi edge, payload the
