@@ -17,6 +17,7 @@ import numpy as np
 from .. import _args, _core
 from .._partition import ProgressArg, progress_callback
 from .._result import Result
+from ._frames import FrameTransform, Frames, FrameTransforms, SecondRound, check_pose
 
 __all__ = ["neighbors_from_distances", "DistanceNeighbors", "LocalRegion", "as_distance_graph"]
 
@@ -236,6 +237,54 @@ class DistanceNeighbors(Result):
     def regions(self) -> Iterator[LocalRegion]:
         for i in range(len(self)):
             yield self.region(i)
+
+    # ------------------------------------------------------------ the second round (Section IV-A)
+    @cached_property
+    def _frames(self) -> Frames:
+        return Frames(len(self), self.indptr, self.indices, self.path_length, self.graph)
+
+    def frame_transform(self, i: int, j: int) -> FrameTransform:
+        """The second round seen by robot i: the rigid motion (rotation, translation, flip) taking
+        Voronoi neighbour j's local frame (:meth:`region`) to i's, fitted over the robots both frames
+        place (i, j and their common neighbours) from the coordinates j sent. Exact up to rounding
+        with exact distances; a least-squares (orthogonal Procrustes, reflection allowed) fit with
+        noisy ones, its RMS misfit in ``residual``. Raises ValueError when j is not in row i."""
+        return self._frames.transform(self._index(i), self._index(j))
+
+    def frame_transforms(self) -> FrameTransforms:
+        """Every directed edge's transform at once, aligned with ``indices`` (see
+        :class:`~dvoronoi.distances.FrameTransforms`)."""
+        return self._frames.all_transforms()
+
+    def two_hop(self, i: int) -> Tuple[np.ndarray, np.ndarray]:
+        """What robot i knows after the second round: ``(robots, xy)``, every robot that i or one of
+        its Voronoi neighbours places (its neighbours and its neighbours' neighbours), ascending, with
+        coordinates in i's local frame (:meth:`region`): i's own for itself and its neighbours, the
+        neighbours' coordinates mapped by :meth:`frame_transform` for the others (the mean where
+        several neighbours place one robot; neighbours without a valid fit are left out)."""
+        return self._frames.two_hop(self._index(i))
+
+    @property
+    def second_round(self) -> SecondRound:
+        """Message counts of the second round (one message per directed Voronoi edge, payload the
+        sender's path); see :class:`~dvoronoi.distances.SecondRound`."""
+        return self._frames.second_round()
+
+    def localize(self, anchor: int = 0, position: Tuple[float, float] = (0.0, 0.0), heading: float = 0.0,
+                 flip: bool = False) -> np.ndarray:
+        """Place the team in global coordinates from one robot's absolute pose (the paper's "if one
+        robot knows its absolute position and orientation").
+
+        The anchor is at `position`; `heading` (radians, counter-clockwise from the global +x axis)
+        is the direction of its local +x axis, i.e. towards its first path neighbour
+        ``path(anchor)[0]``; `flip` says its local frame is mirrored in the global one (its path turns
+        clockwise there). Every other robot is placed by chaining second-round transforms outward
+        from the anchor along fewest hops (breadth-first over the edges with a valid fit). Returns
+        ``(n, 2)`` positions; robots not connected to the anchor through valid fits are NaN.
+        """
+        anchor = self._index(anchor)
+        position, heading = check_pose(position, heading)
+        return self._frames.localize(anchor, position, heading, bool(flip))
 
     def edges(self) -> np.ndarray:
         """The (symmetrised) neighbour graph as an ``(E, 2)`` int64 array of pairs ``i < j``, sorted."""
