@@ -35,8 +35,8 @@ inline void prefault(const void* p, std::size_t bytes) {
 
 /// Asks for huge pages under [p, p + bytes) (its whole 2 MB pages). For arrays accessed in scattered
 /// order: with 4 KB pages such an access misses the TLB at nearly every agent once the arrays
-/// outgrow it, and under a hypervisor each miss is a two-level page walk (measured: 2% of
-/// limited_cells at 1e6 agents). Not for arrays filled in order: fresh huge pages map slower here.
+/// outgrow it, and under a hypervisor each miss is a two-level page walk. Not for arrays filled in
+/// order: fresh huge pages map slower than small ones.
 inline void advise_huge_pages(const void* p, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
@@ -68,8 +68,7 @@ void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
 }
 
 /// prefault for several buffers at once, each split over up to `team` threads: page faults are
-/// handled by the faulting thread, and two threads map pages about 1.5-2x as fast as one (measured:
-/// 96 MB in 21-23 ms against 32-55 ms).
+/// handled by the faulting thread, so two threads map pages faster than one.
 inline void prefault_together(std::initializer_list<std::pair<const void*, std::size_t>> buffers, int team) {
 #pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
     for (int t = 0; t < team; ++t)
