@@ -6,6 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -15,6 +18,30 @@
 
 namespace dvoronoi {
 namespace detail {
+
+/// An allocator whose value-less construct() leaves trivial types uninitialised, so resize(n) does
+/// not write n zeros: for arrays that their parallel passes fill completely, where a serial fill
+/// before them would be a sequential part of the run.
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = DefaultInitAllocator<U>;
+    };
+    using std::allocator<T>::allocator;
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
+/// A vector whose resize() leaves new trivial elements uninitialised (see DefaultInitAllocator).
+template <class T>
+using UninitVector = std::vector<T, DefaultInitAllocator<T>>;
 
 /// Maps the pages of [p, p + bytes) by one system call (MADV_POPULATE_WRITE, Linux 5.14+) instead
 /// of one page fault each; elsewhere, on older kernels or for small buffers it does nothing and the
