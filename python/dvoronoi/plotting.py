@@ -205,13 +205,21 @@ def neighbor_coloring(indptr: Any, indices: Any) -> np.ndarray:
     return np.asarray(color, dtype=np.int64)
 
 
-def _piece_relation(ptr: np.ndarray, nbs: np.ndarray):
-    """(indptr, indices) of "cell i has an edge piece towards j"."""
+def _relation(ptr: np.ndarray, nbs: np.ndarray, result: Any = None):
+    """(indptr, indices): cell i has an edge piece towards j, or `result` names j among i's neighbours
+    (a clipped cell may lose the edge it shares with a neighbour; the two get different colours anyway)."""
     n = len(ptr) - 1
-    owner = np.repeat(np.arange(n, dtype=np.int64), np.diff(ptr))
-    keep = nbs >= 0
-    order = np.argsort(owner[keep], kind="stable")
-    return np.searchsorted(owner[keep][order], np.arange(n + 1)), nbs[keep][order]
+    rows = [np.repeat(np.arange(n, dtype=np.int64), np.diff(ptr))[nbs >= 0]]
+    cols = [nbs[nbs >= 0]]
+    indptr = getattr(result, "indptr", None)
+    indices = getattr(result, "indices", None)
+    if indptr is not None and indices is not None and len(indptr) == n + 1:
+        indptr = np.asarray(indptr, dtype=np.int64)
+        rows.append(np.repeat(np.arange(n, dtype=np.int64), np.diff(indptr)))
+        cols.append(np.asarray(indices, dtype=np.int64))
+    r, c = np.concatenate(rows), np.concatenate(cols)
+    order = np.argsort(r, kind="stable")
+    return np.searchsorted(r[order], np.arange(n + 1)), c[order]
 
 
 def _bounds_box(bounds: Any) -> Optional[np.ndarray]:
@@ -323,7 +331,7 @@ def _finish(ax: Any, box: Optional[np.ndarray]) -> Any:
 def _draw(ax, ptr, xs, ys, spans, nbs, centers, radius, points, *, single: bool, facecolor: Any,
           coloring: str, cmap: str, alpha: float, edgecolor: Any, arccolor: Any, linewidth: Optional[float],
           show_points: bool, point_color: Any, point_size: Optional[float], labels: bool, clip: Any,
-          box: np.ndarray):
+          box: np.ndarray, result: Any = None):
     from matplotlib.collections import LineCollection, PathCollection
     from matplotlib.path import Path
 
@@ -338,7 +346,7 @@ def _draw(ax, ptr, xs, ys, spans, nbs, centers, radius, points, *, single: bool,
     if facecolor is not None:
         colors: Any = [facecolor]
     elif coloring == "neighbors":
-        color = neighbor_coloring(*_piece_relation(ptr, nbs))
+        color = neighbor_coloring(*_relation(ptr, nbs, result))
         colors = [PALETTE[c % len(PALETTE)] for c in color]
     elif coloring == "index":
         import matplotlib.pyplot as plt
@@ -442,7 +450,7 @@ def plot(result: Any, ax: Any = None, **kwargs: Any):
     opts = _options(kwargs)
     ptr, xs, ys, sp, nb, pts, radius = _arrays(result)
     box = _result_box(result)
-    ax = _draw(ax, ptr, xs, ys, sp, nb, pts, radius, pts, single=False, box=box, **opts)
+    ax = _draw(ax, ptr, xs, ys, sp, nb, pts, radius, pts, single=False, box=box, result=result, **opts)
     _wrong_nodes(ax, result, pts, _sizes(ax, len(pts), box)["point_size"])
     return ax
 
@@ -512,7 +520,7 @@ def plot_cc(result: Any, ax: Any = None, *, network: bool = True, delaunay: bool
     if network:
         plot_network(result, ax=ax, clip=opts["clip"])
     if len(result.piece_x):
-        _draw(ax, *_arrays(result), pts, single=False, box=box,
+        _draw(ax, *_arrays(result), pts, single=False, box=box, result=result,
               **{**opts, "show_points": False})
     lw = size["linewidth"] if opts["linewidth"] is None else float(opts["linewidth"])
     if delaunay:
