@@ -46,6 +46,7 @@ from typing import Any, Callable, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _args, _core
+from ._optional import tqdm_class
 from ._io import PathLike
 from ._result import CellResult
 
@@ -497,10 +498,9 @@ def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gai
     if callable(progress) and not isinstance(progress, bool):
         callback = progress
     elif progress or (progress is None and n * steps >= PROGRESS_BAR_FROM):
-        from tqdm.auto import tqdm
-
-        bar = tqdm(total=steps, unit="steps", desc="lloyd")
-        callback = lambda done, total: bar.update(done - bar.n)  # noqa: E731
+        tqdm = tqdm_class(required=bool(progress))  # optional: no bar that was not asked for without it
+        bar = None if tqdm is None else tqdm(total=steps, unit="steps", desc="lloyd")
+        callback = None if bar is None else lambda done, total: bar.update(done - bar.n)  # noqa: E731
     try:
         if stepper.density is None:
             trajectory, cost = stepper._core.run(steps, record_every, callback)

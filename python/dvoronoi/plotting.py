@@ -24,8 +24,10 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
+from ._optional import INSTALL_HINT, require_matplotlib, tqdm_class
+
 __all__ = ["plot", "plot_cell", "cell_paths", "plot_network", "plot_cc", "plot_coverage", "animate",
-           "neighbor_coloring", "data_box", "density_image", "require_matplotlib"]
+           "neighbor_coloring", "data_box", "density_image", "require_matplotlib", "INSTALL_HINT"]
 
 _MAX_SEGMENT = np.pi / 8.0  # largest angle of one Bezier arc segment
 
@@ -123,33 +125,6 @@ def _arrays(result: Any):
 def _geometry_of(result: Any) -> Dict[str, np.ndarray]:
     ptr, xs, ys, sp, _, pts, radius = _arrays(result)
     return _pieces_geometry(ptr, xs, ys, sp, pts, radius)
-
-
-# ----------------------------------------------------------------------------- optional dependencies
-#: What to install for plots and progress bars (the ``[plot]`` extra: matplotlib and tqdm).
-INSTALL_HINT = 'pip install "dvoronoi[plot]"'
-
-
-def require_matplotlib(caller: str = "plotting") -> Any:
-    """Import matplotlib, or raise an ImportError that says how to install it."""
-    try:
-        import matplotlib
-    except ImportError as e:
-        raise ImportError(f"{caller} needs matplotlib, which is not installed: {INSTALL_HINT} "
-                          "(or pip install matplotlib)") from e
-    return matplotlib
-
-
-def _tqdm(required: bool) -> Any:
-    """tqdm's bar class, or None when it is not installed and not `required`."""
-    try:
-        from tqdm.auto import tqdm
-    except ImportError as e:
-        if required:
-            raise ImportError(f"progress=True needs tqdm, which is not installed: {INSTALL_HINT} "
-                              "(or pip install tqdm)") from e
-        return None
-    return tqdm
 
 
 # ----------------------------------------------------------------------------- colours and sizes
@@ -649,7 +624,7 @@ def animate(result: Any, path: Any = None, fps: int = 10, cells: bool = True, dp
             raise ValueError(f"path must end in .gif or .mp4, got {os.fspath(path)!r}")
     bar_class = None
     if path is not None and not callable(progress) and progress is not False:
-        bar_class = _tqdm(required=progress is True)
+        bar_class = tqdm_class(required=progress is True)
     traj = np.asarray(result.trajectory, dtype=float)
     fig, ax = plt.subplots(figsize=figsize, dpi=dpi)
     lo = traj.reshape(-1, 2).min(axis=0) - result.radius

@@ -263,3 +263,13 @@ def test_missing_tqdm_only_matters_when_asked_for(monkeypatch, tmp_path):
     with pytest.raises(ImportError, match=r"tqdm.*dvoronoi\[plot\]"):
         run.animate(tmp_path / "loud.gif", cells=False, progress=True)
     assert not (tmp_path / "loud.gif").exists()
+    # The computations' own bars (progress=None shows one on big inputs) do the same.
+    pts = random_points(10, 30)
+    monkeypatch.setattr(dv._partition, "PROGRESS_BAR_FROM", 1)
+    monkeypatch.setattr(dv.coverage, "PROGRESS_BAR_FROM", 1)
+    assert len(dv.limited_cells(pts, 0.1)) == 30
+    assert dv.coverage.lloyd(pts, 0.1, steps=2).steps == 2
+    with pytest.raises(ImportError, match=r"tqdm.*dvoronoi\[plot\]"):
+        dv.limited_cells(pts, 0.1, progress=True)
+    with pytest.raises(ImportError, match=r"tqdm.*dvoronoi\[plot\]"):
+        dv.coverage.lloyd(pts, 0.1, steps=2, progress=True)
