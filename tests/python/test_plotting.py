@@ -244,7 +244,7 @@ def _hide(monkeypatch, package):
     monkeypatch.setitem(sys.modules, package, None)  # `import package` now raises ImportError
 
 
-def test_missing_matplotlib_says_what_to_install(monkeypatch):
+def test_missing_matplotlib_says_what_to_install(monkeypatch, tmp_path, capsys):
     part = dv.limited_cells(random_points(9, 10), 0.2)
     run = dv.coverage.lloyd(random_points(9, 10), 0.2, steps=1, bounds=(0, 0, 1, 1))
     res = net.simulate("cc", random_points(9, 10, 100.0), 50.0)
@@ -253,6 +253,11 @@ def test_missing_matplotlib_says_what_to_install(monkeypatch):
                  lambda: plotting.cell_paths(part)):
         with pytest.raises(ImportError, match=r'pip install "dvoronoi\[plot\]"'):
             call()
+    from dvoronoi.__main__ import main
+
+    assert main(["demo", "--out", str(tmp_path / "demo.png")]) == 1
+    assert 'pip install "dvoronoi[plot]"' in capsys.readouterr().err
+    assert not (tmp_path / "demo.png").exists()
 
 
 def test_missing_tqdm_only_matters_when_asked_for(monkeypatch, tmp_path):
