@@ -237,6 +237,9 @@ def data_box(points: Any, radius: Any = None, bounds: Any = None) -> np.ndarray:
 
 def _result_box(result: Any, points: Optional[np.ndarray] = None) -> np.ndarray:
     pts = np.asarray(result.points if points is None else points, dtype=float)
+    traj = getattr(result, "trajectory", None)  # a Lloyd run: every position it went through
+    if points is None and traj is not None:
+        pts = np.asarray(traj, dtype=float).reshape(-1, 2)
     radius = getattr(result, "radii", getattr(result, "radius", None))
     return data_box(pts, radius, getattr(result, "bounds", None))
 

@@ -206,6 +206,12 @@ def test_lloyd_plot_shows_density_and_one_line_per_trajectory():
     assert not ax.images and "dvoronoi-trajectories" in _gids(ax)
     ax = run.plot(density=False, trajectories=False)
     assert not ax.images and "dvoronoi-trajectories" not in _gids(ax)
+    # In the plane (no bounds) the agents spread out: the axes hold every position of the run.
+    free = dv.coverage.lloyd(random_points(7, 12) * 0.2, 0.1, steps=4)
+    ax = free.plot()
+    t = free.trajectory.reshape(-1, 2)
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    assert x0 < t[:, 0].min() and t[:, 0].max() < x1 and y0 < t[:, 1].min() and t[:, 1].max() < y1
 
 
 def test_density_image_masks_outside_a_polygon():
