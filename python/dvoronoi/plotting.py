@@ -481,9 +481,79 @@ def plot_network(result: Any, ax: Any = None, *, link_color: Any = "0.7", linewi
     return _finish(ax, shown)
 
 
+def _circumcenter(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    u, v = a - p, b - p
+    d = 2.0 * (u[0] * v[1] - u[1] * v[0])
+    uu, vv = u @ u, v @ v
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return p + np.array([v[1] * uu - u[1] * vv, u[0] * vv - v[0] * uu]) / d
+
+
+def _rot(v: np.ndarray) -> np.ndarray:
+    return np.array([-v[1], v[0]])
+
+
+def _hull_cell(result: Any, i: int, pts: np.ndarray, far: float) -> Optional[List[tuple]]:
+    """Hull node `i`'s unbounded cell from CC's own counter-clockwise neighbour list, as pieces
+    (x, y, neighbour) whose rays end `far` away (closed by two pieces of neighbour -1 through a point
+    far out between them; the caller cuts the cell at the data's box). None when it has no finite
+    shape (no neighbour, parallel bisectors)."""
+    ccw = [int(j) for j in result.neighbors_ccw(i)]
+    if not ccw:
+        return None
+    p = pts[i]
+    t_in = _rot(pts[ccw[0]] - p)    # direction of the incoming ray (bisector with the first neighbour)
+    t_out = _rot(pts[ccw[-1]] - p)  # and of the outgoing one (bisector with the last)
+    t_in, t_out = t_in / np.linalg.norm(t_in), t_out / np.linalg.norm(t_out)
+    if len(ccw) == 1:  # two nodes: a half-plane
+        verts = [(pts[ccw[0]] + p) / 2.0]
+    else:
+        verts = [_circumcenter(p, pts[a], pts[b]) for a, b in zip(ccw[:-1], ccw[1:])]
+    if not all(np.all(np.isfinite(v)) for v in verts):
+        return None
+    # The cell's directions to infinity turn counter-clockwise from t_out to -t_in: go out halfway.
+    turn = np.arctan2(t_out[0] * -t_in[1] - t_out[1] * -t_in[0], t_out @ -t_in) % (2 * np.pi)
+    c, s = np.cos(turn / 2), np.sin(turn / 2)
+    mid = np.array([c * t_out[0] - s * t_out[1], s * t_out[0] + c * t_out[1]])
+    start, end = verts[0] - far * t_in, verts[-1] + far * t_out
+    out = 0.5 * (start + end) + far * mid
+    # A piece starts at its vertex: the incoming ray (on the bisector with ccw[0]), the edge after
+    # vertex j (with ccw[j + 1]; the outgoing ray with the last neighbour), then the closing pieces.
+    pieces = [(start[0], start[1], ccw[0])]
+    pieces += [(v[0], v[1], ccw[min(j + 1, len(ccw) - 1)]) for j, v in enumerate(verts)]
+    pieces += [(end[0], end[1], -1), (out[0], out[1], -1)]
+    return pieces
+
+
+def _cc_pieces(result: Any, pts: np.ndarray, box: np.ndarray):
+    """CC's piece arrays, with the hull cells of a run without bounds added (see _hull_cell)."""
+    ptr, xs, ys, sp, nb = _arrays(result)[:5]
+    if getattr(result, "bounds", None) is not None or not hasattr(result, "neighbors_ccw"):
+        return ptr, xs, ys, sp, nb
+    on_hull = np.asarray(result.on_hull, dtype=bool)
+    reach = np.concatenate([np.abs(xs - (box[0] + box[2]) / 2), np.abs(ys - (box[1] + box[3]) / 2), [0.0]])
+    far = 10.0 * (float(np.max(box[2:] - box[:2])) + float(np.max(reach)))
+    out_ptr, out_x, out_y, out_nb = [0], [], [], []
+    for i in range(len(ptr) - 1):
+        a, b = int(ptr[i]), int(ptr[i + 1])
+        pieces = _hull_cell(result, i, pts, far) if on_hull[i] and a == b else None
+        if pieces is None:
+            out_x.extend(xs[a:b])
+            out_y.extend(ys[a:b])
+            out_nb.extend(nb[a:b])
+        else:
+            out_x.extend(q[0] for q in pieces)
+            out_y.extend(q[1] for q in pieces)
+            out_nb.extend(q[2] for q in pieces)
+        out_ptr.append(len(out_x))
+    return (np.asarray(out_ptr, dtype=np.int64), np.asarray(out_x, dtype=float), np.asarray(out_y, dtype=float),
+            np.zeros(len(out_x)), np.asarray(out_nb, dtype=np.int64))
+
+
 def plot_cc(result: Any, ax: Any = None, *, network: bool = True, delaunay: bool = True, **kwargs: Any) -> Any:
     """A CC result (:class:`dvoronoi.network.CcResult`): the network, the cells (clipped to
-    ``bounds`` when the run had them; else the interior cells, cut at :func:`data_box`), the
+    ``bounds`` when the run had them; else every cell, hull cells included, cut at :func:`data_box`;
+    hull cells are built from CC's own neighbour order, so a wrong node's cell shows its error), the
     Delaunay graph (dashed, gid ``"dvoronoi-delaunay"``), hull nodes circled (``"dvoronoi-hull"``)
     and wrong nodes marked (``"dvoronoi-wrong-nodes"``). Keyword arguments as :func:`plot`."""
     require_matplotlib("plot()")
@@ -497,8 +567,9 @@ def plot_cc(result: Any, ax: Any = None, *, network: bool = True, delaunay: bool
     size = _sizes(ax, len(pts), box)
     if network:
         plot_network(result, ax=ax, clip=opts["clip"])
-    if len(result.piece_x):
-        _draw(ax, *_arrays(result), pts, single=False, box=box, result=result,
+    ptr, xs, ys, sp, nb = _cc_pieces(result, pts, box)
+    if len(xs):
+        _draw(ax, ptr, xs, ys, sp, nb, pts, float("nan"), pts, single=False, box=box, result=result,
               **{**opts, "show_points": False})
     lw = size["linewidth"] if opts["linewidth"] is None else float(opts["linewidth"])
     if delaunay:

@@ -138,6 +138,14 @@ def test_cc_plot_stays_within_the_data_box():
         np.testing.assert_allclose(_artist(ax, gid).get_clip_box().get_points(), shown)  # cut there
     assert {"dvoronoi-links", "dvoronoi-delaunay", "dvoronoi-hull", "dvoronoi-nodes"} <= _gids(ax)
     np.testing.assert_array_equal(_artist(ax, "dvoronoi-hull").get_offsets(), pts[res.on_hull])
+    # Hull cells are drawn too (from CC's neighbour order, cut at the box): every point of the box
+    # lies in its nearest node's cell.
+    paths = _artist(ax, "dvoronoi-cells").get_paths()
+    assert len(paths) == len(pts) and res.on_hull.sum() >= 5
+    probe = np.random.default_rng(0).uniform(-3, 103, (300, 2))
+    nearest = np.argmin(((probe[:, None, :] - pts[None]) ** 2).sum(axis=2), axis=1)
+    assert all(paths[k].contains_point(q) for q, k in zip(probe, nearest))
+    assert {int(k) for k in nearest} >= {int(k) for k in np.flatnonzero(res.on_hull)}
     # clip=False shows everything; a box shows that box.
     ax = res.plot(clip=False)
     assert ax.get_xlim()[0] < -500
