@@ -26,8 +26,8 @@ import numpy as np
 
 from ._optional import INSTALL_HINT, require_matplotlib, tqdm_class
 
-__all__ = ["plot", "plot_cell", "cell_paths", "plot_network", "plot_cc", "plot_coverage", "animate",
-           "neighbor_coloring", "data_box", "density_image", "require_matplotlib", "INSTALL_HINT"]
+__all__ = ["plot", "plot_cell", "cell_paths", "plot_network", "plot_cc", "plot_voronoi", "plot_coverage",
+           "animate", "neighbor_coloring", "data_box", "density_image", "require_matplotlib", "INSTALL_HINT"]
 
 _MAX_SEGMENT = np.pi / 8.0  # largest angle of one Bezier arc segment
 
@@ -584,6 +584,107 @@ def plot_cc(result: Any, ax: Any = None, *, network: bool = True, delaunay: bool
                       edgecolors="tab:red", linewidths=max(0.3, lw), zorder=4)
     ring.set_gid("dvoronoi-hull")
     _wrong_nodes(ax, result, pts, size["point_size"])
+    return _finish(ax, shown)
+
+
+# ----------------------------------------------------------------------------- exact cells
+def _turn_half(d_out: np.ndarray, d_back: np.ndarray) -> np.ndarray:
+    """The unit direction halfway from `d_out` counter-clockwise to `d_back`."""
+    turn = np.arctan2(d_out[0] * d_back[1] - d_out[1] * d_back[0], d_out @ d_back) % (2 * np.pi)
+    c, s = np.cos(turn / 2), np.sin(turn / 2)
+    return np.array([c * d_out[0] - s * d_out[1], s * d_out[0] + c * d_out[1]])
+
+
+def _unbounded_polygon(edges: List[Any], far: float) -> List[tuple]:
+    """An unbounded exact cell as pieces (x, y, neighbour): rays end `far` away and are joined through
+    a point far out between them (neighbour -1), so the cell is right wherever it is cut nearer."""
+    k = len(edges)
+    out: List[tuple] = []
+    for j, e in enumerate(edges):
+        s, t, d = np.asarray(e.start, float), np.asarray(e.end, float), np.asarray(e.direction, float)
+        if e.from_infinity:  # `start` is a point of the line, the finite vertex (if any) is `end`
+            p = (s if e.to_infinity else t) - far * d
+            out.append((p[0], p[1], int(e.neighbor)))
+        else:
+            out.append((s[0], s[1], int(e.neighbor)))
+        if e.to_infinity:
+            q = s + far * d
+            nxt = edges[(j + 1) % k]
+            d_in = np.asarray(nxt.direction, float)
+            n_s, n_t = np.asarray(nxt.start, float), np.asarray(nxt.end, float)
+            p_in = (n_s if nxt.to_infinity else n_t) - far * d_in
+            m = 0.5 * (q + p_in) + far * _turn_half(d, -d_in)
+            out += [(q[0], q[1], -1), (m[0], m[1], -1)]
+    return out
+
+
+def _voronoi_pieces(result: Any, box: np.ndarray):
+    """Piece arrays of an exact partition: clipped cells with bounds; else bounded cells as they are
+    and hull cells with their rays ended far beyond `box`."""
+    n = len(result)
+    pts = np.asarray(result.points, dtype=float).reshape(-1, 2)
+    far = 10.0 * float(np.max(box[2:] - box[:2]) + np.max(np.abs(box)))
+    ptr, xs, ys, nbs = [0], [], [], []
+    for i in range(n):
+        c = result.cell(i)
+        clipped = getattr(c, "clipped", None)
+        if clipped is not None:
+            v = np.asarray(clipped.vertices, dtype=float).reshape(-1, 2)
+            side = np.asarray(clipped.side_neighbors, dtype=np.int64)
+            pieces = [(x, y, int(side[k]) if k < len(side) else -1) for k, (x, y) in enumerate(v)]
+        elif not result.on_hull[i]:
+            pieces = [(e.start[0], e.start[1], int(e.neighbor)) for e in c.edges]
+        elif len(c.edges):
+            pieces = _unbounded_polygon(list(c.edges), far)
+        else:  # a single agent: the plane
+            pieces = [(pts[i, 0] + far * a, pts[i, 1] + far * b, -1) for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+        xs += [q[0] for q in pieces]
+        ys += [q[1] for q in pieces]
+        nbs += [q[2] for q in pieces]
+        ptr.append(len(xs))
+    return (np.asarray(ptr, dtype=np.int64), np.asarray(xs, dtype=float), np.asarray(ys, dtype=float),
+            np.zeros(len(xs)), np.asarray(nbs, dtype=np.int64))
+
+
+def plot_voronoi(result: Any, ax: Any = None, *, cells: bool = True, delaunay: bool = False, **kwargs: Any) -> Any:
+    """An exact partition (:class:`dvoronoi.VoronoiPartition`): the cells (clipped to ``bounds`` when
+    given; else every cell, hull cells included, cut at :func:`data_box`), the agents, hull agents
+    circled (gid ``"dvoronoi-hull"``) and, with ``delaunay=True``, the Delaunay graph
+    (``"dvoronoi-delaunay"``). Keyword arguments as :func:`plot`."""
+    require_matplotlib("plot()")
+    from matplotlib.collections import LineCollection
+
+    opts = _options(kwargs)
+    ax = _axes(ax)
+    pts = np.asarray(result.points, dtype=float).reshape(-1, 2)
+    box = _result_box(result)
+    shown = _clip_box(opts["clip"], box)
+    size = _sizes(ax, len(pts), box)
+    lw = size["linewidth"] if opts["linewidth"] is None else float(opts["linewidth"])
+    if cells and len(pts):
+        ptr, xs, ys, sp, nb = _voronoi_pieces(result, box)
+        _draw(ax, ptr, xs, ys, sp, nb, pts, float("nan"), pts, single=False, box=box, result=result, **opts)
+    elif opts["show_points"] and len(pts):
+        dots = ax.scatter(pts[:, 0], pts[:, 1], s=size["point_size"] if opts["point_size"] is None
+                          else opts["point_size"], c=[opts["point_color"]], zorder=3, linewidths=0)
+        dots.set_gid("dvoronoi-agents")
+    if delaunay and len(pts):
+        dt = LineCollection(pts[result.delaunay_edges()], colors="tab:orange", linewidths=0.75 * lw, zorder=2)
+        dt.set_gid("dvoronoi-delaunay")
+        dt.set_visible(size["edges"] or opts["linewidth"] is not None)
+        ax.add_collection(dt)
+        _clip(ax, [dt], shown)
+    hull = pts[np.asarray(result.on_hull, dtype=bool)] if len(pts) else pts
+    ring = ax.scatter(hull[:, 0], hull[:, 1], s=max(4.0, 4.0 * size["point_size"]), facecolors="none",
+                      edgecolors="tab:red", linewidths=max(0.3, lw), zorder=4, label="hull agents")
+    ring.set_gid("dvoronoi-hull")
+    bounds = getattr(result, "bounds", None)
+    if bounds is not None:
+        r = np.asarray(bounds, dtype=float).reshape(-1, 2)
+        if len(r) == 2:  # a (2, 2) box
+            r = np.array([[r[0, 0], r[0, 1]], [r[1, 0], r[0, 1]], [r[1, 0], r[1, 1]], [r[0, 0], r[1, 1]]])
+        r = np.vstack([r, r[:1]])
+        ax.plot(r[:, 0], r[:, 1], color="0.15", linewidth=max(0.5, lw), gid="dvoronoi-bounds")
     return _finish(ax, shown)
 
 

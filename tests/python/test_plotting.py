@@ -155,6 +155,27 @@ def test_cc_plot_stays_within_the_data_box():
         res.plot(clip=(1, 2, 3))
 
 
+@pytest.mark.parametrize("bounds", [None, (0, 0, 1, 1)])
+def test_exact_cells_plot_every_cell_cut_at_the_box(bounds):
+    pts = random_points(11, 60)
+    vor = dv.voronoi_cells(pts, bounds=bounds)
+    ax = vor.plot(delaunay=True)
+    paths = _artist(ax, "dvoronoi-cells").get_paths()
+    assert len(paths) == len(pts)
+    _within(ax, (0, 0, 1, 1) if bounds else np.concatenate([pts.min(axis=0), pts.max(axis=0)]), 0.1)
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    probe = np.random.default_rng(1).uniform([x0, y0], [x1, y1], (300, 2))
+    if bounds:
+        probe = probe[np.all((probe >= 0) & (probe <= 1), axis=1)]
+    nearest = np.argmin(((probe[:, None, :] - pts[None]) ** 2).sum(axis=2), axis=1)
+    assert all(paths[k].contains_point(q) for q, k in zip(probe, nearest))
+    _assert_neighbours_differ(vor, _face_colors(ax, len(pts)))
+    np.testing.assert_array_equal(_artist(ax, "dvoronoi-hull").get_offsets(), pts[vor.on_hull])
+    assert len(_artist(ax, "dvoronoi-delaunay").get_segments()) == len(vor.indices) // 2
+    for few in ([[0.0, 0.0]], [[0.0, 0.0], [1.0, 0.0]], [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]):
+        assert len(_artist(dv.voronoi_cells(np.array(few)).plot(), "dvoronoi-cells").get_paths()) == len(few)
+
+
 def test_network_and_bounded_plots_stay_within_their_box():
     pts = random_points(3, 40, 100.0)
     for res in (net.simulate("cc", pts, 30.0, bounds=(0, 0, 100, 100)),
