@@ -10,6 +10,19 @@ cd "$(dirname "$0")/.."
 PY=${PYTHON:-python3}
 start=$SECONDS
 say() { printf '\n==> [%s, %ds] %s\n' "$(date +%H:%M:%S)" "$((SECONDS - start))" "$*"; }
+# Run a quiet command, saying every 30 s that it is still at work; its exit status is the command's.
+heartbeat() {
+  "$@" &
+  local pid=$! step=$SECONDS
+  while kill -0 "$pid" 2>/dev/null; do
+    sleep 5
+    if [ $((SECONDS - step)) -ge 30 ] && kill -0 "$pid" 2>/dev/null; then
+      echo "    ... still at work ($((SECONDS - start)) s so far)"
+      step=$SECONDS
+    fi
+  done
+  wait "$pid"
+}
 
 system_deps=1
 if [ "${1:-}" = "--no-system-deps" ] || [ "${DVORONOI_NO_SYSTEM_DEPS:-0}" = "1" ]; then system_deps=0; fi
@@ -19,18 +32,18 @@ if [ "$system_deps" = 1 ] && [ "$(id -u)" -ne 0 ] && ! command -v sudo >/dev/nul
 fi
 if [ "$system_deps" = 1 ]; then
   say "step 1/3: system packages with apt-get (compiler, CMake, Eigen, CLI11, nlohmann-json, libpng)"
-  bash tools/install_system_deps.sh --build-only
+  heartbeat bash tools/install_system_deps.sh --build-only
 else
   say "step 1/3: system packages skipped; using the C++ dependencies already installed"
 fi
 
 say "step 2/3: building and installing dvoronoi with its [plot] extra (matplotlib, tqdm)"
-echo "    pip runs CMake and compiles the C++ module and the dvoronoi program: several minutes"
-echo "    on two cores, silent unless VERBOSE=1 (then CMake's and the compiler's progress is shown)."
+echo "    pip runs CMake and compiles the C++ module and the dvoronoi program: several minutes on"
+echo "    two cores. VERBOSE=1 shows CMake's and the compiler's progress instead of these notes."
 if [ "${VERBOSE:-0}" = "1" ]; then
   "$PY" -m pip install -v ".[plot]"
 else
-  "$PY" -m pip install --quiet ".[plot]"
+  heartbeat "$PY" -m pip install --quiet ".[plot]"
 fi
 
 say "step 3/3: the limited cells of the Intel lab motes (R = 3 m) -> intel_lab_cells.png"
