@@ -225,9 +225,9 @@ def data_box(points: Any, radius: Any = None, bounds: Any = None) -> np.ndarray:
         pad = 0.02 * float(np.max(hi - lo))
     elif len(pts):
         lo, hi = pts.min(axis=0), pts.max(axis=0)
-        r = np.asarray(radius if radius is not None else np.nan, dtype=float)
-        r = r[np.isfinite(r)] if r.ndim else (r[None] if np.isfinite(r) else r[None][:0])
-        pad = float(np.max(r)) if len(r) else 0.05 * float(np.max(hi - lo))
+        r = np.atleast_1d(np.asarray(np.nan if radius is None else radius, dtype=float))
+        r = r[np.isfinite(r) & (r > 0)]  # one radius, one per agent (heterogeneous teams) or none
+        pad = float(r.max()) if len(r) else 0.05 * float(np.max(hi - lo))
     else:
         lo, hi, pad = np.zeros(2), np.ones(2), 0.0
     if not pad > 0:
