@@ -228,11 +228,8 @@ def coverage(out: Path) -> Path:
     fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.6))
     dv.coverage.LloydStepper(points, 0.12, density=density, bounds=(0, 0, 1, 1)).cells().plot(ax=axes[0])
     axes[0].set_title("start: 40 agents in a corner, R = 0.12", fontsize=9)
-    run.plot(ax=axes[1])
-    traj = np.asarray(run.trajectory)
-    for i in range(traj.shape[1]):
-        axes[1].plot(traj[:, i, 0], traj[:, i, 1], color="0.35", lw=0.6)
-    axes[1].set_title("after 60 Lloyd steps (grey: trajectories)", fontsize=9)
+    run.plot(ax=axes[1])  # the density as background, the trajectories in grey
+    axes[1].set_title("after 60 Lloyd steps (grey: density and trajectories)", fontsize=9)
     for ax in axes[:2]:
         gx, gy = np.meshgrid(np.linspace(0, 1, 120), np.linspace(0, 1, 120))
         ax.contour(gx, gy, density(gx, gy), levels=4, colors="tab:orange", linewidths=0.6)

@@ -710,8 +710,10 @@ def density_image(density: Any, box: Any, bounds: Any = None, pixels: int = 200)
 
 
 def _density_artist(ax: Any, image: np.ndarray, box: np.ndarray, cmap: str) -> Any:
+    top = float(np.nanmax(image)) if np.any(np.isfinite(image)) else 1.0
     im = ax.imshow(image, origin="lower", extent=(box[0], box[2], box[1], box[3]), cmap=cmap,
-                   interpolation="bilinear", zorder=0, aspect="equal")
+                   interpolation="bilinear", zorder=0, aspect="equal", vmin=0.0,
+                   vmax=1.6 * top if top > 0 else 1.0)  # the densest place mid-grey: cells stay readable
     im.set_gid("dvoronoi-density")
     return im
 
