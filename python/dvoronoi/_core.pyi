@@ -1,5 +1,5 @@
 """Type stubs of the compiled core dvoronoi._core (see bindings/)."""
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -70,6 +70,10 @@ class LimitedPartition:
     @property
     def computed_by(self) -> Dict[str, int]: ...
     @property
+    def radii(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def empty(self) -> npt.NDArray[np.bool_]: ...
+    @property
     def points(self) -> npt.NDArray[np.float64]: ...
     @property
     def indptr(self) -> npt.NDArray[np.int64]: ...
@@ -100,11 +104,15 @@ class LimitedPartition:
     def to_geojson(self, tolerance: Optional[float] = None) -> str: ...
 
 def limited_cell(
-    center: npt.ArrayLike, others: npt.ArrayLike, radius: float, method: str = "auto"
+    center: npt.ArrayLike,
+    others: npt.ArrayLike,
+    radius: float,
+    method: str = "auto",
+    other_radii: Optional[npt.ArrayLike] = None,
 ) -> LimitedCell: ...
 def limited_cells(
     points: npt.ArrayLike,
-    radius: float,
+    radius: Union[float, npt.ArrayLike],
     method: str = "auto",
     threads: int = 0,
     progress: Optional[Callable[[int, int], object]] = None,
