@@ -157,3 +157,25 @@ def test_pickle_and_json_keep_the_radii():
     assert np.array_equal(back.empty, part.empty) and back.cell(5).radius == radii[5]
     doc = json.loads(part.to_json())
     assert doc["radii"] == radii.tolist() and doc["radius"] == radii.max()
+
+
+def _cli():
+    import os
+    import shutil
+    return os.environ.get("DVORONOI_CLI") or shutil.which("dvoronoi")
+
+
+@pytest.mark.skipif(_cli() is None, reason="no dvoronoi executable (set DVORONOI_CLI or pip install .)")
+def test_cli_reads_a_radius_column(tmp_path):
+    import subprocess
+    pts, radii = team(60, 4)
+    f = tmp_path / "team.csv"
+    f.write_text("x,y,r\n" + "".join(f"{x!r},{y!r},{r!r}\n" for (x, y), r in zip(pts, radii)))
+    out = subprocess.run([_cli(), "cells", str(f), "--columns", "x,y,r", "-q"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == dv.limited_cells(pts, radii).to_json()
+    both = subprocess.run([_cli(), "cells", str(f), "--columns", "x,y,r", "-r", "1", "-q"], capture_output=True, text=True)
+    assert both.returncode != 0 and "--radius" in both.stderr
+    f.write_text("0 0 1\n1 0 -1\n")
+    bad = subprocess.run([_cli(), "cells", str(f), "--columns", "0,1,2", "-q"], capture_output=True, text=True)
+    assert bad.returncode != 0 and f"{f}:2:5: radius must be positive" in bad.stderr
