@@ -170,7 +170,7 @@ def test_cli_reads_a_radius_column(tmp_path):
     import subprocess
     pts, radii = team(60, 4)
     f = tmp_path / "team.csv"
-    f.write_text("x,y,r\n" + "".join(f"{x!r},{y!r},{r!r}\n" for (x, y), r in zip(pts, radii)))
+    f.write_text("x,y,r\n" + "".join(f"{float(x)!r},{float(y)!r},{float(r)!r}\n" for (x, y), r in zip(pts, radii)))
     out = subprocess.run([_cli(), "cells", str(f), "--columns", "x,y,r", "-q"], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == dv.limited_cells(pts, radii).to_json()
