@@ -18,9 +18,10 @@
 //      arcs of the circle join them.
 // All decisions are exact, so neighbours, empty flags and the order of pieces are the exact ones.
 // Cost: O(m k) for m chords and k polygon vertices (k is small: about six in a swarm).
-// Constructions: vertices from exact expansions (M, D, C4) rounded to double-double, then to
-// double: each coordinate within a few units in the last place of max(|vertex|, R_i) of the exact
-// vertex; measures are summed in double from those vertices (Green's theorem, arcs exact).
+// Constructions: vertices in double-double from the exact differences (from exact expansions where
+// a denominator or C4 loses more than 40 bits), then rounded to double: each coordinate within a few
+// units in the last place of max(|vertex|, R_i) of the exact vertex; measures are summed in double
+// from those vertices (Green's theorem, arcs exact).
 #pragma once
 
 #include "dvoronoi/cells/limited_cell.hpp"
@@ -43,32 +44,74 @@ inline constexpr double kPowerPi = 3.14159265358979323846;
 /// Scratch of power_cell, reused across agents.
 struct PowerWorkspace {
     std::vector<pred::power::WLine> lines;  ///< 0..3 the box, then the chords
+    std::vector<pred::power::FastLine> fast;  ///< the same, rounded (the predicates' fast path)
     std::vector<Index> ids;                 ///< caller's index of each line (-1 for the box)
     std::vector<int> poly, next;            ///< the polygon: cyclic list of lines
     std::vector<int> sides;
 };
 
-/// The point x_jk (relative to c) as double-double, from exact expansions of M_jk and D_jk.
+/// A line in double-double: a = p - c exactly (two_sum), s rounded once per operation (about 2^-104
+/// of its terms' sizes `ps`).
+struct DDLine {
+    DD ax, ay, s;
+    double ps;
+};
+
+inline DDLine dd_line(const pred::power::Frame& f, const pred::power::WLine& l) {
+    const DD r = dd(f.r);
+    if (l.box >= 0) {
+        const DD zero = dd(0.0);
+        const DD s = r * r * 4.0;
+        const double ps = 4.0 * f.r * f.r;
+        switch (l.box) {
+            case 0: return {r, zero, s, ps};
+            case 1: return {zero, r, s, ps};
+            case 2: return {-r, zero, s, ps};
+            default: return {zero, -r, s, ps};
+        }
+    }
+    DD ax, ay;
+    two_sum(l.p.x(), -f.c.x(), ax.hi, ax.lo);
+    two_sum(l.p.y(), -f.c.y(), ay.hi, ay.lo);
+    const DD n2 = ax * ax + ay * ay, R2 = dd(l.R) * dd(l.R);
+    return {ax, ay, n2 + r * r - R2, n2.hi + f.r * f.r + l.R * l.R};
+}
+
+/// The point x_jk (relative to c) as double-double. From double-double line data when the
+/// denominator D_jk keeps 40 of its bits (then each coordinate is within about 2^-60 R of the exact
+/// one: |M| / |D| <= 2^40 R-sized terms carry 2^-100 relative errors), else from exact expansions
+/// of M_jk and D_jk rounded once.
 inline DDPoint power_vertex(const pred::power::Frame& f, const pred::power::WLine& j, const pred::power::WLine& k) {
     using pred::power::line;
-    const auto A = line<Expansion>(f, j), B = line<Expansion>(f, k);
-    const Expansion mx = A.s * B.ay - B.s * A.ay, my = B.s * A.ax - A.s * B.ax;
-    const Expansion D = A.ax * B.ay - A.ay * B.ax;
-    const DD d2 = to_dd(D) * 2.0;
+    const DDLine A = dd_line(f, j), B = dd_line(f, k);
+    const DD D = A.ax * B.ay - A.ay * B.ax;
+    const double pD = std::fabs(A.ax.hi * B.ay.hi) + std::fabs(A.ay.hi * B.ax.hi);
+    if (std::fabs(D.hi) >= 0x1p-40 * pD && pD > 1e-250 && pD < 1e250) {
+        const DD d2 = D * 2.0;
+        return {(A.s * B.ay - B.s * A.ay) / d2, (B.s * A.ax - A.s * B.ax) / d2};
+    }
+    const auto Ae = line<Expansion>(f, j), Be = line<Expansion>(f, k);
+    const Expansion mx = Ae.s * Be.ay - Be.s * Ae.ay, my = Be.s * Ae.ax - Ae.s * Be.ax;
+    const Expansion De = Ae.ax * Be.ay - Ae.ay * Be.ax;
+    const DD d2 = to_dd(De) * 2.0;
     return {to_dd(mx) / d2, to_dd(my) / d2};
 }
 
-/// The chord end e_j^sigma (relative to c): (s a + sigma perp(a) sqrt(C4)) / (2 |a|^2).
+/// The chord end e_j^sigma (relative to c): (s a + sigma perp(a) sqrt(C4)) / (2 |a|^2). In
+/// double-double when C4 keeps 40 of its bits, else with C4 from exact expansions.
 inline DDPoint power_chord_end(const pred::power::Frame& f, const pred::power::WLine& j, int sigma) {
     using pred::power::line;
-    const auto A = line<Expansion>(f, j);
-    const Expansion r = Expansion(f.r);
-    const Expansion n2 = A.ax * A.ax + A.ay * A.ay;
-    const Expansion c4 = Expansion(4.0) * r * r * n2 - A.s * A.s;
-    const DD root = sqrt(to_dd(c4)), s = to_dd(A.s), ax = to_dd(A.ax), ay = to_dd(A.ay);
-    const DD den = to_dd(n2) * 2.0;
-    const DD sg = dd(static_cast<double>(sigma));
-    return {(s * ax - sg * ay * root) / den, (s * ay + sg * ax * root) / den};
+    const DDLine A = dd_line(f, j);
+    const DD n2 = A.ax * A.ax + A.ay * A.ay;
+    DD c4 = dd(f.r) * dd(f.r) * n2 * 4.0 - A.s * A.s;
+    const double pc4 = 4.0 * f.r * f.r * n2.hi + A.ps * A.ps;
+    if (!(c4.hi >= 0x1p-40 * pc4) || !(pc4 > 1e-250 && pc4 < 1e250)) {
+        const auto Ae = line<Expansion>(f, j);
+        const Expansion r = Expansion(f.r);
+        c4 = to_dd(Expansion(4.0) * r * r * (Ae.ax * Ae.ax + Ae.ay * Ae.ay) - Ae.s * Ae.s);
+    }
+    const DD root = sqrt(c4), den = n2 * 2.0, sg = dd(static_cast<double>(sigma));
+    return {(A.s * A.ax - sg * A.ay * root) / den, (A.s * A.ay + sg * A.ax * root) / den};
 }
 
 /// Area, centroid (relative to c) and perimeter of a closed cycle of pieces given relative to c, by
@@ -117,11 +160,13 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
     out.measures_.centroid = c;
 
     ws.lines.clear();
+    ws.fast.clear();
     ws.ids.clear();
     for (int b = 0; b < 4; ++b) {
         WLine l;
         l.box = b;
         ws.lines.push_back(l);
+        ws.fast.push_back(fast_line(f, l));
         ws.ids.push_back(-1);
     }
     bool empty = false;
@@ -145,12 +190,14 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
         WLine l;
         l.p = p;
         l.R = R;
-        const int c4 = chord_sign(f, l);
+        const FastLine fl = fast_line(f, l);
+        const int c4 = chord_sign(f, l, fl);
         if (c4 > 0) {
             ws.lines.push_back(l);
+            ws.fast.push_back(fl);
             ws.ids.push_back(cand[t].id);
-            if (center_inside && s_sign(f, l) <= 0) center_inside = false;
-        } else if (s_sign(f, l) <= 0) {
+            if (center_inside && s_sign(f, l, fl) <= 0) center_inside = false;
+        } else if (s_sign(f, l, fl) <= 0) {
             empty = true;  // the closed disk lies outside the open half-plane: zero area
         }
     }
@@ -162,13 +209,15 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
     auto& sides = ws.sides;
     poly.assign({0, 1, 2, 3});
     const auto& L = ws.lines;
+    const auto& F = ws.fast;
     for (int l = 4; l < static_cast<int>(L.size()); ++l) {
         const std::size_t n = poly.size();
         sides.resize(n);
         bool any_in = false, any_out = false;
         for (std::size_t k = 0; k < n; ++k) {  // vertex k starts edge k: poly[k-1] meets poly[k]
-            sides[k] = side_of_vertex(f, L[static_cast<std::size_t>(l)], L[static_cast<std::size_t>(poly[(k + n - 1) % n])],
-                                      L[static_cast<std::size_t>(poly[k])]);
+            const auto j = static_cast<std::size_t>(poly[(k + n - 1) % n]), q = static_cast<std::size_t>(poly[k]);
+            const auto ll = static_cast<std::size_t>(l);
+            sides[k] = side_of_vertex(f, L[ll], L[j], L[q], F[ll], F[j], F[q]);
             any_in |= sides[k] < 0;
             any_out |= sides[k] > 0;
         }
@@ -202,13 +251,15 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
     for (std::size_t k = 0; k < n; ++k) {
         const int t = poly[k];
         if (t < 4) continue;  // box sides never meet the disk
-        const WLine& Lt = L[static_cast<std::size_t>(t)];
-        const WLine& Lp = L[static_cast<std::size_t>(poly[(k + n - 1) % n])];
-        const WLine& Ln = L[static_cast<std::size_t>(poly[(k + 1) % n])];
+        const auto it = static_cast<std::size_t>(t), ip = static_cast<std::size_t>(poly[(k + n - 1) % n]),
+                   in = static_cast<std::size_t>(poly[(k + 1) % n]);
+        const WLine &Lt = L[it], &Lp = L[ip], &Ln = L[in];
+        const FastLine &Ft = F[it], &Fp = F[ip], &Fn = F[in];
         // Positive length inside the open disk: starts before the exit end, ends after the entry end.
-        if (position_vs_chord_end(f, Lt, Lp, Lt, +1) >= 0) continue;
-        if (position_vs_chord_end(f, Lt, Lt, Ln, -1) <= 0) continue;
-        kept.push_back({k, position_vs_chord_end(f, Lt, Lp, Lt, -1) >= 0, position_vs_chord_end(f, Lt, Lt, Ln, +1) <= 0});
+        if (position_vs_chord_end(f, Lt, Lp, Lt, +1, Ft, Fp, Ft) >= 0) continue;
+        if (position_vs_chord_end(f, Lt, Lt, Ln, -1, Ft, Ft, Fn) <= 0) continue;
+        kept.push_back({k, position_vs_chord_end(f, Lt, Lp, Lt, -1, Ft, Fp, Ft) >= 0,
+                        position_vs_chord_end(f, Lt, Lt, Ln, +1, Ft, Ft, Fn) <= 0});
     }
     if (kept.empty()) {
         if (!center_inside) return;  // the polygon misses the open disk: zero area

@@ -22,6 +22,8 @@
 #include "dvoronoi/core/expansion.hpp"
 #include "dvoronoi/core/types.hpp"
 
+#include <cmath>
+
 namespace dvoronoi::pred::power {
 
 using detail::filtered_sign;
@@ -139,6 +141,104 @@ inline int farther(const Frame& f, const WLine& l, const WLine& j) {
         const LineT<T> A = line<T>(f, l), B = line<T>(f, j);
         return A.ax * A.ax + A.ay * A.ay - (B.ax * B.ax + B.ay * B.ay);
     });
+}
+
+// ---- the fast path: the same signs in double from values rounded once per line ----
+//
+// Each predicate is evaluated in double from the rounded line data (a = fl(p - c), s computed from
+// it) and certified by the a-priori bound c * u * perm (perm: the polynomial with every term made
+// positive, c at least twice the rounding depth, input roundings included): core/expansion.hpp's
+// error analysis, the filter of cells/bisectors.hpp (fast_sign). Undecided (2) -> the exact
+// predicates above. Measured: the exact path runs for well under one test in a thousand in a
+// uniform swarm.
+
+/// A line's data rounded to double, for the fast path; `ps` bounds |s| term by term.
+struct FastLine {
+    double ax = 0.0, ay = 0.0, s = 0.0, ps = 0.0;
+};
+
+inline FastLine fast_line(const Frame& f, const WLine& l) {
+    FastLine o;
+    const double r2 = f.r * f.r;
+    if (l.box >= 0) {
+        o.ax = l.box == 0 ? f.r : l.box == 2 ? -f.r : 0.0;
+        o.ay = l.box == 1 ? f.r : l.box == 3 ? -f.r : 0.0;
+        o.s = 4.0 * r2;
+        o.ps = o.s;
+        return o;
+    }
+    o.ax = l.p.x() - f.c.x();
+    o.ay = l.p.y() - f.c.y();
+    const double n2 = o.ax * o.ax + o.ay * o.ay, R2 = l.R * l.R;
+    o.s = n2 + r2 - R2;
+    o.ps = n2 + r2 + R2;
+    return o;
+}
+
+/// sign(v) if |v| > c u perm (certainly), else 2; 2 also where over- or underflow could void it.
+inline int certain_sign(double v, double perm, double c) {
+    if (!(perm < 1e290) || perm < 1e-270) return 2;
+    const double b = c * 1.1102230246251565e-16 * perm;
+    if (v > b) return 1;
+    if (v < -b) return -1;
+    return 2;
+}
+
+inline int fast_cross_sign(const FastLine& A, const FastLine& B) {
+    const double d = A.ax * B.ay - A.ay * B.ax;
+    return certain_sign(d, std::fabs(A.ax * B.ay) + std::fabs(A.ay * B.ax), 8.0);
+}
+
+/// side_of_vertex with the fast path first.
+inline int side_of_vertex(const Frame& f, const WLine& l, const WLine& j, const WLine& k, const FastLine& L,
+                          const FastLine& A, const FastLine& B) {
+    const int d = fast_cross_sign(A, B);
+    if (d != 2) {
+        const double mx = A.s * B.ay - B.s * A.ay, my = B.s * A.ax - A.s * B.ax;
+        const double pmx = A.ps * std::fabs(B.ay) + B.ps * std::fabs(A.ay), pmy = B.ps * std::fabs(A.ax) + A.ps * std::fabs(B.ax);
+        const double D = A.ax * B.ay - A.ay * B.ax, pD = std::fabs(A.ax * B.ay) + std::fabs(A.ay * B.ax);
+        const double v = L.ax * mx + L.ay * my - L.s * D;
+        const double pv = std::fabs(L.ax) * pmx + std::fabs(L.ay) * pmy + L.ps * pD;
+        const int n = certain_sign(v, pv, 32.0);
+        if (n != 2) return n * d;
+    }
+    return side_of_vertex(f, l, j, k);
+}
+
+/// chord_sign with the fast path first.
+inline int chord_sign(const Frame& f, const WLine& j, const FastLine& A) {
+    const double r2 = f.r * f.r, n2 = A.ax * A.ax + A.ay * A.ay;
+    const int c = certain_sign(4.0 * r2 * n2 - A.s * A.s, 4.0 * r2 * n2 + A.ps * A.ps, 32.0);
+    return c != 2 ? c : chord_sign(f, j);
+}
+
+/// s_sign with the fast path first.
+inline int s_sign(const Frame& f, const WLine& j, const FastLine& A) {
+    const int c = certain_sign(A.s, A.ps, 12.0);
+    return c != 2 ? c : s_sign(f, j);
+}
+
+/// position_vs_chord_end with the fast path first.
+inline int position_vs_chord_end(const Frame& f, const WLine& t, const WLine& j, const WLine& k, int sigma,
+                                 const FastLine& T, const FastLine& A, const FastLine& B) {
+    const int d = fast_cross_sign(A, B);
+    if (d != 2) {
+        const double mx = A.s * B.ay - B.s * A.ay, my = B.s * A.ax - A.s * B.ax;
+        const double pmx = A.ps * std::fabs(B.ay) + B.ps * std::fabs(A.ay), pmy = B.ps * std::fabs(A.ax) + A.ps * std::fabs(B.ax);
+        const double X = T.ax * my - T.ay * mx, pX = std::fabs(T.ax) * pmy + std::fabs(T.ay) * pmx;
+        const int xs = certain_sign(X, pX, 32.0);
+        if (xs != 2) {
+            const int q = xs * d;
+            if (sigma > 0 && q <= 0) return -1;
+            if (sigma < 0 && q >= 0) return 1;
+            const double D = A.ax * B.ay - A.ay * B.ax, pD = std::fabs(A.ax * B.ay) + std::fabs(A.ay * B.ax);
+            const double r2 = f.r * f.r, n2 = T.ax * T.ax + T.ay * T.ay;
+            const double c4 = 4.0 * r2 * n2 - T.s * T.s, pc4 = 4.0 * r2 * n2 + T.ps * T.ps;
+            const int sq = certain_sign(X * X - D * D * c4, pX * pX + pD * pD * pc4, 64.0);
+            if (sq != 2) return sigma > 0 ? sq : -sq;
+        }
+    }
+    return position_vs_chord_end(f, t, j, k, sigma);
 }
 
 }  // namespace dvoronoi::pred::power
