@@ -48,6 +48,15 @@ struct PowerWorkspace {
     std::vector<Index> ids;                 ///< caller's index of each line (-1 for the box)
     std::vector<int> poly, next;            ///< the polygon: cyclic list of lines
     std::vector<int> sides;
+    struct Kept {
+        std::size_t k;     // polygon edge
+        bool from_vertex;  // starts at polygon vertex k (else at the chord's entry end)
+        bool to_vertex;    // ends at polygon vertex k + 1 (else at the chord's exit end)
+    };
+    std::vector<Kept> kept;
+    std::vector<Vec2> rel;
+    std::vector<char> is_arc;
+    std::vector<double> span;
 };
 
 /// A line in double-double: a = p - c exactly (two_sum), s rounded once per operation (about 2^-104
@@ -242,12 +251,9 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
 
     // 3. The polygon's edges inside the open disk, and the arcs between them.
     const std::size_t n = poly.size();
-    struct Kept {
-        std::size_t k;     // polygon edge
-        bool from_vertex;  // starts at polygon vertex k (else at the chord's entry end)
-        bool to_vertex;    // ends at polygon vertex k + 1 (else at the chord's exit end)
-    };
-    std::vector<Kept> kept;
+    using Kept = PowerWorkspace::Kept;
+    auto& kept = ws.kept;
+    kept.clear();
     for (std::size_t k = 0; k < n; ++k) {
         const int t = poly[k];
         if (t < 4) continue;  // box sides never meet the disk
@@ -274,9 +280,12 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
         out.measures_ = m;
         return;
     }
-    std::vector<Vec2> rel;
-    std::vector<char> is_arc;
-    std::vector<double> span;
+    auto& rel = ws.rel;
+    auto& is_arc = ws.is_arc;
+    auto& span = ws.span;
+    rel.clear();
+    is_arc.clear();
+    span.clear();
     const auto start_of = [&](const Kept& e) {
         const int t = poly[e.k];
         return e.from_vertex ? power_vertex(f, L[static_cast<std::size_t>(poly[(e.k + n - 1) % n])], L[static_cast<std::size_t>(t)]).value()

@@ -89,12 +89,15 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     const int team = detail::thread_team(threads, nblocks);
     const GridIndex index(out.points, 2.0 * rmax, team);
     const std::vector<Index>& order = index.grid_order();
-    std::vector<std::vector<Piece>> pieces(static_cast<std::size_t>(n));
+    // Each thread appends its cells' pieces to its own list; agent i's run is (thread, offset).
+    std::vector<std::vector<Piece>> lists(static_cast<std::size_t>(team));
+    std::vector<std::pair<int, std::size_t>> run_of(static_cast<std::size_t>(n));
     const auto un = static_cast<std::size_t>(n);
     out.areas.assign(un, 0.0);
     out.perimeters.assign(un, 0.0);
     out.centroids.resize(n, 2);
     out.candidates.assign(un, 0);
+    out.piece_ptr.assign(un + 1, 0);  // counts, summed below
     detail::ProgressTracker tracker(progress, n);
     Index computed = 0;
 
@@ -102,6 +105,8 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     {
         std::vector<detail::Candidate> cand;
         std::vector<double> cand_r;
+        const int me = detail::thread_id();
+        std::vector<Piece>& mine = lists[static_cast<std::size_t>(me)];
         LimitedCell cell;
         detail::PowerWorkspace ws;
 #pragma omp for schedule(dynamic, 1)
@@ -128,7 +133,9 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
                     out.centroids(static_cast<Index>(i), 0) = m.centroid.x();
                     out.centroids(static_cast<Index>(i), 1) = m.centroid.y();
                     out.candidates[i] = cell.candidates;
-                    pieces[i] = cell.pieces;
+                    run_of[i] = {me, mine.size()};
+                    mine.insert(mine.end(), cell.pieces.begin(), cell.pieces.end());
+                    out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
                 }
             } catch (...) {
                 tracker.fail(pos, order[static_cast<std::size_t>(pos)]);
@@ -139,22 +146,27 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     tracker.rethrow_if_failed();
     out.computed_by.power = computed;
 
-    out.piece_ptr.assign(un + 1, 0);
     out.indptr.assign(un + 1, 0);
+    for (std::size_t i = 0; i < un; ++i) out.piece_ptr[i + 1] += out.piece_ptr[i];  // counts to offsets
+    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
+    out.piece_x.reserve(total);
+    out.piece_y.reserve(total);
+    out.piece_span.reserve(total);
+    out.piece_neighbor.reserve(total);
     for (std::size_t i = 0; i < un; ++i) {
-        const std::vector<Piece>& cp = pieces[i];
-        for (const Piece& p : cp) {
+        const auto [t, at] = run_of[i];
+        const std::size_t len = static_cast<std::size_t>(out.piece_ptr[i + 1] - out.piece_ptr[i]);
+        for (std::size_t q = 0; q < len; ++q) {
+            const Piece& p = lists[static_cast<std::size_t>(t)][at + q];
             out.piece_x.push_back(p.start.x());
             out.piece_y.push_back(p.start.y());
             out.piece_span.push_back(p.arc_span);
             out.piece_neighbor.push_back(p.neighbor);
             if (!p.is_arc()) out.indices.push_back(p.neighbor);
         }
-        out.piece_ptr[i + 1] = static_cast<Index>(out.piece_x.size());
         std::sort(out.indices.begin() + out.indptr[i], out.indices.end());
         out.indices.erase(std::unique(out.indices.begin() + out.indptr[i], out.indices.end()), out.indices.end());
         out.indptr[i + 1] = static_cast<Index>(out.indices.size());
-        std::vector<Piece>().swap(pieces[i]);
     }
     tracker.report_all();
     return out;
