@@ -48,6 +48,8 @@ struct PowerWorkspace {
     std::vector<Index> ids;                 ///< caller's index of each line (-1 for the box)
     std::vector<int> poly, next;            ///< the polygon: cyclic list of lines
     std::vector<int> sides;
+    std::vector<pred::power::FastVertex> verts, next_verts;  ///< vertex k: poly[k-1] meets poly[k]
+    std::vector<int> origin;                                  ///< during a clip: old edge of next[t], -1 = the new line
     struct Kept {
         std::size_t k;     // polygon edge
         bool from_vertex;  // starts at polygon vertex k (else at the chord's entry end)
@@ -219,14 +221,19 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
     poly.assign({0, 1, 2, 3});
     const auto& L = ws.lines;
     const auto& F = ws.fast;
+    auto& verts = ws.verts;
+    auto& origin = ws.origin;
+    const auto vertex_of = [&](int j, int k) { return fast_vertex(F[static_cast<std::size_t>(j)], F[static_cast<std::size_t>(k)]); };
+    verts.clear();
+    for (std::size_t k = 0; k < 4; ++k) verts.push_back(vertex_of(poly[(k + 3) % 4], poly[k]));
     for (int l = 4; l < static_cast<int>(L.size()); ++l) {
         const std::size_t n = poly.size();
+        const auto ll = static_cast<std::size_t>(l);
         sides.resize(n);
         bool any_in = false, any_out = false;
         for (std::size_t k = 0; k < n; ++k) {  // vertex k starts edge k: poly[k-1] meets poly[k]
             const auto j = static_cast<std::size_t>(poly[(k + n - 1) % n]), q = static_cast<std::size_t>(poly[k]);
-            const auto ll = static_cast<std::size_t>(l);
-            sides[k] = side_of_vertex(f, L[ll], L[j], L[q], F[ll], F[j], F[q]);
+            sides[k] = side_of_vertex(f, L[ll], L[j], L[q], F[ll], verts[k]);
             any_in |= sides[k] < 0;
             any_out |= sides[k] > 0;
         }
@@ -235,18 +242,39 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
             // Unchanged; an edge with both ends on L_l lies on it (coaxal disks): the farther agent
             // holds the far side, so it is the neighbour across that edge.
             for (std::size_t k = 0; k < n; ++k)
-                if (sides[k] == 0 && sides[(k + 1) % n] == 0 &&
-                    farther(f, L[static_cast<std::size_t>(l)], L[static_cast<std::size_t>(poly[k])]) > 0)
+                if (sides[k] == 0 && sides[(k + 1) % n] == 0 && farther(f, L[ll], L[static_cast<std::size_t>(poly[k])]) > 0) {
                     poly[k] = l;
+                    verts[k] = vertex_of(poly[(k + n - 1) % n], l);
+                    verts[(k + 1) % n] = vertex_of(l, poly[(k + 1) % n]);
+                }
             continue;
         }
         next.clear();
+        origin.clear();
         for (std::size_t k = 0; k < n; ++k) {
             const int s0 = sides[k], s1 = sides[(k + 1) % n];
-            if (std::min(s0, s1) < 0) next.push_back(poly[k]);
-            if (s0 < 0 && s1 >= 0) next.push_back(l);  // the exit edge: L_l follows it
+            if (std::min(s0, s1) < 0) {
+                next.push_back(poly[k]);
+                origin.push_back(static_cast<int>(k));
+            }
+            if (s0 < 0 && s1 >= 0) {  // the exit edge: L_l follows it
+                next.push_back(l);
+                origin.push_back(-1);
+            }
+        }
+        // A vertex between two old consecutive edges is an old vertex; the two at L_l are new.
+        auto& nv = ws.next_verts;
+        nv.clear();
+        const std::size_t m = next.size();
+        for (std::size_t t = 0; t < m; ++t) {
+            const int o = origin[t], op = origin[(t + m - 1) % m];
+            if (o >= 0 && op >= 0 && static_cast<std::size_t>(op) == (static_cast<std::size_t>(o) + n - 1) % n)
+                nv.push_back(verts[static_cast<std::size_t>(o)]);
+            else
+                nv.push_back(vertex_of(next[(t + m - 1) % m], next[t]));
         }
         poly.swap(next);
+        verts.swap(nv);
     }
 
     // 3. The polygon's edges inside the open disk, and the arcs between them.

@@ -205,6 +205,37 @@ inline int side_of_vertex(const Frame& f, const WLine& l, const WLine& j, const 
     return side_of_vertex(f, l, j, k);
 }
 
+/// A vertex x_jk for the fast path: M_jk, D_jk in double with their term bounds, and sign(D_jk) if
+/// certain (else 2). Computed once per polygon vertex, read by every side test against it.
+struct FastVertex {
+    double mx = 0.0, my = 0.0, D = 0.0, pmx = 0.0, pmy = 0.0, pD = 0.0;
+    int d = 2;
+};
+
+inline FastVertex fast_vertex(const FastLine& A, const FastLine& B) {
+    FastVertex v;
+    v.d = fast_cross_sign(A, B);
+    v.mx = A.s * B.ay - B.s * A.ay;
+    v.my = B.s * A.ax - A.s * B.ax;
+    v.pmx = A.ps * std::fabs(B.ay) + B.ps * std::fabs(A.ay);
+    v.pmy = B.ps * std::fabs(A.ax) + A.ps * std::fabs(B.ax);
+    v.D = A.ax * B.ay - A.ay * B.ax;
+    v.pD = std::fabs(A.ax * B.ay) + std::fabs(A.ay * B.ax);
+    return v;
+}
+
+/// side_of_vertex with the fast path first, from the vertex's cached data.
+inline int side_of_vertex(const Frame& f, const WLine& l, const WLine& j, const WLine& k, const FastLine& L,
+                          const FastVertex& V) {
+    if (V.d != 2) {
+        const double v = L.ax * V.mx + L.ay * V.my - L.s * V.D;
+        const double pv = std::fabs(L.ax) * V.pmx + std::fabs(L.ay) * V.pmy + L.ps * V.pD;
+        const int n = certain_sign(v, pv, 32.0);
+        if (n != 2) return n * V.d;
+    }
+    return side_of_vertex(f, l, j, k);
+}
+
 /// chord_sign with the fast path first.
 inline int chord_sign(const Frame& f, const WLine& j, const FastLine& A) {
     const double r2 = f.r * f.r, n2 = A.ax * A.ax + A.ay * A.ay;
