@@ -220,6 +220,26 @@ TEST_CASE("integer lattices with two radii") {
     }
 }
 
+TEST_CASE("far from the origin and tiny spacings (the documented range)") {
+    // Integer lattices near 1e7 with two radii (exact ties far from the origin), and a random team
+    // scaled to spacings near 1e-9: the fast path's bounds must hand the close calls to the exact
+    // predicates.
+    std::mt19937_64 rng(9);
+    Team far{"lattice+1e7", {}, {}};
+    for (int x = 0; x < 7; ++x)
+        for (int y = 0; y < 7; ++y) {
+            far.points.push_back({1e7 + x, -1e7 + y});
+            far.radii.push_back(rng() % 2 ? 0.75 : 1.25);
+        }
+    check_all(far);
+    Team tiny{"spacing-1e-9", {}, {}};
+    for (int i = 0; i < 100; ++i) {
+        tiny.points.push_back({1.0 + 1e-8 * u40(rng), 2.0 + 1e-8 * u40(rng)});
+        tiny.radii.push_back(1e-9 * (0.5 + u40(rng)));
+    }
+    check_team(tiny);
+}
+
 TEST_CASE("one agent's cell equals the partition's") {
     std::mt19937_64 rng(5);
     std::vector<XY> pts;
