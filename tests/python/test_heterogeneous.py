@@ -179,3 +179,14 @@ def test_cli_reads_a_radius_column(tmp_path):
     f.write_text("0 0 1\n1 0 -1\n")
     bad = subprocess.run([_cli(), "cells", str(f), "--columns", "0,1,2", "-q"], capture_output=True, text=True)
     assert bad.returncode != 0 and f"{f}:2:5: radius must be positive" in bad.stderr
+
+
+def test_empty_cells_export():
+    part = dv.limited_cells([[0, 0], [0, 0], [1, 0]], [1.0, 2.0, 1.0])
+    assert part.empty.tolist() == [True, False, True]
+    features = json.loads(part.to_geojson())["features"]
+    assert features[0]["geometry"] == {"coordinates": [], "type": "Polygon"}
+    assert len(features[1]["geometry"]["coordinates"][0]) > 3
+    cell = dv.limited_cell([0, 0], [[0, 0], [1, 0]], 1.0, other_radii=[2.0, 1.0])
+    assert cell.area == 0 and len(cell.pieces) == 0 and len(cell.neighbors) == 0
+    assert json.loads(cell.to_geojson())["geometry"]["coordinates"] == []
