@@ -136,3 +136,31 @@ TEST_CASE("bad radii name the argument") {
     CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0, NAN}), doctest::Contains("radius"), InputError);
     CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0, 2.0}, Method::Scan), doctest::Contains("method"), InputError);
 }
+
+TEST_CASE("nearly tangent disks: a tiny cap and a disk minus a tiny cap") {
+    // Cap of the unit disk beyond the line at distance h from its centre, in long double.
+    const auto cap = [](long double h) { return std::acos(h) - h * std::sqrt(1.0L - h * h); };
+    for (int e : {10, 20, 30}) {
+        const double d = 2.0 - std::ldexp(1.0, -e);  // two unit disks overlapping by 2^-e
+        const LimitedPartition p = limited_cells(pts({{0, 0}, {d, 0}}), std::vector<double>{1.0, 1.0 + 0x1p-40}, Method::Auto, 1);
+        // Disk 0 minus the cap beyond its radical axis with disk 1: one edge, one arc of nearly 2 pi.
+        const long double h = ((long double)d * d + 1.0L - (1.0L + 0x1p-40L) * (1.0L + 0x1p-40L)) / (2.0L * d);
+        CHECK(p.areas[0] == doctest::Approx(static_cast<double>(3.14159265358979323846L - cap(h))).epsilon(1e-13));
+        const LimitedCell c = p.cell(0);
+        REQUIRE(c.pieces.size() == 2);
+        CHECK(c.pieces[1].arc_span > 6.0);
+        CHECK(c.pieces[1].arc_span < 2 * kPi);
+    }
+    for (int e : {10, 20, 30}) {
+        // R = 10 at the origin, r = 1 at 9 + 2^-e: a cap of height about 2^-e survives.
+        const double d = 9.0 + std::ldexp(1.0, -e);
+        const LimitedPartition p = limited_cells(pts({{0, 0}, {d, 0}}), std::vector<double>{10.0, 1.0}, Method::Auto, 1);
+        const long double h = ((long double)d * d + 100.0L - 1.0L) / (2.0L * d) - d;
+        REQUIRE(!p.is_empty(1));
+        CHECK(p.areas[1] == doctest::Approx(static_cast<double>(cap(h))).epsilon(1e-6));
+        const LimitedCell c = p.cell(1);
+        REQUIRE(c.pieces.size() == 2);
+        CHECK(c.pieces[1].arc_span < 0.1);
+        CHECK(c.pieces[1].arc_span > 0.0);
+    }
+}

@@ -316,18 +316,18 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
     span.clear();
     const auto start_of = [&](const Kept& e) {
         const int t = poly[e.k];
-        return e.from_vertex ? power_vertex(f, L[static_cast<std::size_t>(poly[(e.k + n - 1) % n])], L[static_cast<std::size_t>(t)]).value()
-                             : power_chord_end(f, L[static_cast<std::size_t>(t)], -1).value();
+        return e.from_vertex ? power_vertex(f, L[static_cast<std::size_t>(poly[(e.k + n - 1) % n])], L[static_cast<std::size_t>(t)])
+                             : power_chord_end(f, L[static_cast<std::size_t>(t)], -1);
     };
     const auto end_of = [&](const Kept& e) {
         const int t = poly[e.k];
-        return e.to_vertex ? power_vertex(f, L[static_cast<std::size_t>(t)], L[static_cast<std::size_t>(poly[(e.k + 1) % n])]).value()
-                           : power_chord_end(f, L[static_cast<std::size_t>(t)], +1).value();
+        return e.to_vertex ? power_vertex(f, L[static_cast<std::size_t>(t)], L[static_cast<std::size_t>(poly[(e.k + 1) % n])])
+                           : power_chord_end(f, L[static_cast<std::size_t>(t)], +1);
     };
     for (std::size_t q = 0; q < kept.size(); ++q) {
         const Kept& e = kept[q];
         const Kept& g = kept[(q + 1) % kept.size()];
-        const Vec2 s = start_of(e);
+        const Vec2 s = start_of(e).value();
         Piece edge;
         edge.neighbor = ws.ids[static_cast<std::size_t>(poly[e.k])];
         edge.start = c + s;
@@ -337,9 +337,14 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
         span.push_back(0.0);
         // Joined at a polygon vertex (inside the disk or on the circle): no arc between.
         if (kept.size() > 1 && e.to_vertex && g.from_vertex && g.k == (e.k + 1) % n) continue;
-        const Vec2 u = end_of(e), w = start_of(g);
-        double a = std::atan2(u.x() * w.y() - u.y() * w.x(), u.dot(w));
-        if (a <= 0.0) a += 2.0 * kPowerPi;  // the arc is counter-clockwise and of positive length
+        const DDPoint ud = end_of(e), wd = start_of(g);
+        const Vec2 u = ud.value();
+        // The span from the double-double ends (before rounding), so that only an arc shorter than
+        // about 2^-100 radians could be mistaken for a full turn; the exact combinatorics above
+        // already know it has positive length, and counter-clockwise means a in (0, 2 pi].
+        const DD cr = ud.x * wd.y - ud.y * wd.x, dt = ud.x * wd.x + ud.y * wd.y;
+        double a = std::atan2(cr.hi + cr.lo, dt.hi + dt.lo);
+        if (a <= 0.0) a += 2.0 * kPowerPi;
         Piece arc;
         arc.start = c + u;
         arc.arc_span = a;
