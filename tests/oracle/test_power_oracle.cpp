@@ -164,7 +164,7 @@ TEST_CASE("equal radii: the power oracle is the Delaunay oracle, dvoronoi the sc
 
 TEST_CASE("nested disks, tiny disks in big ones, same places") {
     Team nested{"nested", {}, {}};
-    for (int k = 0; k < 8; ++k) {  // disks around (0.1k, 0) with growing radii: each contains the last
+    for (int k = 0; k < 8; ++k) {  // disks around (k/8, 0) with growing radii: each contains the last
         nested.points.push_back({0.125 * k, 0.0});
         nested.radii.push_back(0.25 + 0.25 * k);
     }
@@ -174,13 +174,14 @@ TEST_CASE("nested disks, tiny disks in big ones, same places") {
 
     Team tiny{"tiny", {{0, 0}}, {1.0}};
     const double r = 0x1p-10;
-    for (int k = 0; k < 8; ++k) {
+    for (int k = 1; k < 8; ++k) {
         const double a = 0.25 * k;
         tiny.points.push_back({(1.0 - r) * std::cos(a), (1.0 - r) * std::sin(a)});  // about internally tangent
         tiny.radii.push_back(r);
     }
-    tiny.points.push_back({1.0 - r, 0.0});  // exactly internally tangent (after the one at angle 0, moved)
-    tiny.points[1] = {0.5, 0.0};  // strictly inside
+    tiny.points.push_back({1.0 - r, 0.0});  // exactly internally tangent
+    tiny.radii.push_back(r);
+    tiny.points.push_back({0.5, 0.0});  // strictly inside
     tiny.radii.push_back(r);
     tiny.points.push_back({0.0, 1.0});  // straddling the big circle
     tiny.radii.push_back(r);
