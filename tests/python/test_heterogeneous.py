@@ -144,6 +144,8 @@ def test_bad_radii_name_the_argument():
         dv.limited_cells(pts, [1.0, 2.0, 1.0], method="scan")
     with pytest.raises(ValueError, match="other_radii"):
         dv.limited_cell([0, 0], pts, 1.0, other_radii=[1.0])
+    with pytest.raises(ValueError, match="method"):
+        dv.limited_cell([0, 0], [[1, 0]], 1.0, method="chords", other_radii=[2.0])
     with pytest.raises(dv.CoincidentError, match="points\\[1\\] and points\\[2\\]"):
         dv.limited_cells([[0, 0], [1, 1], [1, 1]], [1.0, 2.0, 2.0])
     dv.limited_cells([[0, 0], [1, 1], [1, 1]], [1.0, 2.0, 3.0])  # same place, different radii: allowed

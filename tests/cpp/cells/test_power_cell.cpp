@@ -164,3 +164,10 @@ TEST_CASE("nearly tangent disks: a tiny cap and a disk minus a tiny cap") {
         CHECK(c.pieces[1].arc_span > 0.0);
     }
 }
+
+TEST_CASE("one agent: methods other than auto need equal radii") {
+    const Points others = pts({{1, 0}});
+    CHECK_THROWS_WITH_AS(power_limited_cell(Vec2(0, 0), others, 1.0, {2.0}, Method::Chords), doctest::Contains("method"), InputError);
+    CHECK(power_limited_cell(Vec2(0, 0), others, 1.0, {1.0}, Method::Chords).neighbors() == std::vector<Index>{0});
+    CHECK_THROWS_WITH_AS(power_limited_cell(Vec2(0, 0), others, 1.0, {1.0, 2.0}), doctest::Contains("other_radii"), InputError);
+}

@@ -365,7 +365,8 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
 /// Edge pieces name their neighbour by its row in `others`. An empty cell (zero area) has no pieces.
 /// With every other radius equal to `radius` this is limited_cell(center, others, radius, method).
 ///
-/// \throws InputError for a bad radius, radii of the wrong length, non-finite coordinates;
+/// \throws InputError for a bad radius, radii of the wrong length, non-finite coordinates, Scan or
+///         Chords with unequal radii;
 ///         CoincidentError for an agent of `others` at `center` with the same radius.
 /// \note Thread-safe (pure function). O(m k): m agents within radius + R_j, k vertices of the cell.
 inline LimitedCell power_limited_cell(const Vec2& center, PointsRef others, double radius,
@@ -382,6 +383,10 @@ inline LimitedCell power_limited_cell(const Vec2& center, PointsRef others, doub
         equal &= R == radius;
     }
     if (equal) return limited_cell(center, others, radius, method);
+    if (method != Method::Auto)
+        throw InputError(std::string("method \"") + method_name(method) +
+                         "\" (Boundary Scan or RCVC around the agent) needs equal radii; with other_radii the cell is "
+                         "computed by power-cell clipping: use method \"auto\"");
     std::vector<detail::Candidate> cand;
     std::vector<double> rs;
     for (Index j = 0; j < others.rows(); ++j) {
