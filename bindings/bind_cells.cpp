@@ -11,6 +11,7 @@
 
 #include "dvoronoi/cells/limited_cell.hpp"
 #include "dvoronoi/partition/limited_partition.hpp"
+#include "dvoronoi/partition/power_partition.hpp"
 
 // JSON and GeoJSON: the CLI's writers (io/), so Python writes exactly what `dvoronoi` writes.
 #include "dvoronoi/io/geojson.hpp"
@@ -170,7 +171,8 @@ py::tuple partition_state(const PyPartition& pp) {
     d["centroids"] = np_of(p.centroids);
     d["candidates"] = np_of(p.candidates);
     d["computed_by"] = np_of(std::vector<Index>{static_cast<Index>(p.computed_by.clip), static_cast<Index>(p.computed_by.scan),
-                                                static_cast<Index>(p.computed_by.chords)});
+                                                static_cast<Index>(p.computed_by.chords), static_cast<Index>(p.computed_by.power)});
+    d["radii"] = np_of(p.radii);
     return make_state(d);
 }
 
@@ -194,7 +196,10 @@ std::unique_ptr<PyPartition> partition_from_state(const py::tuple& t) {
     p.centroids = points_of(d, "centroids");
     p.candidates = vec_of<Index>(d, "candidates");
     const auto ran = vec_of<Index>(d, "computed_by");
-    if (ran.size() != 3) throw py::value_error("pickled LimitedPartition: computed_by is not 3 counts");
+    // 3 counts: pickled before heterogeneous teams (no "power", no "radii").
+    if (ran.size() != 3 && ran.size() != 4) throw py::value_error("pickled LimitedPartition: computed_by is not 3 or 4 counts");
+    if (ran.size() == 4) p.computed_by.power = static_cast<decltype(p.computed_by.power)>(ran[3]);
+    if (d.contains("radii")) p.radii = vec_of<double>(d, "radii");
     p.computed_by.clip = static_cast<decltype(p.computed_by.clip)>(ran[0]);
     p.computed_by.scan = static_cast<decltype(p.computed_by.scan)>(ran[1]);
     p.computed_by.chords = static_cast<decltype(p.computed_by.chords)>(ran[2]);
@@ -204,8 +209,29 @@ std::unique_ptr<PyPartition> partition_from_state(const py::tuple& t) {
         p.indices.size() != static_cast<std::size_t>(p.indptr.back()) ||
         p.piece_neighbor.size() != static_cast<std::size_t>(p.piece_ptr.back()) ||
         p.piece_x.size() != p.piece_neighbor.size() || p.piece_y.size() != p.piece_neighbor.size() ||
-        p.piece_span.size() != p.piece_neighbor.size())
+        p.piece_span.size() != p.piece_neighbor.size() || (!p.radii.empty() && p.radii.size() != n))
         throw py::value_error("pickled LimitedPartition: arrays of inconsistent lengths");
+    return out;
+}
+
+/// One radius per agent: a 1-D array-like of `n` positive finite numbers (ValueError naming `name`).
+std::vector<double> radii_arg(py::handle obj, const char* name, std::size_t n) {
+    py::array_t<double, py::array::c_style | py::array::forcecast> a;
+    try {
+        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+    } catch (const py::error_already_set&) {
+        a = {};
+    }
+    if (!a || a.ndim() != 1)
+        throw py::value_error(std::string(name) + " must be a positive number or a 1-D array of one positive radius per agent");
+    if (static_cast<std::size_t>(a.shape(0)) != n)
+        throw py::value_error(std::string(name) + " must have one radius per agent: got " + std::to_string(a.shape(0)) +
+                              " radii for " + std::to_string(n) + " agents");
+    std::vector<double> out(a.data(), a.data() + n);
+    for (std::size_t i = 0; i < n; ++i)
+        if (!(out[i] > 0.0) || !std::isfinite(out[i]))
+            throw py::value_error(std::string(name) + "[" + std::to_string(i) + "] must be a positive finite number, got " +
+                                  std::string(py::repr(py::float_(out[i]))));
     return out;
 }
 
@@ -233,7 +259,7 @@ double tolerance_arg(const py::object& tolerance) {
     return t;
 }
 
-const char* kLimitedCellDoc = R"doc(limited_cell(center, others, radius, method="auto") -> LimitedCell
+const char* kLimitedCellDoc = R"doc(limited_cell(center, others, radius, method="auto", other_radii=None) -> LimitedCell
 
 The range-limited Voronoi cell V ∩ B(center, radius) of the agent at `center` among `others`, as a
 robot computes it from the positions it knows.
@@ -251,6 +277,11 @@ method : {"auto", "scan", "chords"}
     "scan": Boundary Scan (He, Feng & Ren 2018), O(m log m). "chords": RCVC (Guruprasad &
     Dasgupta 2012), O(m^2) worst case. "auto" (default): for one agent, Boundary Scan. All
     return the same cell.
+other_radii : (m,) array-like of float, optional
+    Heterogeneous teams: the radius of each agent of `others`. The cell is then the power cell
+    (weights R^2) clipped to B(center, radius), which may be empty (no pieces) or not contain
+    `center`; agents farther than radius + R_j are ignored. All equal to `radius`: the same cell as
+    without them.
 
 Returns
 -------
@@ -272,6 +303,9 @@ measures carry floating-point rounding. Thread-safe; the GIL is released for lar
 )doc";
 
 const char* kLimitedCellsDoc = R"doc(limited_cells(points, radius, method="auto", threads=0, progress=None) -> LimitedPartition
+
+`radius` is a number or one radius per agent (heterogeneous teams: power cells clipped to each
+agent's disk).
 
 Every agent's range-limited Voronoi cell (the compiled core; `dvoronoi.limited_cells` wraps it with a
 progress bar and the shared result surface).
@@ -377,23 +411,30 @@ void bind_cells(py::module_& m) {
 
     m.def(
         "limited_cell",
-        [](py::handle center, py::handle others, py::handle radius_obj, py::handle method) {
+        [](py::handle center, py::handle others, py::handle radius_obj, py::handle method, py::handle other_radii) {
             const Vec2 c = point_arg(center, "center");
             const PointsArg o = points_arg(others, "others");
             const double radius = real_arg(radius_obj, "radius");
             const Method meth = dvoronoi::parse_method(str_arg(method, "method"));
+            std::vector<double> ro;
+            const bool weighted = !other_radii.is_none();
+            if (weighted) ro = radii_arg(other_radii, "other_radii", static_cast<std::size_t>(o.rows));
+            const auto run = [&]() {
+                return weighted ? dvoronoi::power_limited_cell(c, o.ref(), radius, ro, meth)
+                                : dvoronoi::limited_cell(c, o.ref(), radius, meth);
+            };
             if (o.rows > kReleaseGilAbove) {
                 LimitedCell cell;
                 {
                     py::gil_scoped_release release;
-                    cell = dvoronoi::limited_cell(c, o.ref(), radius, meth);
+                    cell = run();
                 }
                 return cell_object(std::move(cell));
             }
-            return cell_object(dvoronoi::limited_cell(c, o.ref(), radius, meth));
+            return cell_object(run());
         },
         py::arg("center"), py::arg("others"), py::arg("radius"), py::arg("method") = py::str("auto"),
-        kLimitedCellDoc);
+        py::arg("other_radii") = py::none(), kLimitedCellDoc);
 
     // ------------------------------------------------------------------ LimitedPartition
     using Self = py::object;
@@ -410,10 +451,32 @@ void bind_cells(py::module_& m) {
                 d["clip"] = p.part.computed_by.clip;
                 d["scan"] = p.part.computed_by.scan;
                 d["chords"] = p.part.computed_by.chords;
+                d["power"] = p.part.computed_by.power;
                 return d;
             },
             "How many cells each algorithm computed: {\"clip\": certified clipping filter (auto), "
-            "\"scan\": Boundary Scan, \"chords\": RCVC}; the values add up to n.")
+            "\"scan\": Boundary Scan, \"chords\": RCVC, \"power\": power-cell clipping (one radius per "
+            "agent)}; the values add up to n.")
+        .def_property_readonly(
+            "radii",
+            [](const Self& s) {
+                const LimitedPartition& p = part_of(s);
+                if (!p.radii.empty()) return view(p.radii, s);
+                py::array_t<double> same(static_cast<py::ssize_t>(p.size()));
+                std::fill(same.mutable_data(), same.mutable_data() + p.size(), p.radius);
+                return py::array(same);
+            },
+            "Each agent's radius, float64, shape (n,).")
+        .def_property_readonly(
+            "empty",
+            [](const Self& s) {
+                const LimitedPartition& p = part_of(s);
+                py::array_t<bool> out(static_cast<py::ssize_t>(p.size()));
+                auto* o = out.mutable_data();
+                for (Index i = 0; i < p.size(); ++i) o[i] = p.piece_ptr[static_cast<std::size_t>(i)] == p.piece_ptr[static_cast<std::size_t>(i) + 1];
+                return out;
+            },
+            "True where a cell has zero area (heterogeneous teams: covered by larger disks), bool, shape (n,).")
         .def_property_readonly("points", [](const Self& s) { return view(part_of(s).points, s); },
                                "The agents, shape (n, 2).")
         .def_property_readonly("indptr", [](const Self& s) { return view(part_of(s).indptr, s); },
@@ -466,8 +529,17 @@ void bind_cells(py::module_& m) {
 
     m.def(
         "limited_cells",
-        [](py::handle points, double radius, const std::string& method, int threads, py::object progress) {
+        [](py::handle points, py::handle radius_obj, const std::string& method, int threads, py::object progress) {
             const PointsArg pts = points_arg(points, "points");
+            // A number, or one radius per agent (heterogeneous teams).
+            const auto as_array = py::array_t<double, py::array::forcecast>::ensure(radius_obj);
+            const bool per_agent = as_array && as_array.ndim() > 0;
+            std::vector<double> radii;
+            double radius = 0.0;
+            if (per_agent)
+                radii = radii_arg(radius_obj, "radius", static_cast<std::size_t>(pts.rows));
+            else
+                radius = real_arg(radius_obj, "radius");
             const Method meth = dvoronoi::parse_method(method);
             if (threads < 0)
                 throw py::value_error("threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
@@ -478,7 +550,8 @@ void bind_cells(py::module_& m) {
             result->method = meth;
             {
                 py::gil_scoped_release release;
-                result->part = dvoronoi::limited_cells(pts.ref(), radius, meth, threads, fn);
+                result->part = per_agent ? dvoronoi::limited_cells(pts.ref(), radii, meth, threads, fn)
+                                         : dvoronoi::limited_cells(pts.ref(), radius, meth, threads, fn);
             }
             report.rethrow();
             return result;

@@ -17,7 +17,10 @@ Prints a markdown report (machine, date, load) for pasting in the README:
    disk). Two flavours: the per-cell Python loop of most tutorials (timed on a subset and extrapolated
    per agent: the output says so) and shapely 2's vectorised array functions on all agents.
 
-3. One agent's latency (a robot's control step): ``dv.limited_cell(center, others, R)`` with 30 others
+3. Heterogeneous teams: the same points with radii uniform in [0.5R, 1.5R], against the equal-radius
+   call on the same points (``--hetero-only`` runs just this section), 1 thread and all cores.
+
+4. One agent's latency (a robot's control step): ``dv.limited_cell(center, others, R)`` with 30 others
    within 2R, via timeit, in microseconds; and the same cell from scipy + shapely.
 
 Benchmarks are not tests: nothing here fails on a time. Use --quick for a small smoke run.
@@ -141,6 +144,30 @@ def run_cpp(path: Path, n: int, k: float, reps: int, threads: int, seed: int):
 
 
 # ---------------------------------------------------------------------------------------------- main
+def heterogeneous(dv, n: int, args, out) -> None:
+    """Section 3: one radius per agent (power cells clipped to the disks) against one radius."""
+    pts, R = uniform_points(n, args.k, args.seed)
+    radii = R * np.random.default_rng(args.seed + 1).uniform(0.5, 1.5, n)
+    out(f"### Heterogeneous teams, n = {n:,}: radii uniform in [0.5R, 1.5R]")
+    out()
+    out("| what | 1 thread (s) | all cores (s) |")
+    out("|---|---:|---:|")
+    times = {}
+    for name, r in (("equal radius R", R), ("radii in [0.5R, 1.5R]", radii)):
+        row = []
+        for workers in (1, None):
+            row.append(best_of(args.reps, lambda: dv.limited_cells(pts, r, workers=workers, progress=False))[0])
+        times[name] = row
+        out(f"| `limited_cells`, {name} | {row[0]:.3f} | {row[1]:.3f} |")
+    eq, het = times["equal radius R"], times["radii in [0.5R, 1.5R]"]
+    part = dv.limited_cells(pts, radii, progress=False)
+    out()
+    out(f"Ratio heterogeneous / equal radius: {het[0] / eq[0]:.2f} x (1 thread), {het[1] / eq[1]:.2f} x "
+        f"(all cores). Mean agents examined per cell: {part.candidates.mean():.1f}; "
+        f"empty cells: {int(part.empty.sum())}.")
+    out()
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -158,6 +185,8 @@ def main(argv=None) -> int:
     ap.add_argument("--cpp-threads", type=int, default=2, help="threads of the multi-threaded C++ run")
     ap.add_argument("--no-cpp", action="store_true", help="skip the C++ program")
     ap.add_argument("--out", type=Path, help="also write the markdown report to this file")
+    ap.add_argument("--hetero-only", action="store_true",
+                    help="only the heterogeneous-team comparison (section 3)")
     ap.add_argument("--quick", action="store_true",
                     help="small smoke run: n = 1e4, C++ n = 1e5, subset 300, 1 rep")
     args = ap.parse_args(argv)
@@ -183,6 +212,12 @@ def main(argv=None) -> int:
     out(f"- points: uniform in the unit square, R = sqrt({args.k:g} / (4 pi n)), i.e. about "
         f"{args.k:g} agents within 2R; best of {args.reps} runs; seed {args.seed}")
     out()
+
+    if args.hetero_only:
+        heterogeneous(dv, n, args, out)
+        if args.out:
+            args.out.write_text("\n".join(lines) + "\n")
+        return 0
 
     # ---- 1. C++
     out(f"### C++: dvoronoi vs CGAL, n = {cpp_n:,}")

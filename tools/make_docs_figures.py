@@ -5,8 +5,8 @@
     python3 tools/make_docs_figures.py --out DIR       # somewhere else
     python3 tools/make_docs_figures.py --only coverage # one figure (by its function name)
 
-Guides (docs/limited_cells.md, exact_cells.md, distances.md, networks.md, grid_diagram_obstacles.md,
-coverage.md, mpi.md): ``limited_cells.png``, ``exact_cells.png``, ``distances.png``,
+Guides (docs/limited_cells.md, heterogeneous.md, exact_cells.md, distances.md, networks.md, grid_diagram_obstacles.md,
+coverage.md, mpi.md): ``limited_cells.png``, ``heterogeneous.png``, ``exact_cells.png``, ``distances.png``,
 ``networks.png``, ``gvd_obstacles.png``, ``coverage.png``, ``mpi_slabs.png`` (seeded random
 swarms, a few seconds each).
 
@@ -154,6 +154,41 @@ def limited_cells(out: Path) -> Path:
     return _save(fig, out / "limited_cells.png")
 
 
+def heterogeneous(out: Path) -> Path:
+    # A mixed team: drones (R = 1.6) and ground robots (R = 0.6); cells are power cells clipped to
+    # each robot's own disk, so they tile the union of the disks.
+    rng = np.random.default_rng(4)
+    points = rng.uniform(0, 8, (45, 2))
+    radii = np.where(rng.random(len(points)) < 0.25, 1.6, 0.6)
+    part = dv.limited_cells(points, radii, workers=1)
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 5.0))
+    part.plot(ax=axes[0], show_points=False)
+    for p, r in zip(points, radii):
+        axes[0].add_patch(plt.Circle(p, r, fill=False, ls=":", lw=0.6, color="0.45"))
+    drones = radii > 1
+    axes[0].scatter(*points[drones].T, marker="^", s=28, color="tab:red", zorder=3, label="drone, R = 1.6")
+    axes[0].scatter(*points[~drones].T, marker="o", s=14, color="k", zorder=3, label="ground robot, R = 0.6")
+    axes[0].scatter(*points[part.empty].T, marker="x", s=40, color="tab:orange", zorder=4, label="empty cell")
+    axes[0].legend(loc="upper right", fontsize=7, framealpha=0.9)
+    axes[0].set_title(f"limited_cells(points, radii): {len(points)} robots, {int(part.empty.sum())} empty cells\n"
+                      f"cells tile the union of the disks (dotted)", fontsize=9)
+    _square(axes[0], -1.7, 9.7)
+    # The crescent: a small robot beside a big one keeps the part of its disk beyond the radical axis.
+    pair = np.array([[0.0, 0.0], [9.5, 0.0]])
+    cres = dv.limited_cells(pair, [10.0, 1.0], workers=1)
+    cres.plot(ax=axes[1])
+    for p, r in zip(pair, (10.0, 1.0)):
+        axes[1].add_patch(plt.Circle(p, r, fill=False, ls=":", lw=0.8, color="0.45"))
+    axes[1].set_title("R = 10 at (0, 0), R = 1 at (9.5, 0): the small robot's cell\n"
+                      f"is a crescent (area {cres.areas[1]:.3f}) that does not contain the robot", fontsize=9)
+    axes[1].set_aspect("equal", adjustable="box")
+    axes[1].set_xlim(7.5, 11.0)
+    axes[1].set_ylim(-1.75, 1.75)
+    axes[1].tick_params(labelsize=8)
+    fig.tight_layout()
+    return _save(fig, out / "heterogeneous.png")
+
+
 def exact_cells(out: Path) -> Path:
     rng = np.random.default_rng(5)
     points = rng.uniform(1, 9, (70, 2))
@@ -272,7 +307,7 @@ def _save(fig, target: Path) -> Path:
     return target
 
 
-FIGURES = (paris, pruning, limited_cells, exact_cells, distances, networks, gvd_obstacles, coverage, mpi_slabs)
+FIGURES = (paris, pruning, limited_cells, heterogeneous, exact_cells, distances, networks, gvd_obstacles, coverage, mpi_slabs)
 
 
 def main() -> None:

@@ -6,6 +6,7 @@
 #include "dvoronoi/io/json.hpp"
 #include "dvoronoi/io/svg.hpp"
 #include "dvoronoi/partition/limited_partition.hpp"
+#include "dvoronoi/partition/power_partition.hpp"
 
 #include <cmath>
 #include <iostream>
@@ -18,6 +19,7 @@ namespace {
 struct CellsOptions {
     std::string points;
     double radius = 0.0;
+    bool radius_given = false;
     std::string method = "auto";
     std::string columns;
     int threads = 0;
@@ -44,7 +46,13 @@ void write_result(std::ostream& os, Format format, const LimitedPartition& p, Me
 
 int run_cells(const CellsOptions& o) {
     // Everything that can be checked without the data is checked before reading it.
-    if (!std::isfinite(o.radius) || !(o.radius > 0.0))
+    // --columns X,Y,R reads one radius per agent (heterogeneous teams); otherwise --radius is needed.
+    const bool radius_column = !o.columns.empty() && io::parse_columns(o.columns, "--columns", true).has_radius();
+    if (radius_column && o.radius_given)
+        throw UsageError("--radius: not with a radius column (--columns X,Y,R); give one or the other");
+    if (!radius_column && !o.radius_given)
+        throw UsageError("--radius: required (or one radius per agent with --columns X,Y,R)");
+    if (o.radius_given && (!std::isfinite(o.radius) || !(o.radius > 0.0)))
         throw UsageError("--radius: must be a positive finite number, got " + show(o.radius));
     if (!std::isfinite(o.tolerance) || o.tolerance < 0.0)
         throw UsageError("--tolerance: must be a finite number >= 0, got " + show(o.tolerance));
@@ -54,7 +62,7 @@ int run_cells(const CellsOptions& o) {
     if (!to_stdout && !o.svg.empty() && o.output == o.svg)
         throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
 
-    const io::PointFile file = read_points_argument(o.points, o.columns);
+    const io::PointFile file = read_points_argument(o.points, o.columns, true);
 
     // Create the output files now, so an unwritable destination fails before the computation.
     std::unique_ptr<io::AtomicFile> out, svg;
@@ -63,7 +71,8 @@ int run_cells(const CellsOptions& o) {
 
     const LimitedPartition result =
         with_progress("cells", file.points.rows(), o.quiet, &file, [&](const ProgressFn& fn) {
-            return limited_cells(file.points, o.radius, method, o.threads, fn);
+            return radius_column ? limited_cells(file.points, file.radii, method, o.threads, fn)
+                                 : limited_cells(file.points, o.radius, method, o.threads, fn);
         });
     return deliver(
         out, svg, [&](std::ostream& os) { write_result(os, format, result, method, o.tolerance); },
@@ -79,10 +88,14 @@ Command add_cells(CLI::App& parent) {
         "every agent's Voronoi cell clipped to the disk of radius R around it (pieces, limited "
         "neighbours, areas, centroids, perimeters)");
     add_points_options(sub, o->points, o->columns, o->threads);
-    sub->add_option("-r,--radius", o->radius,
-                    "cell radius R > 0 (each cell is clipped to the disk of radius R; agents within "
-                    "2R shape it)")
-        ->required();
+    sub->add_option_function<double>(
+        "-r,--radius",
+        [o](const double& r) {
+            o->radius = r;
+            o->radius_given = true;
+        },
+        "cell radius R > 0 (each cell is clipped to the disk of radius R; agents within 2R shape it); "
+        "or one radius per agent from the file with --columns X,Y,R (power cells clipped to each disk)");
     sub->add_option("-m,--method", o->method,
                     "algorithm: auto (our certified clipping fast path, Boundary Scan where it gives "
                     "up), scan (Boundary Scan on every agent, O(m log m)) or chords (RCVC on every "

@@ -119,7 +119,7 @@ inline void add_points_options(CLI::App* sub, std::string& points, std::string& 
         ->required();
     sub->add_option("--columns", columns,
                     "X,Y: the fields holding x and y, as 0-based indices (e.g. 1,2 for 'id x y') or "
-                    "header names (e.g. lon,lat)");
+                    "header names (e.g. lon,lat); `cells` also takes X,Y,R, a radius per agent (e.g. x,y,r)");
     sub->add_option("-t,--threads", threads, "worker threads (0 = all cores)")
         ->check(threads_check())
         ->capture_default_str();
@@ -129,8 +129,8 @@ inline void add_points_options(CLI::App* sub, std::string& points, std::string& 
 /// A file whose only content is a header line is valid and has no points (docs/spec.md), but a file of
 /// "hello world" is more likely the wrong file than an empty team: a warning on stderr says which
 /// line was taken for a header.
-inline io::PointFile read_points_argument(const std::string& path, const std::string& columns) {
-    const io::Columns cols = columns.empty() ? io::Columns{} : io::parse_columns(columns, "--columns");
+inline io::PointFile read_points_argument(const std::string& path, const std::string& columns, bool allow_radius = false) {
+    const io::Columns cols = columns.empty() ? io::Columns{} : io::parse_columns(columns, "--columns", allow_radius);
     io::PointFile file = io::read_point_file(path, cols);
     if (file.points.rows() == 0 && file.header_line > 0)
         std::cerr << "dvoronoi: warning: " << file.name << ":" << file.header_line << ": "

@@ -76,6 +76,10 @@ class LimitedPartition:
     @property
     def computed_by(self) -> Dict[str, int]: ...
     @property
+    def radii(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def empty(self) -> npt.NDArray[np.bool_]: ...
+    @property
     def points(self) -> npt.NDArray[np.float64]: ...
     @property
     def indptr(self) -> npt.NDArray[np.int64]: ...
@@ -106,11 +110,15 @@ class LimitedPartition:
     def to_geojson(self, tolerance: Optional[float] = None) -> str: ...
 
 def limited_cell(
-    center: npt.ArrayLike, others: npt.ArrayLike, radius: float, method: str = "auto"
+    center: npt.ArrayLike,
+    others: npt.ArrayLike,
+    radius: float,
+    method: str = "auto",
+    other_radii: Optional[npt.ArrayLike] = None,
 ) -> LimitedCell: ...
 def limited_cells(
     points: npt.ArrayLike,
-    radius: float,
+    radius: Union[float, npt.ArrayLike],
     method: str = "auto",
     threads: int = 0,
     progress: Optional[Callable[[int, int], object]] = None,

@@ -27,12 +27,18 @@ class LimitedPartition(CellResult):
     points : (n, 2) float64
         The agents, in input order.
     radius : float
-        The cell radius R.
+        The cell radius R (with one radius per agent: the largest).
+    radii : (n,) float64
+        Each agent's radius (all R for a scalar radius).
+    empty : (n,) bool
+        True where a cell has zero area (only with one radius per agent: a larger disk covers it);
+        an empty cell has no pieces and no neighbours, area 0 and its centroid at the agent.
     method : str
         ``"auto"``, ``"scan"`` or ``"chords"``.
     computed_by : dict
-        How many cells each algorithm computed: ``{"clip": ..., "scan": ..., "chords": ...}``
-        (the certified clipping filter, Boundary Scan, RCVC); the values add up to n.
+        How many cells each algorithm computed: ``{"clip": ..., "scan": ..., "chords": ...,
+        "power": ...}`` (the certified clipping filter, Boundary Scan, RCVC, the power-cell clipping of
+        heterogeneous teams); the values add up to n.
     indptr, indices : int64
         Limited neighbours in scipy's CSR layout (ascending per agent).
     areas, perimeters : (n,) float64
@@ -60,6 +66,14 @@ class LimitedPartition(CellResult):
     @property
     def radius(self) -> float:
         return self._core.radius
+
+    @cached_property
+    def radii(self) -> np.ndarray:
+        return self._core.radii
+
+    @cached_property
+    def empty(self) -> np.ndarray:
+        return self._core.empty
 
     @property
     def method(self) -> str:
@@ -174,7 +188,23 @@ def progress_callback(points: Any, progress: ProgressArg, desc: str) -> Iterator
         bar.close()
 
 
-def limited_cells(points: Any, radius: float, method: str = "auto", workers: Optional[int] = None,
+def _radius_arg(radius: Any) -> Any:
+    """A scalar radius as a float (TypeError for non-numbers); an array-like of radii as a 1-D
+    float64 array (ValueError naming ``radius`` for another shape or non-numeric entries; the core
+    checks the length and that every radius is positive and finite)."""
+    if isinstance(radius, (list, tuple, np.ndarray)) and np.ndim(radius) > 0:
+        try:
+            radii = np.asarray(radius, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError("radius must be a positive number or a 1-D array of one positive radius per agent, "
+                             f"got entries that are not numbers") from None
+        if radii.ndim != 1:
+            raise ValueError(f"radius must be a positive number or a 1-D array of one radius per agent, got shape {radii.shape}")
+        return radii
+    return _args.real(radius, "radius")
+
+
+def limited_cells(points: Any, radius: Any, method: str = "auto", workers: Optional[int] = None,
                   progress: ProgressArg = None, *, threads: Optional[int] = None) -> LimitedPartition:
     """Every agent's range-limited Voronoi cell ``V_i ∩ B(p_i, radius)``.
 
@@ -183,8 +213,11 @@ def limited_cells(points: Any, radius: float, method: str = "auto", workers: Opt
     points : (n, 2) array-like of float
         Agent positions, any memory layout (C-contiguous float64 is not copied). Empty input gives an
         empty partition; one agent gets the full disk.
-    radius : float
+    radius : float or (n,) array-like of float
         The cell radius R > 0 (only agents closer than 2R shape a cell), between 1e-150 and 1e150.
+        Or one radius per agent (a heterogeneous team, :doc:`heterogeneous`): agent i's cell is then
+        its power cell (weights ``R_i**2``) clipped to ``B(p_i, R_i)``; cells may be empty (``empty``)
+        and need not contain their agent. All radii equal gives the scalar call's result exactly.
     method : {"auto", "scan", "chords"}
         Which algorithm runs; all three give the same cells (``computed_by`` counts which one
         computed each).
@@ -214,7 +247,9 @@ def limited_cells(points: Any, radius: float, method: str = "auto", workers: Opt
         positive and finite or outside [1e-150, 1e150], an unknown method, a bad ``workers``,
         coinciding agents (:class:`CoincidentError`, which names the first pair); outside the exact
         range (below), naming the agent: ``points[17]: out of the exact range ...``; "chords" with
-        more than 1024 agents within 2R of an agent.
+        more than 1024 agents within 2R of an agent. Per-agent radii: a wrong length or shape, a
+        radius that is not positive and finite (the message names ``radius[i]``), two agents with the
+        same position and radius, ``method`` other than "auto" with unequal radii.
     TypeError
         Non-numeric input (a radius given as a string, too).
 
@@ -227,7 +262,7 @@ def limited_cells(points: Any, radius: float, method: str = "auto", workers: Opt
     floating-point rounding.
     """
     team = _args.workers(workers, threads)
-    radius = _args.real(radius, "radius")
+    radius = _radius_arg(radius)
     method = _args.text(method, "method")
     with progress_callback(points, progress, "limited cells") as callback:
         core = _core.limited_cells(points, radius, method, team, callback)

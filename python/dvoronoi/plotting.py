@@ -33,7 +33,7 @@ _MAX_SEGMENT = np.pi / 8.0  # largest angle of one Bezier arc segment
 
 
 def _pieces_geometry(ptr: np.ndarray, xs: np.ndarray, ys: np.ndarray, spans: np.ndarray,
-                     centers: np.ndarray, radius: float) -> Dict[str, np.ndarray]:
+                     centers: np.ndarray, radius: Any) -> Dict[str, np.ndarray]:
     """Vertices and codes of every cell outline, vectorised over all pieces.
 
     Returns ``verts`` (V, 2), ``codes`` (V,), ``offsets`` (n + 1,) (cell i is
@@ -78,8 +78,10 @@ def _pieces_geometry(ptr: np.ndarray, xs: np.ndarray, ys: np.ndarray, spans: np.
     ca, sa, cb, sb = np.cos(a), np.sin(a), np.cos(b), np.sin(b)
     px = np.select([t == 0, t == 1], [ca - kappa * sa, cb + kappa * sb], cb)
     py = np.select([t == 0, t == 1], [sa + kappa * ca, sb - kappa * cb], sb)
-    pv[arc_v, 0] = c[:, 0] + radius * px
-    pv[arc_v, 1] = c[:, 1] + radius * py
+    # One radius, or one per agent (heterogeneous teams).
+    r = radius if np.ndim(radius) == 0 else np.asarray(radius, dtype=float)[owner[k]]
+    pv[arc_v, 0] = c[:, 0] + r * px
+    pv[arc_v, 1] = c[:, 1] + r * py
     pcode[arc_v] = Path.CURVE4
 
     # Cell i: MOVETO, its pieces' vertices, CLOSEPOLY -> piece vertex v lands at v + 2 * cell + 1.
@@ -119,7 +121,7 @@ def _arrays(result: Any):
     return (np.asarray(result.piece_ptr, dtype=np.int64), np.asarray(result.piece_x, dtype=float),
             np.asarray(result.piece_y, dtype=float), np.asarray(result.piece_span, dtype=float),
             np.asarray(result.piece_neighbor, dtype=np.int64), np.asarray(result.points, dtype=float),
-            float(result.radius))
+            np.asarray(result.radii, dtype=float) if hasattr(result, "radii") else float(result.radius))
 
 
 def _geometry_of(result: Any) -> Dict[str, np.ndarray]:

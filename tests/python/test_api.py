@@ -441,8 +441,8 @@ def test_methods_name_what_runs():
         scan = dv.limited_cells(pts, radius, method="scan")
         chords = dv.limited_cells(pts, radius, method="chords")
         assert auto.method == "auto"
-        assert scan.computed_by == {"clip": 0, "scan": n, "chords": 0}
-        assert chords.computed_by == {"clip": 0, "scan": 0, "chords": n}
+        assert scan.computed_by == {"clip": 0, "scan": n, "chords": 0, "power": 0}
+        assert chords.computed_by == {"clip": 0, "scan": 0, "chords": n, "power": 0}
         assert auto.computed_by["clip"] + auto.computed_by["scan"] == n and auto.computed_by["chords"] == 0
         for other in (scan, chords):
             np.testing.assert_array_equal(auto.indptr, other.indptr)

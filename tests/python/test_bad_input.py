@@ -140,8 +140,12 @@ def test_good_workers_and_the_deprecated_threads(call):
             WORKER_CALLS[call](workers=1, threads=1)
 
 
+def LIMITED_CELLS(v):
+    return dv.limited_cells(GOOD, v)
+
+
 @pytest.mark.parametrize("call,name", [
-    (lambda v: dv.limited_cells(GOOD, v), "radius"),
+    (LIMITED_CELLS, "radius"),
     (lambda v: dv.limited_cell((0.5, 0.5), GOOD, v), "radius"),
     (lambda v: dv.coverage.lloyd(GOOD, v, steps=1), "radius"),
     (lambda v: dv.network.simulate("cc", GOOD, v), "comm_range"),
@@ -152,6 +156,11 @@ def test_good_workers_and_the_deprecated_threads(call):
 def test_reals_are_numbers_not_strings(call, name, value):
     # Before: radius="0.2" dumped the whole call (arrays included) in a pybind11 TypeError, or was
     # converted silently (network).
+    if isinstance(value, list) and call is LIMITED_CELLS:
+        # limited_cells takes one radius per agent too (heterogeneous teams): here the wrong count.
+        with pytest.raises(ValueError, match=r"^radius must have one radius per agent: got 1 radii for"):
+            call(value)
+        return
     with pytest.raises(TypeError, match=rf"^{name} must be a real number, got") as err:
         call(value)
     assert len(str(err.value)) < 120

@@ -326,3 +326,25 @@ TEST_CASE("read_point_file detects .npy by content and reports unreadable files"
                          doctest::Contains((missing + ": cannot open").c_str()), InputError);
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("a radius column (heterogeneous teams): X,Y,R by index or by name") {
+    using dvoronoi::io::parse_columns;
+    using dvoronoi::io::parse_point_text;
+    const Columns byname = parse_columns("x,y,r", "--columns", true);
+    CHECK(byname.has_radius());
+    CHECK(byname.r_name == "r");
+    const Columns byindex = parse_columns("1,2,0", "--columns", true);
+    CHECK(byindex.r == 0);
+    CHECK(!parse_columns("1,2", "--columns", true).has_radius());
+    // Three columns only where a radius is accepted; no mixing of names and indices; distinct.
+    CHECK_THROWS_WITH_AS(parse_columns("x,y,r", "--columns"), doctest::Contains("--columns"), InputError);
+    CHECK_THROWS_AS(parse_columns("1,2,r", "--columns", true), InputError);
+    CHECK_THROWS_AS(parse_columns("1,2,2", "--columns", true), InputError);
+    const auto f = parse_point_text("r x y\n2 0 0\n0.5 1 1\n", "team.txt", byname);
+    REQUIRE(f.points.rows() == 2);
+    CHECK(f.radii == std::vector<double>{2.0, 0.5});
+    CHECK(f.points(1, 0) == 1.0);
+    CHECK_THROWS_WITH_AS(parse_point_text("x y r\n0 0 0\n", "team.txt", byname), doctest::Contains("team.txt:2:5: radius"),
+                         InputError);
+    CHECK(parse_point_text("0 0\n1 1\n", "plain.txt").radii.empty());
+}

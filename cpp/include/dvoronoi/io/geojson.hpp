@@ -70,14 +70,16 @@ namespace detail {
 /// One Feature; `agent` < 0 leaves the agent property out.
 inline void write_feature(JsonText& w, const LimitedCell& cell, double tolerance, Index agent,
                           double area) {
-    w.raw("{\"geometry\":{\"coordinates\":[[");
+    const std::vector<Vec2> ring = densify(cell, tolerance);
+    // An empty cell (heterogeneous teams) is an empty Polygon (RFC 7946 3.1: empty coordinates).
+    w.raw(ring.empty() ? "{\"geometry\":{\"coordinates\":[" : "{\"geometry\":{\"coordinates\":[[");
     bool first = true;
-    for (const Vec2& v : densify(cell, tolerance)) {
+    for (const Vec2& v : ring) {
         if (!first) w.raw(',');
         first = false;
         w.xy(v);
     }
-    w.raw("]],\"type\":\"Polygon\"},\"properties\":{");
+    w.raw(ring.empty() ? "],\"type\":\"Polygon\"},\"properties\":{" : "]],\"type\":\"Polygon\"},\"properties\":{");
     if (agent >= 0) {
         w.key("agent");
         w.num(agent);

@@ -8,6 +8,8 @@
 //    "indptr": [...], "indices": [...],        limited neighbours, CSR (scipy's layout), ascending
 //    "areas": [...], "perimeters": [...], "centroids": [[x, y], ...],
 //    "cells": [{"agent": i, "pieces": [piece, ...]}, ...]}
+//   heterogeneous teams add "radii": [...] (one per agent; "radius" is then the largest, and an
+//   empty cell has no pieces).
 //
 // A piece is one step of the cell's counter-clockwise boundary cycle:
 //
@@ -159,7 +161,7 @@ inline void write_partition_cell(JsonText& w, const LimitedPartition& p, Index i
         const auto next = static_cast<std::size_t>(k + 1 < hi ? k + 1 : lo);
         if (k > lo) w.raw(',');
         write_piece(w, Vec2(p.piece_x[kk], p.piece_y[kk]), Vec2(p.piece_x[next], p.piece_y[next]),
-                    p.piece_neighbor[kk], p.piece_span[kk], center, p.radius);
+                    p.piece_neighbor[kk], p.piece_span[kk], center, p.radius_of(i));
     }
     w.raw("]}");
 }
@@ -216,6 +218,11 @@ inline void write_partition(JsonText& w, const LimitedPartition& p, Method metho
     w.key("points");
     write_rows(w, p.points);
     w.raw(',');
+    if (!p.radii.empty()) {  // heterogeneous teams: one radius per agent ("radius" is the largest)
+        w.key("radii");
+        write_numbers(w, p.radii);
+        w.raw(',');
+    }
     w.key("radius");
     w.num(p.radius);
     w.raw('}');

@@ -30,18 +30,48 @@ namespace dvoronoi::io {
 struct Columns {
     int x = -1, y = -1;          ///< 0-based field indices, -1 = not given
     std::string x_name, y_name;  ///< header names, used when the indices are not given
+    /// Optional third column: each agent's radius (heterogeneous teams), by index or header name.
+    int r = -1;
+    std::string r_name;
+
+    bool has_radius() const noexcept { return r >= 0 || !r_name.empty(); }
 
     bool given() const noexcept { return x >= 0 || !x_name.empty(); }
 };
 
-/// Parses a column selection such as "1,2" (0-based indices) or "lon,lat" (header names).
-/// \throws InputError naming `what` (e.g. "--columns") if the text is not two distinct columns.
-inline Columns parse_columns(std::string_view spec, const std::string& what = "columns") {
+/// Parses a column selection such as "1,2" (0-based indices) or "lon,lat" (header names); with
+/// `allow_radius`, also "1,2,3" or "x,y,r" (a third column: each agent's radius).
+/// \throws InputError naming `what` (e.g. "--columns") if the text is not two (or three) distinct
+///         columns.
+inline Columns parse_columns(std::string_view spec, const std::string& what = "columns", bool allow_radius = false) {
     const auto fail = [&]() -> Columns {
         throw InputError(what + ": expected two comma-separated column indices (0-based) or header "
-                                "names, e.g. \"1,2\" or \"x,y\", got \"" +
+                                "names, e.g. \"1,2\" or \"x,y\"" +
+                         std::string(allow_radius ? " (or three with the radius, e.g. \"x,y,r\")" : "") + ", got \"" +
                          printable(spec) + "\"");
     };
+    if (allow_radius) {
+        const std::size_t last = spec.rfind(',');
+        if (last != std::string_view::npos && spec.substr(0, last).find(',') != std::string_view::npos) {
+            Columns c = parse_columns(spec.substr(0, last), what, false);
+            std::string_view t = spec.substr(last + 1);
+            while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
+            while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.remove_suffix(1);
+            if (t.empty()) return fail();
+            int ir = -1;
+            const auto res = std::from_chars(t.data(), t.data() + t.size(), ir);
+            const bool numeric = res.ec == std::errc() && res.ptr == t.data() + t.size();
+            if (numeric != (c.x >= 0)) return fail();
+            if (numeric) {
+                if (ir < 0 || ir == c.x || ir == c.y) return fail();
+                c.r = ir;
+            } else {
+                if (t == c.x_name || t == c.y_name) return fail();
+                c.r_name = std::string(t);
+            }
+            return c;
+        }
+    }
     const auto trim = [](std::string_view s) {
         while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
         while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
@@ -79,6 +109,7 @@ struct PointFile {
     std::vector<Index> line;  ///< 1-based line of each point (text files); empty for .npy
     std::size_t header_line = 0;  ///< 1-based line of the header (text files), 0 = none
     std::string header;           ///< that line's content (comment removed)
+    std::vector<double> radii;    ///< each point's radius when a radius column was selected, else empty
 
     /// "FILE:LINE" for point i of a text file, "FILE (row i)" for an array file.
     std::string where(Index i) const {
@@ -233,7 +264,7 @@ inline PointFile parse_point_text(std::string_view text, const std::string& name
     out.name = name;
     std::vector<double> xy;
     std::vector<detail::Field> fields;
-    int xi = columns.x, yi = columns.y;
+    int xi = columns.x, yi = columns.y, ri = columns.r;
     const bool by_name = columns.x < 0 && !columns.x_name.empty();
     bool first_content = true;
     std::size_t line_no = 0, pos = 0;
@@ -260,6 +291,7 @@ inline PointFile parse_point_text(std::string_view text, const std::string& name
                 if (by_name) {
                     xi = detail::header_index(fields, columns.x_name, name, line_no);
                     yi = detail::header_index(fields, columns.y_name, name, line_no);
+                    if (!columns.r_name.empty()) ri = detail::header_index(fields, columns.r_name, name, line_no);
                 }
                 continue;
             }
@@ -283,15 +315,23 @@ inline PointFile parse_point_text(std::string_view text, const std::string& name
             xy.push_back(detail::field_value(fields[0], name, line_no, "x"));
             xy.push_back(detail::field_value(fields[1], name, line_no, "y"));
         } else {
-            const std::size_t need = static_cast<std::size_t>(std::max(xi, yi)) + 1;
+            const std::size_t need = static_cast<std::size_t>(std::max({xi, yi, ri})) + 1;
             if (fields.size() < need)
                 throw detail::file_error(
                     name, line_no, fields.back().col + fields.back().text.size(),
                     "too few fields: found " + std::to_string(fields.size()) +
                         ", the selected columns (x = " + std::to_string(xi) + ", y = " +
-                        std::to_string(yi) + ", 0-based) need " + std::to_string(need));
+                        std::to_string(yi) + (ri >= 0 ? ", r = " + std::to_string(ri) : std::string()) +
+                        ", 0-based) need " + std::to_string(need));
             xy.push_back(detail::field_value(fields[static_cast<std::size_t>(xi)], name, line_no, "x"));
             xy.push_back(detail::field_value(fields[static_cast<std::size_t>(yi)], name, line_no, "y"));
+            if (ri >= 0) {
+                const detail::Field& f = fields[static_cast<std::size_t>(ri)];
+                const double r = detail::field_value(f, name, line_no, "radius");
+                if (!(r > 0.0))
+                    throw detail::file_error(name, line_no, f.col, "radius must be positive, got " + std::string(f.text));
+                out.radii.push_back(r);
+            }
         }
         out.line.push_back(static_cast<Index>(line_no));
     }

@@ -33,6 +33,7 @@ struct AlgorithmCounts {
     Index clip = 0;    ///< the certified clipping filter (cells/certified_clip.hpp; Method::Auto only)
     Index scan = 0;    ///< Boundary Scan (every cell under Method::Scan; the filter's give-ups under Auto)
     Index chords = 0;  ///< RCVC (Method::Chords)
+    Index power = 0;   ///< the power-cell clipping of heterogeneous radii (cells/power_cell.hpp)
 };
 
 /// The range-limited Voronoi partition of n agents (the result of limited_cells).
@@ -43,6 +44,9 @@ struct AlgorithmCounts {
 /// Limited neighbours are the CSR pair (indptr, indices), ascending per agent (scipy's layout).
 struct LimitedPartition {
     double radius = 0.0;
+    /// One radius per agent (heterogeneous teams, partition/power_partition.hpp); empty when every
+    /// agent has `radius` (then radius_of(i) is `radius`).
+    std::vector<double> radii;
     Method method = Method::Auto;
     AlgorithmCounts computed_by;  ///< which algorithm computed how many of the cells
     Points points;  ///< the agents, as given
@@ -57,12 +61,21 @@ struct LimitedPartition {
 
     Index size() const noexcept { return static_cast<Index>(points.rows()); }
 
+    /// Agent i's radius.
+    double radius_of(Index i) const { return radii.empty() ? radius : radii[static_cast<std::size_t>(i)]; }
+
+    /// True when agent i's cell has zero area (heterogeneous teams only: a larger disk covers it).
+    bool is_empty(Index i) const {
+        check_index(i);
+        return piece_ptr[static_cast<std::size_t>(i)] == piece_ptr[static_cast<std::size_t>(i) + 1];
+    }
+
     /// Agent i's cell, rebuilt from the flat arrays.
     LimitedCell cell(Index i) const {
         check_index(i);
         LimitedCell c;
         c.center = points.row(i).transpose();
-        c.radius = radius;
+        c.radius = radius_of(i);
         c.candidates = candidates[static_cast<std::size_t>(i)];
         c.chords_after_check = -1;
         const auto ii = static_cast<std::size_t>(i);

@@ -1,0 +1,175 @@
+// All agents of a heterogeneous team at once (docs/spec.md, heterogeneous teams): agent i's cell
+// W_i = power cell (weights R_i^2) ∩ B(p_i, R_i) from the agents within R_i + R_max (a uniform-grid
+// index), in parallel (OpenMP), in input order.
+#pragma once
+
+#include "dvoronoi/cells/power_cell.hpp"
+#include "dvoronoi/partition/limited_partition.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+#include <string>
+#include <vector>
+
+namespace dvoronoi {
+
+namespace detail {
+
+/// Throws CoincidentError naming the lowest pair (i, j), i < j, of agents with the same position and
+/// the same radius (the same position with different radii is allowed: the larger disk holds the
+/// cell). O(n log n).
+inline void require_distinct_weighted(const Points& pts, const std::vector<double>& radii) {
+    std::vector<Index> order(static_cast<std::size_t>(pts.rows()));
+    std::iota(order.begin(), order.end(), Index{0});
+    const auto key = [&](Index i) {
+        return std::make_tuple(pts(i, 0), pts(i, 1), radii[static_cast<std::size_t>(i)], i);
+    };
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) { return key(a) < key(b); });
+    Index bi = -1, bj = -1;
+    for (std::size_t t = 0; t + 1 < order.size(); ++t) {
+        const Index a = order[t], b = order[t + 1];  // a < b within a run of equal (x, y, R)
+        if (pts(a, 0) == pts(b, 0) && pts(a, 1) == pts(b, 1) &&
+            radii[static_cast<std::size_t>(a)] == radii[static_cast<std::size_t>(b)] &&
+            (bi < 0 || a < bi || (a == bi && b < bj))) {
+            // Only the first pair of each run can be lowest: a is the run's smallest index so far.
+            bi = a;
+            bj = b;
+        }
+    }
+    if (bi < 0) return;
+    char at[64];
+    std::snprintf(at, sizeof at, "(%.17g, %.17g)", pts(bi, 0), pts(bi, 1));
+    throw CoincidentError("points[" + std::to_string(bi) + "] and points[" + std::to_string(bj) + "] coincide at " + at +
+                              " with the same radius; their cells are undefined",
+                          bi, bj);
+}
+
+}  // namespace detail
+
+/// Every agent's cell of a heterogeneous team: W_i = {q in B(p_i, R_i) : power_i(q) <= power_j(q) for
+/// all j}, power_j(q) = |q - p_j|^2 - R_j^2 (docs/spec.md, heterogeneous teams). The cells partition the
+/// union of the disks; a cell of zero area is empty (no pieces, no neighbours, area 0, centroid at the
+/// agent: is_empty(i)).
+///
+/// With every radius equal this is limited_cells(points, radius, method, threads, progress) itself
+/// (the same result, bit for bit; `radii` stays empty). Otherwise the cells are computed by
+/// cells/power_cell.hpp (computed_by.power counts them) and `method` must be Auto.
+///
+/// \throws InputError naming `radii` when its length is not n or a radius is not positive and finite,
+///         naming `method` for Scan or Chords with unequal radii; CoincidentError for two agents with
+///         the same position and radius (lowest pair named); RangeError as limited_cells.
+/// \note O(n m k) work: m agents within R_i + R_max, k vertices per cell; memory O(n k). Thread-safe.
+///       Results do not depend on `threads`.
+inline LimitedPartition limited_cells(PointsRef points, const std::vector<double>& radii, Method method = Method::Auto,
+                                      int threads = 0, const ProgressFn& progress = nullptr) {
+    detail::require_finite_points(points, "points");
+    const Index n = points.rows();
+    if (static_cast<Index>(radii.size()) != n)
+        throw InputError("radius must be a number or one radius per agent: " + std::to_string(radii.size()) +
+                         " radii for " + std::to_string(n) + " points");
+    for (double R : radii) detail::require_finite_radius(R, "radius");
+    const bool equal = std::all_of(radii.begin(), radii.end(), [&](double R) { return R == radii.front(); });
+    if (n == 0 || equal) return limited_cells(points, n == 0 ? 1.0 : radii.front(), method, threads, progress);
+    if (method != Method::Auto)
+        throw InputError(std::string("method \"") + method_name(method) +
+                         "\" (Boundary Scan or RCVC around the agent) needs equal radii; with one radius per agent "
+                         "the cells are computed by power-cell clipping: use method \"auto\"");
+
+    LimitedPartition out;
+    out.method = method;
+    out.points = points;
+    out.radii = radii;
+    const double rmax = *std::max_element(radii.begin(), radii.end());
+    out.radius = rmax;
+    detail::require_distinct_weighted(out.points, out.radii);
+
+    const Index block = detail::kBlock;
+    const Index nblocks = (n + block - 1) / block;
+    const int team = detail::thread_team(threads, nblocks);
+    const GridIndex index(out.points, 2.0 * rmax, team);
+    const std::vector<Index>& order = index.grid_order();
+    // Each thread appends its cells' pieces to its own list; agent i's run is (thread, offset).
+    std::vector<std::vector<Piece>> lists(static_cast<std::size_t>(team));
+    std::vector<std::pair<int, std::size_t>> run_of(static_cast<std::size_t>(n));
+    const auto un = static_cast<std::size_t>(n);
+    out.areas.assign(un, 0.0);
+    out.perimeters.assign(un, 0.0);
+    out.centroids.resize(n, 2);
+    out.candidates.assign(un, 0);
+    out.piece_ptr.assign(un + 1, 0);  // counts, summed below
+    detail::ProgressTracker tracker(progress, n);
+    Index computed = 0;
+
+#pragma omp parallel num_threads(team) reduction(+ : computed)
+    {
+        std::vector<detail::Candidate> cand;
+        std::vector<double> cand_r;
+        const int me = detail::thread_id();
+        std::vector<Piece>& mine = lists[static_cast<std::size_t>(me)];
+        LimitedCell cell;
+        detail::PowerWorkspace ws;
+#pragma omp for schedule(dynamic, 1)
+        for (Index b = 0; b < nblocks; ++b) {
+            const Index lo = b * block, hi = std::min(n, lo + block);
+            if (tracker.skip(lo)) continue;
+            Index pos = lo;
+            try {
+                for (; pos < hi; ++pos) {
+                    const auto pp = static_cast<std::size_t>(pos);
+                    const auto i = static_cast<std::size_t>(order[pp]);
+                    const double r = radii[i];
+                    // Agents that can shape the cell are closer than r + R_j <= r + R_max; the query
+                    // radius is half the range, widened so that rounding never drops one (the exact
+                    // classification in power_cell discards the extras).
+                    index.within_at(pp, 0.5 * (r + rmax) * (1.0 + 0x1p-40), cand);
+                    cand_r.clear();
+                    for (const detail::Candidate& q : cand) cand_r.push_back(radii[static_cast<std::size_t>(q.id)]);
+                    detail::power_cell(index.point_at(pp), r, cand, cand_r, cell, ws, static_cast<Index>(i));
+                    ++computed;
+                    const CellMeasures& m = cell.measures();
+                    out.areas[i] = m.area;
+                    out.perimeters[i] = m.perimeter;
+                    out.centroids(static_cast<Index>(i), 0) = m.centroid.x();
+                    out.centroids(static_cast<Index>(i), 1) = m.centroid.y();
+                    out.candidates[i] = cell.candidates;
+                    run_of[i] = {me, mine.size()};
+                    mine.insert(mine.end(), cell.pieces.begin(), cell.pieces.end());
+                    out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
+                }
+            } catch (...) {
+                tracker.fail(pos, order[static_cast<std::size_t>(pos)]);
+            }
+            tracker.block_done(hi - lo);
+        }
+    }
+    tracker.rethrow_if_failed();
+    out.computed_by.power = computed;
+
+    out.indptr.assign(un + 1, 0);
+    for (std::size_t i = 0; i < un; ++i) out.piece_ptr[i + 1] += out.piece_ptr[i];  // counts to offsets
+    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
+    out.piece_x.reserve(total);
+    out.piece_y.reserve(total);
+    out.piece_span.reserve(total);
+    out.piece_neighbor.reserve(total);
+    for (std::size_t i = 0; i < un; ++i) {
+        const auto [t, at] = run_of[i];
+        const std::size_t len = static_cast<std::size_t>(out.piece_ptr[i + 1] - out.piece_ptr[i]);
+        for (std::size_t q = 0; q < len; ++q) {
+            const Piece& p = lists[static_cast<std::size_t>(t)][at + q];
+            out.piece_x.push_back(p.start.x());
+            out.piece_y.push_back(p.start.y());
+            out.piece_span.push_back(p.arc_span);
+            out.piece_neighbor.push_back(p.neighbor);
+            if (!p.is_arc()) out.indices.push_back(p.neighbor);
+        }
+        std::sort(out.indices.begin() + out.indptr[i], out.indices.end());
+        out.indices.erase(std::unique(out.indices.begin() + out.indptr[i], out.indices.end()), out.indices.end());
+        out.indptr[i + 1] = static_cast<Index>(out.indices.size());
+    }
+    tracker.report_all();
+    return out;
+}
+
+}  // namespace dvoronoi
