@@ -114,6 +114,14 @@ void bind_geodesic(py::module_& m) {
             py::dict d = moments_dict(mom, agents, fr);
             d["labels"] = image_labels(f);
             d["distances"] = image_distances(f, resolution);
+            // each pixel's last bend (pixel units, u right, w down; NaN if unreached): for tests and pictures
+            py::array_t<double> anchors({static_cast<py::ssize_t>(f.rows), static_cast<py::ssize_t>(f.cols), py::ssize_t(2)});
+            for (std::size_t q = 0; q < f.anchor.size(); ++q) {
+                const auto A = f.anchor[q] >= 0 ? f.anchor_point(f.anchor[q]) : cov::PixelPoint{NAN, NAN};
+                anchors.mutable_data()[2 * q] = A.u;
+                anchors.mutable_data()[2 * q + 1] = A.w;
+            }
+            d["anchors"] = anchors;
             return d;
         },
         py::arg("occupied"), py::arg("resolution"), py::arg("ox"), py::arg("oy"), py::arg("points"), py::arg("radius"),

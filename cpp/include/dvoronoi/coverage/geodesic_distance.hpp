@@ -25,6 +25,9 @@
 // Complexity O(P log P) for P reached pixels. Single-threaded and deterministic.
 #pragma once
 
+#include "dvoronoi/coverage/grid_segment.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -33,11 +36,6 @@
 #include <vector>
 
 namespace dvoronoi::coverage {
-
-//! One source (an agent) in image pixel units (u right, w down).
-struct PixelPoint {
-    double u = 0.0, w = 0.0;
-};
 
 //! The wavefront's result. Anchor ids: [0, n) sources, [n, n + V) corner vertices (V = (rows+1)(cols+1),
 //! vertex (i, j) is id n + j (cols + 1) + i), [n + V, n + V + P) pixel centres used as relays.
@@ -102,14 +100,40 @@ inline bool better(double d, std::int32_t l, double d0, std::int32_t l0) {
 
 }  // namespace detail
 
-//! Is pixel (r, c) occupied, the outside of the map counting as occupied.
-struct OccupancyView {
-    const std::uint8_t* occ;
-    std::int32_t rows, cols;
-    bool blocked(std::int64_t r, std::int64_t c) const {
-        return r < 0 || c < 0 || r >= rows || c >= cols || occ[r * cols + c] != 0;
-    }
-};
+/*! Chessboard distance from each pixel to the nearest occupied pixel or the outside of the map (1 for a
+    pixel next to a wall), capped at `cap` (at most 255). Two raster passes. */
+inline std::vector<std::uint8_t> chessboard_clearance(const OccupancyView& g, int cap) {
+    const std::int64_t rows = g.rows, cols = g.cols;
+    std::vector<std::uint8_t> d(static_cast<std::size_t>(rows * cols));
+    for (std::int64_t r = 0; r < rows; ++r)
+        for (std::int64_t c = 0; c < cols; ++c) {
+            if (g.blocked(r, c)) {
+                d[r * cols + c] = 0;
+                continue;
+            }
+            const std::int64_t edge = std::min(std::min(r, c), std::min(rows - 1 - r, cols - 1 - c)) + 1;
+            int v = static_cast<int>(std::min<std::int64_t>(edge, cap));
+            if (r > 0) {
+                v = std::min(v, d[(r - 1) * cols + c] + 1);
+                if (c > 0) v = std::min(v, d[(r - 1) * cols + c - 1] + 1);
+                if (c + 1 < cols) v = std::min(v, d[(r - 1) * cols + c + 1] + 1);
+            }
+            if (c > 0) v = std::min(v, d[r * cols + c - 1] + 1);
+            d[r * cols + c] = static_cast<std::uint8_t>(v);
+        }
+    for (std::int64_t r = rows - 1; r >= 0; --r)
+        for (std::int64_t c = cols - 1; c >= 0; --c) {
+            int v = d[r * cols + c];
+            if (r + 1 < rows) {
+                v = std::min(v, d[(r + 1) * cols + c] + 1);
+                if (c > 0) v = std::min(v, d[(r + 1) * cols + c - 1] + 1);
+                if (c + 1 < cols) v = std::min(v, d[(r + 1) * cols + c + 1] + 1);
+            }
+            if (c + 1 < cols) v = std::min(v, d[r * cols + c + 1] + 1);
+            d[r * cols + c] = static_cast<std::uint8_t>(v);
+        }
+    return d;
+}
 
 /*! Multi-source geodesic distance, range-limited to `limit` pixel units (+inf: no limit).
     `occ` is rows x cols, row-major, nonzero = occupied. Every source must lie in a free pixel (the pixel
@@ -179,17 +203,53 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
         return grid.blocked(nr, nc) ? -1 : nr * cols + nc;
     };
 
-    // Pairs (p, q) where q, unreached, was left to a neighbour that had not popped yet: if q is still
-    // unreached when the heap runs dry (that neighbour was reachable only through q), p relays to it.
-    std::vector<std::pair<std::int64_t, std::int64_t>> deferred;
+    auto offer_vertex = [&](std::int64_t i, std::int64_t j, double d, std::int32_t l, std::int64_t parent) {
+        const std::int64_t v = j * (cols + 1) + i;
+        if (vdone[v] || !(d <= limit) || !better(d, l, f.vertex_distance[v], vertex_label[v])) return;
+        f.vertex_distance[v] = d;
+        vertex_label[v] = l;
+        f.vertex_parent[v] = parent;
+        heap.push({d, l, P + v});
+    };
+
+    // The local test accepts a segment that p's own sight line does not cut but q's does: a wall corner
+    // inside the thin wedge between them. Walking q's segment exactly over its first SIGHT pixels (only
+    // for pixels that close to a wall) bounds the error such a corner can cause to ~1/(8 SIGHT) pixel.
+    constexpr std::int32_t SIGHT = 4;
+    const std::vector<std::uint8_t> clear = chessboard_clearance(grid, SIGHT + 2);
+    auto sight_free = [&](const PixelPoint& cq, const PixelPoint& A) {
+        const double len = std::hypot(A.u - cq.u, A.w - cq.w);
+        if (len <= SIGHT) return segment_free(grid, cq, A);
+        const double t = SIGHT / len;
+        return segment_free(grid, cq, {cq.u + t * (A.u - cq.u), cq.w + t * (A.w - cq.w)});
+    };
+    auto near_sight_free = [&](std::int64_t qr, std::int64_t qc, const PixelPoint& A) {
+        return clear[static_cast<std::size_t>(qr * cols + qc)] > SIGHT + 1 || sight_free({qc + 0.5, qr + 0.5}, A);
+    };
+    // Where sight to the anchor is blocked, the path bends at a corner nearby, which may belong to no
+    // neighbour (a shadow thinner than a pixel): try the settled corners within RESCUE pixels, exactly.
+    constexpr std::int64_t RESCUE = 4;
+    auto rescue = [&](std::int64_t qr, std::int64_t qc) {
+        const std::int64_t q = qr * cols + qc;
+        const PixelPoint cq{qc + 0.5, qr + 0.5};
+        for (std::int64_t j = std::max<std::int64_t>(0, qr + 1 - RESCUE); j <= std::min<std::int64_t>(rows, qr + RESCUE); ++j)
+            for (std::int64_t i = std::max<std::int64_t>(0, qc + 1 - RESCUE); i <= std::min<std::int64_t>(cols, qc + RESCUE); ++i) {
+                const std::int64_t v = j * (cols + 1) + i;
+                if (!vdone[v]) continue;
+                const double d = f.vertex_distance[v] + std::hypot(cq.u - double(i), cq.w - double(j));
+                if (!(d <= limit) || !better(d, vertex_label[v], f.distance[q], f.label[q])) continue;
+                if (segment_free(grid, cq, {double(i), double(j)})) offer_pixel(q, d, vertex_label[v], n + v);
+            }
+    };
+
     static constexpr int DR[8] = {-1, 1, 0, 0, -1, -1, 1, 1};
     static constexpr int DC[8] = {0, 0, -1, 1, -1, 1, -1, 1};
 
     auto relay = [&](std::int64_t p, std::int64_t q, bool diagonal) {
-        offer_pixel(q, f.distance[p] + (diagonal ? M_SQRT2 : 1.0), f.label[p], n + V + p);
+        offer_pixel(q, f.distance[p] + (diagonal ? 1.4142135623730951 : 1.0), f.label[p], n + V + p);
     };
 
-    for (;;) {
+    {
         while (!heap.empty()) {
             const detail::WaveEntry e = heap.top();
             heap.pop();
@@ -200,8 +260,33 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
                 const std::int64_t i = v % (cols + 1), j = v / (cols + 1);
                 for (int k = 0; k < 4; ++k) {
                     const std::int64_t r = j - 1 + (k >> 1), c = i - 1 + (k & 1);
-                    if (!grid.blocked(r, c)) offer_pixel(r * cols + c, e.d + M_SQRT1_2, e.label, n + v);
+                    if (!grid.blocked(r, c)) offer_pixel(r * cols + c, e.d + 0.7071067811865476, e.label, n + v);
                 }
+                // Corners that v sees but whose pixels see v only through a sliver (a path grazing a
+                // wall): those along the two wall edges at v, and those within two pixels, checked exactly.
+                for (int k = 0; k < 4; ++k) {
+                    const std::int64_t di = k == 0 ? 1 : k == 1 ? -1 : 0, dj = k == 2 ? 1 : k == 3 ? -1 : 0;
+                    std::int64_t wi = i, wj = j;
+                    for (;;) {  // along the grid line while exactly one side is occupied
+                        const bool s1 = di ? grid.blocked(wj - 1, di > 0 ? wi : wi - 1) : grid.blocked(dj > 0 ? wj : wj - 1, wi - 1);
+                        const bool s2 = di ? grid.blocked(wj, di > 0 ? wi : wi - 1) : grid.blocked(dj > 0 ? wj : wj - 1, wi);
+                        if (s1 == s2) break;
+                        wi += di;
+                        wj += dj;
+                        if (convex(wi, wj)) {
+                            offer_vertex(wi, wj, e.d + double(std::abs(wi - i) + std::abs(wj - j)), e.label, n + v);
+                            break;
+                        }
+                    }
+                }
+                for (std::int64_t wj = std::max<std::int64_t>(0, j - 2); wj <= std::min<std::int64_t>(rows, j + 2); ++wj)
+                    for (std::int64_t wi = std::max<std::int64_t>(0, i - 2); wi <= std::min<std::int64_t>(cols, i + 2); ++wi) {
+                        if ((wi == i && wj == j) || !convex(wi, wj)) continue;
+                        const double d = e.d + std::hypot(double(wi - i), double(wj - j));
+                        const std::int64_t w = wj * (cols + 1) + wi;
+                        if (vdone[w] || !(d <= limit) || !better(d, e.label, f.vertex_distance[w], vertex_label[w])) continue;
+                        if (segment_free(grid, {double(i), double(j)}, {double(wi), double(wj)})) offer_vertex(wi, wj, d, e.label, n + v);
+                    }
                 continue;
             }
             const std::int64_t p = e.node;
@@ -213,20 +298,48 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
             const PixelPoint A = f.anchor_point(a);
             const double Da = f.anchor_distance(a);
             const std::int64_t pr = p / cols, pc = p % cols;
+            // First the neighbours whose line of sight to the anchor runs through p (or that hold the
+            // anchor in their square), then the others: their back-trace pixel has the anchor already
+            // (it offered it), or it holds another anchor or none, and then the segment is walked exactly
+            // (this happens only along shadow and cell boundaries), with a relay through p if it is blocked.
+            std::int64_t later[8];
+            int nlater = 0;
             for (int k = 0; k < 8; ++k) {
                 const std::int64_t qr = pr + DR[k], qc = pc + DC[k];
                 if (grid.blocked(qr, qc)) continue;
                 const bool diagonal = k >= 4;
                 if (diagonal && grid.blocked(qr, pc) && grid.blocked(pr, qc)) continue;  // pinch point
                 const std::int64_t q = qr * cols + qc;
-                if (done[q] && f.distance[q] <= e.d) continue;  // cannot improve: settled before p
+                if (done[q] && f.distance[q] <= e.d) continue;  // settled before p: p cannot improve it
                 const std::int64_t nb = back_trace(qr, qc, A);
                 if (nb == -2 || nb == p) {
-                    offer_pixel(q, Da + std::hypot(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
-                } else if (nb == -1 || (done[nb] && f.anchor[nb] != a)) {
+                    if (near_sight_free(qr, qc, A)) {
+                        offer_pixel(q, Da + std::hypot(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
+                    } else {
+                        rescue(qr, qc);
+                        relay(p, q, diagonal);
+                    }
+                } else if (nb == -1) {
+                    rescue(qr, qc);
                     relay(p, q, diagonal);
-                } else if (!done[nb] && f.label[q] < 0) {
-                    deferred.emplace_back(p, q);
+                } else {
+                    later[nlater++] = (std::int64_t(k) << 40) | nb;
+                }
+            }
+            for (int t = 0; t < nlater; ++t) {
+                const int k = static_cast<int>(later[t] >> 40);
+                const std::int64_t nb = later[t] & ((std::int64_t(1) << 40) - 1);
+                if (f.anchor[nb] == a) continue;
+                const std::int64_t qr = pr + DR[k], qc = pc + DC[k], q = qr * cols + qc;
+                const PixelPoint cq{qc + 0.5, qr + 0.5};
+                const double d = Da + std::hypot(cq.u - A.u, cq.w - A.w);
+                // a relay through p is never shorter than the straight segment: nothing to offer
+                if (!(d <= limit) || !better(d, e.label, f.distance[q], f.label[q])) continue;
+                if (segment_free(grid, cq, A)) {
+                    offer_pixel(q, d, e.label, a);
+                } else {
+                    rescue(qr, qc);
+                    relay(p, q, k >= 4);
                 }
             }
             // Convex corners of p that see the anchor through p become anchors.
@@ -236,23 +349,10 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
                 if (vdone[v] || !convex(i, j)) continue;
                 const double sx = (pc + 0.5) - double(i), sy = (pr + 0.5) - double(j);
                 if ((A.u - double(i)) * sx < 0 || (A.w - double(j)) * sy < 0) continue;
-                const double d = Da + std::hypot(A.u - double(i), A.w - double(j));
-                if (!(d <= limit) || !better(d, e.label, f.vertex_distance[v], vertex_label[v])) continue;
-                f.vertex_distance[v] = d;
-                vertex_label[v] = e.label;
-                f.vertex_parent[v] = a;
-                heap.push({d, e.label, P + v});
+                if (!sight_free({double(i), double(j)}, A)) continue;
+                offer_vertex(i, j, Da + std::hypot(A.u - double(i), A.w - double(j)), e.label, a);
             }
         }
-        bool any = false;
-        std::vector<std::pair<std::int64_t, std::int64_t>> pending;
-        pending.swap(deferred);
-        for (const auto& [p, q] : pending) {
-            if (f.label[q] >= 0) continue;
-            relay(p, q, (p / cols != q / cols) && (p % cols != q % cols));
-            any = any || f.label[q] >= 0;
-        }
-        if (!any) break;
     }
     return f;
 }

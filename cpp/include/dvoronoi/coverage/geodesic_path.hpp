@@ -1,5 +1,5 @@
-// Shortest paths out of a geodesic field (geodesic_distance.hpp), and the exact test that a segment stays
-// in free space, which every path an agent follows passes before it moves.
+// Shortest paths out of a geodesic field (geodesic_distance.hpp); every segment passes the exact test of
+// grid_segment.hpp before an agent moves along it.
 #pragma once
 
 #include "dvoronoi/coverage/geodesic_distance.hpp"
@@ -10,67 +10,6 @@
 #include <vector>
 
 namespace dvoronoi::coverage {
-
-namespace detail {
-
-// Vertex (i, j) is a pinch point: exactly the two pixels of one diagonal around it are occupied.
-inline bool pinch(const OccupancyView& g, std::int64_t i, std::int64_t j) {
-    const bool a = g.blocked(j - 1, i - 1), b = g.blocked(j - 1, i), c = g.blocked(j, i - 1), d = g.blocked(j, i);
-    return (a && d && !b && !c) || (b && c && !a && !d);
-}
-
-inline bool is_integer(double x) { return std::floor(x) == x; }
-
-}  // namespace detail
-
-/*! Does the closed segment a-b lie in free space: meet no occupied pixel's interior, run along a grid
-    line only where a free pixel borders it, and pass through no pinch point (two occupied pixels that
-    touch diagonally)? Exact for endpoints on pixel corners and centres (their arithmetic is exact);
-    O(length) pixels visited. */
-inline bool segment_free(const OccupancyView& g, PixelPoint a, PixelPoint b) {
-    using detail::is_integer;
-    using detail::pinch;
-    const double u0 = std::min(a.u, b.u), u1 = std::max(a.u, b.u), w0 = std::min(a.w, b.w), w1 = std::max(a.w, b.w);
-    if (u0 < 0 || w0 < 0 || u1 > g.cols || w1 > g.rows) return false;
-    const double du = b.u - a.u, dw = b.w - a.w;
-    // Axis-parallel segments (a point included): a strip of pixels, or a grid line between two.
-    auto along = [&](double fixed, double lo, double hi, bool vertical) {
-        auto blocked = [&](std::int64_t along_i, std::int64_t across_i) {
-            return vertical ? g.blocked(along_i, across_i) : g.blocked(across_i, along_i);
-        };
-        const auto k0 = static_cast<std::int64_t>(std::floor(lo));
-        auto k1 = static_cast<std::int64_t>(std::ceil(hi));
-        if (k1 == k0) k1 = k0 + 1;  // a point, or a segment inside one unit
-        if (!is_integer(fixed)) {
-            const auto x = static_cast<std::int64_t>(std::floor(fixed));
-            for (std::int64_t k = k0; k < k1; ++k)
-                if (blocked(k, x)) return false;
-            return true;
-        }
-        const auto x = static_cast<std::int64_t>(fixed);
-        for (std::int64_t k = k0; k < k1; ++k)  // on a grid line: one side must be free
-            if (blocked(k, x - 1) && blocked(k, x)) return false;
-        for (auto k = static_cast<std::int64_t>(std::ceil(lo)); k <= static_cast<std::int64_t>(std::floor(hi)); ++k)
-            if (vertical ? pinch(g, x, k) : pinch(g, k, x)) return false;
-        return true;
-    };
-    if (du == 0) return along(a.u, w0, w1, true);
-    if (dw == 0) return along(a.w, u0, u1, false);
-    auto w_at = [&](double x) { return a.w + ((x - a.u) * dw) / du; };  // product first: exact at lattice hits
-    for (auto c = static_cast<std::int64_t>(std::floor(u0)); double(c) < u1; ++c) {
-        const double xa = std::max(double(c), u0), xb = std::min(double(c + 1), u1);
-        if (!(xa < xb)) continue;
-        const double wa = w_at(xa), wb = w_at(xb);
-        const double lo = std::min(wa, wb), hi = std::max(wa, wb);
-        for (auto r = static_cast<std::int64_t>(std::floor(lo)); double(r) < hi; ++r)
-            if (double(r + 1) > lo && g.blocked(r, c)) return false;
-    }
-    for (auto i = static_cast<std::int64_t>(std::ceil(u0)); double(i) <= u1; ++i) {
-        const double w = w_at(double(i));
-        if (is_integer(w) && pinch(g, i, static_cast<std::int64_t>(w))) return false;
-    }
-    return true;
-}
 
 /*! The polyline from pixel q's source to point `t` (in pixel q): source, the anchors (bends) in order,
     then `t`; each segment checked with segment_free. When the segment from `t` to q's anchor is not free
