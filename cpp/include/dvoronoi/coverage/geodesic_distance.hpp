@@ -267,10 +267,12 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
                 for (int k = 0; k < 4; ++k) {
                     const std::int64_t di = k == 0 ? 1 : k == 1 ? -1 : 0, dj = k == 2 ? 1 : k == 3 ? -1 : 0;
                     std::int64_t wi = i, wj = j;
-                    for (;;) {  // along the grid line while exactly one side is occupied
+                    int side = -1;
+                    for (;;) {  // along the grid line while the same one side is occupied (no pinch point)
                         const bool s1 = di ? grid.blocked(wj - 1, di > 0 ? wi : wi - 1) : grid.blocked(dj > 0 ? wj : wj - 1, wi - 1);
                         const bool s2 = di ? grid.blocked(wj, di > 0 ? wi : wi - 1) : grid.blocked(dj > 0 ? wj : wj - 1, wi);
-                        if (s1 == s2) break;
+                        if (s1 == s2 || (side >= 0 && side != int(s1))) break;
+                        side = int(s1);
                         wi += di;
                         wj += dj;
                         if (convex(wi, wj)) {
