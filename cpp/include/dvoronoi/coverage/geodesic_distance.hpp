@@ -31,7 +31,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <queue>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -46,8 +46,6 @@ struct GeodesicField {
     std::vector<std::int64_t> anchor;    //!< per pixel: last bend point of its path, -1 if not reached
     std::vector<double> vertex_distance; //!< per corner vertex (+inf unless it became an anchor)
     std::vector<std::int64_t> vertex_parent;  //!< per corner vertex: the anchor before it
-    std::vector<std::int64_t> relay_parent;   //!< per pixel used as a relay: its anchor when it relayed
-    std::vector<double> relay_distance;       //!< per pixel used as a relay: its distance when it relayed
     std::vector<PixelPoint> points;      //!< the sources
 
     std::int64_t vertices() const { return std::int64_t(rows + 1) * (cols + 1); }
@@ -69,7 +67,7 @@ struct GeodesicField {
         const std::int64_t n = sources, V = vertices();
         if (a < n) return 0.0;
         if (a < n + V) return vertex_distance[static_cast<std::size_t>(a - n)];
-        return relay_distance[static_cast<std::size_t>(a - n - V)];
+        return distance[static_cast<std::size_t>(a - n - V)];  // a relay: its pixel's own distance
     }
 
     //! The anchor before anchor `a` on its path (-1 for a source).
@@ -77,7 +75,7 @@ struct GeodesicField {
         const std::int64_t n = sources, V = vertices();
         if (a < n) return -1;
         if (a < n + V) return vertex_parent[static_cast<std::size_t>(a - n)];
-        return relay_parent[static_cast<std::size_t>(a - n - V)];
+        return anchor[static_cast<std::size_t>(a - n - V)];
     }
 };
 
@@ -87,12 +85,44 @@ struct WaveEntry {
     double d;
     std::int32_t label;
     std::int64_t node;  // pixel id, or P + vertex id
-    bool operator>(const WaveEntry& o) const {
-        if (d != o.d) return d > o.d;
-        if (label != o.label) return label > o.label;
-        return node > o.node;
-    }
 };
+
+// A bucket queue: entries are taken by distance in steps of WIDTH (first in, first out within a step),
+// a fraction of the smallest step of the wavefront, so the order is Dijkstra's up to that step; an entry
+// that later improves is taken again (label correcting), so what is taken out of order is corrected.
+// O(1) per entry, against O(log n) for a binary heap.
+class BucketQueue {
+public:
+    static constexpr double WIDTH = 0.25;
+    void push(const WaveEntry& e) {
+        auto k = static_cast<std::size_t>(e.d / WIDTH);
+        if (k < current_) k = current_;
+        if (k >= buckets_.size()) buckets_.resize(k + 1);
+        buckets_[k].push_back(e);
+        ++size_;
+    }
+    bool empty() const { return size_ == 0; }
+    void clear() {
+        for (auto& b : buckets_) b.clear();
+        current_ = at_ = size_ = 0;
+    }
+    //! The next entry (call only when not empty).
+    WaveEntry pop() {
+        while (at_ >= buckets_[current_].size()) {
+            buckets_[current_].clear();
+            at_ = 0;
+            ++current_;
+        }
+        --size_;
+        return buckets_[current_][at_++];
+    }
+
+private:
+    std::vector<std::vector<WaveEntry>> buckets_;
+    std::size_t current_ = 0, at_ = 0, size_ = 0;
+};
+
+inline double dist2d(double x, double y) { return std::sqrt(x * x + y * y); }
 
 inline bool better(double d, std::int32_t l, double d0, std::int32_t l0) {
     return d < d0 || (d == d0 && l < l0);
@@ -135,51 +165,90 @@ inline std::vector<std::uint8_t> chessboard_clearance(const OccupancyView& g, in
     return d;
 }
 
+//! Buffers of geodesic_field kept between calls on the same map (a Lloyd run calls it every step): the
+//! map's convex corners and clearance, and the per-pixel and per-corner state, so no call allocates.
+class GeodesicWorkspace {
+public:
+    // The wavefront's state of a pixel, 16 bytes (it is touched in random order: one cache miss).
+    struct PixelState {
+        double d = std::numeric_limits<double>::infinity();
+        std::int32_t anchor = -1;
+        std::int32_t label : 31;
+        std::uint32_t done : 1;
+        PixelState() : label(-1), done(0) {}
+    };
+    static constexpr std::int32_t SIGHT = 4;  // see geodesic_field
+
+    GeodesicWorkspace(const std::uint8_t* occ, std::int32_t rows, std::int32_t cols) : occ_(occ), rows_(rows), cols_(cols) {
+        const OccupancyView grid{occ, rows, cols};
+        const std::int64_t V = std::int64_t(rows + 1) * (cols + 1);
+        // A convex corner: exactly one of the four pixels around vertex (i, j) is occupied.
+        corner.assign(static_cast<std::size_t>(V), 0);
+        for (std::int64_t j = 0; j <= rows; ++j)
+            for (std::int64_t i = 0; i <= cols; ++i)
+                corner[j * (cols + 1) + i] =
+                    (grid.blocked(j - 1, i - 1) + grid.blocked(j - 1, i) + grid.blocked(j, i - 1) + grid.blocked(j, i)) == 1;
+        clear = chessboard_clearance(grid, SIGHT + 2);
+    }
+    bool same_map(const std::uint8_t* occ, std::int32_t rows, std::int32_t cols) const {
+        return occ == occ_ && rows == rows_ && cols == cols_;
+    }
+
+    std::vector<std::uint8_t> corner, clear, vdone;
+    std::vector<PixelState> st;
+    std::vector<std::int32_t> vertex_label;
+    detail::BucketQueue queue;
+
+private:
+    const std::uint8_t* occ_;
+    std::int32_t rows_, cols_;
+};
+
 /*! Multi-source geodesic distance, range-limited to `limit` pixel units (+inf: no limit).
     `occ` is rows x cols, row-major, nonzero = occupied. Every source must lie in a free pixel (the pixel
-    floor(u), floor(w)); the caller checks it. Pixels farther than `limit` stay unreached. */
-inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int32_t cols,
-                                    const std::vector<PixelPoint>& sources,
-                                    double limit = std::numeric_limits<double>::infinity()) {
+    floor(u), floor(w)); the caller checks it. Pixels farther than `limit` stay unreached. `workspace`
+    (optional) must have been made for this map; it saves the allocations between calls. */
+inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int32_t cols,
+                           const std::vector<PixelPoint>& sources, double limit, GeodesicField& f,
+                           GeodesicWorkspace& ws) {
+    if (!ws.same_map(occ, rows, cols)) throw std::invalid_argument("geodesic_field: the workspace is for another map");
     using detail::better;
+    using detail::dist2d;
     constexpr double inf = std::numeric_limits<double>::infinity();
     const OccupancyView grid{occ, rows, cols};
-    GeodesicField f;
     f.rows = rows;
     f.cols = cols;
     f.sources = static_cast<std::int32_t>(sources.size());
     f.points = sources;
     const std::int64_t P = std::int64_t(rows) * cols, V = f.vertices(), n = f.sources;
-    f.distance.assign(static_cast<std::size_t>(P), inf);
-    f.label.assign(static_cast<std::size_t>(P), -1);
-    f.anchor.assign(static_cast<std::size_t>(P), -1);
+    if (n + V + P >= (std::int64_t(1) << 31) || n >= (std::int64_t(1) << 30))
+        throw std::invalid_argument("geodesic_field: the map is too large (more than 2^31 pixels and corners)");
+    auto& st = ws.st;
+    st.assign(static_cast<std::size_t>(P), GeodesicWorkspace::PixelState());
     f.vertex_distance.assign(static_cast<std::size_t>(V), inf);
     f.vertex_parent.assign(static_cast<std::size_t>(V), -1);
-    f.relay_parent.assign(static_cast<std::size_t>(P), -1);
-    f.relay_distance.assign(static_cast<std::size_t>(P), inf);
-    std::vector<std::int32_t> vertex_label(static_cast<std::size_t>(V), -1);
-    std::vector<std::uint8_t> done(static_cast<std::size_t>(P), 0), vdone(static_cast<std::size_t>(V), 0);
-
-    std::priority_queue<detail::WaveEntry, std::vector<detail::WaveEntry>, std::greater<detail::WaveEntry>> heap;
+    auto& vertex_label = ws.vertex_label;
+    vertex_label.assign(static_cast<std::size_t>(V), -1);
+    auto& vdone = ws.vdone;
+    vdone.assign(static_cast<std::size_t>(V), 0);
+    detail::BucketQueue& heap = ws.queue;
+    heap.clear();
     auto offer_pixel = [&](std::int64_t q, double d, std::int32_t l, std::int64_t a) {
-        if (!(d <= limit) || !better(d, l, f.distance[q], f.label[q])) return;
-        f.distance[q] = d;
-        f.label[q] = l;
-        f.anchor[q] = a;
-        done[q] = 0;
+        if (!(d <= limit) || !better(d, l, st[q].d, st[q].label)) return;
+        st[q].d = d;
+        st[q].label = l;
+        st[q].anchor = static_cast<std::int32_t>(a);
+        st[q].done = 0;
         heap.push({d, l, q});
     };
-    // A convex corner: exactly one of the four pixels around vertex (i, j) is occupied.
-    auto convex = [&](std::int64_t i, std::int64_t j) {
-        const int k = grid.blocked(j - 1, i - 1) + grid.blocked(j - 1, i) + grid.blocked(j, i - 1) + grid.blocked(j, i);
-        return k == 1;
-    };
+    const auto& corner = ws.corner;
+    auto convex = [&](std::int64_t i, std::int64_t j) { return corner[j * (cols + 1) + i] != 0; };
 
     for (std::int32_t k = 0; k < n; ++k) {
         const auto& s = sources[static_cast<std::size_t>(k)];
         const auto c = static_cast<std::int64_t>(std::floor(s.u)), r = static_cast<std::int64_t>(std::floor(s.w));
         if (grid.blocked(r, c)) continue;  // the caller rejects this; never start inside a wall
-        offer_pixel(r * cols + c, std::hypot(c + 0.5 - s.u, r + 0.5 - s.w), k, k);
+        offer_pixel(r * cols + c, dist2d(c + 0.5 - s.u, r + 0.5 - s.w), k, k);
     }
 
     // Where the segment from pixel q's centre towards point A leaves q's square: -2 if A lies in q's
@@ -215,10 +284,10 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
     // The local test accepts a segment that p's own sight line does not cut but q's does: a wall corner
     // inside the thin wedge between them. Walking q's segment exactly over its first SIGHT pixels (only
     // for pixels that close to a wall) bounds the error such a corner can cause to ~1/(8 SIGHT) pixel.
-    constexpr std::int32_t SIGHT = 4;
-    const std::vector<std::uint8_t> clear = chessboard_clearance(grid, SIGHT + 2);
+    constexpr std::int32_t SIGHT = GeodesicWorkspace::SIGHT;
+    const auto& clear = ws.clear;
     auto sight_free = [&](const PixelPoint& cq, const PixelPoint& A) {
-        const double len = std::hypot(A.u - cq.u, A.w - cq.w);
+        const double len = dist2d(A.u - cq.u, A.w - cq.w);
         if (len <= SIGHT) return segment_free(grid, cq, A);
         const double t = SIGHT / len;
         return segment_free(grid, cq, {cq.u + t * (A.u - cq.u), cq.w + t * (A.w - cq.w)});
@@ -236,8 +305,8 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
             for (std::int64_t i = std::max<std::int64_t>(0, qc + 1 - RESCUE); i <= std::min<std::int64_t>(cols, qc + RESCUE); ++i) {
                 const std::int64_t v = j * (cols + 1) + i;
                 if (!vdone[v]) continue;
-                const double d = f.vertex_distance[v] + std::hypot(cq.u - double(i), cq.w - double(j));
-                if (!(d <= limit) || !better(d, vertex_label[v], f.distance[q], f.label[q])) continue;
+                const double d = f.vertex_distance[v] + dist2d(cq.u - double(i), cq.w - double(j));
+                if (!(d <= limit) || !better(d, vertex_label[v], st[q].d, st[q].label)) continue;
                 if (segment_free(grid, cq, {double(i), double(j)})) offer_pixel(q, d, vertex_label[v], n + v);
             }
     };
@@ -246,13 +315,12 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
     static constexpr int DC[8] = {0, 0, -1, 1, -1, 1, -1, 1};
 
     auto relay = [&](std::int64_t p, std::int64_t q, bool diagonal) {
-        offer_pixel(q, f.distance[p] + (diagonal ? 1.4142135623730951 : 1.0), f.label[p], n + V + p);
+        offer_pixel(q, st[p].d + (diagonal ? 1.4142135623730951 : 1.0), st[p].label, n + V + p);
     };
 
     {
         while (!heap.empty()) {
-            const detail::WaveEntry e = heap.top();
-            heap.pop();
+            const detail::WaveEntry e = heap.pop();
             if (e.node >= P) {  // a corner vertex: its three free pixels see it
                 const std::int64_t v = e.node - P;
                 if (vdone[v] || e.d != f.vertex_distance[v] || e.label != vertex_label[v]) continue;
@@ -284,7 +352,7 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
                 for (std::int64_t wj = std::max<std::int64_t>(0, j - 2); wj <= std::min<std::int64_t>(rows, j + 2); ++wj)
                     for (std::int64_t wi = std::max<std::int64_t>(0, i - 2); wi <= std::min<std::int64_t>(cols, i + 2); ++wi) {
                         if ((wi == i && wj == j) || !convex(wi, wj)) continue;
-                        const double d = e.d + std::hypot(double(wi - i), double(wj - j));
+                        const double d = e.d + dist2d(double(wi - i), double(wj - j));
                         const std::int64_t w = wj * (cols + 1) + wi;
                         if (vdone[w] || !(d <= limit) || !better(d, e.label, f.vertex_distance[w], vertex_label[w])) continue;
                         if (segment_free(grid, {double(i), double(j)}, {double(wi), double(wj)})) offer_vertex(wi, wj, d, e.label, n + v);
@@ -292,13 +360,12 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
                 continue;
             }
             const std::int64_t p = e.node;
-            if (done[p] || e.d != f.distance[p] || e.label != f.label[p]) continue;
-            done[p] = 1;
-            const std::int64_t a = f.anchor[p];
-            f.relay_parent[p] = a;
-            f.relay_distance[p] = e.d;
+            if (st[p].done || e.d != st[p].d || e.label != st[p].label) continue;
+            st[p].done = 1;
+            const std::int64_t a = st[p].anchor;
             const PixelPoint A = f.anchor_point(a);
-            const double Da = f.anchor_distance(a);
+            // a relay's distance is its pixel's (it relayed when it was taken, at that distance)
+            const double Da = a >= n + V ? st[a - n - V].d : f.anchor_distance(a);
             const std::int64_t pr = p / cols, pc = p % cols;
             // First the neighbours whose line of sight to the anchor runs through p (or that hold the
             // anchor in their square), then the others: their back-trace pixel has the anchor already
@@ -312,11 +379,11 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
                 const bool diagonal = k >= 4;
                 if (diagonal && grid.blocked(qr, pc) && grid.blocked(pr, qc)) continue;  // pinch point
                 const std::int64_t q = qr * cols + qc;
-                if (done[q] && f.distance[q] <= e.d) continue;  // settled before p: p cannot improve it
+                if (st[q].done && st[q].d <= e.d) continue;  // settled before p: p cannot improve it
                 const std::int64_t nb = back_trace(qr, qc, A);
                 if (nb == -2 || nb == p) {
                     if (near_sight_free(qr, qc, A)) {
-                        offer_pixel(q, Da + std::hypot(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
+                        offer_pixel(q, Da + dist2d(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
                     } else {
                         rescue(qr, qc);
                         relay(p, q, diagonal);
@@ -331,12 +398,12 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
             for (int t = 0; t < nlater; ++t) {
                 const int k = static_cast<int>(later[t] >> 40);
                 const std::int64_t nb = later[t] & ((std::int64_t(1) << 40) - 1);
-                if (f.anchor[nb] == a) continue;
+                if (st[nb].anchor == a) continue;
                 const std::int64_t qr = pr + DR[k], qc = pc + DC[k], q = qr * cols + qc;
                 const PixelPoint cq{qc + 0.5, qr + 0.5};
-                const double d = Da + std::hypot(cq.u - A.u, cq.w - A.w);
+                const double d = Da + dist2d(cq.u - A.u, cq.w - A.w);
                 // a relay through p is never shorter than the straight segment: nothing to offer
-                if (!(d <= limit) || !better(d, e.label, f.distance[q], f.label[q])) continue;
+                if (!(d <= limit) || !better(d, e.label, st[q].d, st[q].label)) continue;
                 if (segment_free(grid, cq, A)) {
                     offer_pixel(q, d, e.label, a);
                 } else {
@@ -352,10 +419,27 @@ inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, 
                 const double sx = (pc + 0.5) - double(i), sy = (pr + 0.5) - double(j);
                 if ((A.u - double(i)) * sx < 0 || (A.w - double(j)) * sy < 0) continue;
                 if (!sight_free({double(i), double(j)}, A)) continue;
-                offer_vertex(i, j, Da + std::hypot(A.u - double(i), A.w - double(j)), e.label, a);
+                offer_vertex(i, j, Da + dist2d(A.u - double(i), A.w - double(j)), e.label, a);
             }
         }
     }
+    f.distance.resize(static_cast<std::size_t>(P));
+    f.label.resize(static_cast<std::size_t>(P));
+    f.anchor.resize(static_cast<std::size_t>(P));
+    for (std::size_t q = 0; q < st.size(); ++q) {
+        f.distance[q] = st[q].d;
+        f.label[q] = st[q].label;
+        f.anchor[q] = st[q].anchor;
+    }
+}
+
+//! geodesic_field with a workspace of its own.
+inline GeodesicField geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int32_t cols,
+                                    const std::vector<PixelPoint>& sources,
+                                    double limit = std::numeric_limits<double>::infinity()) {
+    GeodesicWorkspace ws(occ, rows, cols);
+    GeodesicField f;
+    geodesic_field(occ, rows, cols, sources, limit, f, ws);
     return f;
 }
 

@@ -33,7 +33,8 @@ public:
     GeodesicLloyd(std::vector<std::uint8_t> occ, std::int32_t rows, std::int32_t cols, std::vector<PixelPoint> agents,
                   double limit, std::vector<double> weight, double gain, int workers, int max_halvings = 12)
         : occ_(std::move(occ)), rows_(rows), cols_(cols), points_(std::move(agents)), limit_(limit),
-          weight_(std::move(weight)), gain_(gain), workers_(std::max(1, workers)), max_halvings_(max_halvings) {
+          weight_(std::move(weight)), gain_(gain), workers_(std::max(1, workers)), max_halvings_(max_halvings),
+          workspace_(occ_.data(), rows, cols) {
         if (occ_.size() != std::size_t(rows) * cols) throw std::invalid_argument("occupancy size does not match rows x cols");
         if (!weight_.empty() && weight_.size() != occ_.size())
             throw std::invalid_argument("density must have one value per pixel");
@@ -88,12 +89,11 @@ public:
                 const PixelPoint p = point_along(path[i], a * length[i]);
                 if (pixel_of(p) >= 0) trial[i] = p;  // a point on a wall's boundary stays where it was
             }
-            GeodesicField f;
             GeodesicMoments m;
-            evaluate(trial, f, m);
+            evaluate(trial, trial_field_, m);
             if (m.cost <= h0) {
                 points_ = std::move(trial);
-                field_ = std::move(f);
+                std::swap(field_, trial_field_);  // both keep their buffers for the next step
                 moments_ = std::move(m);
                 last_halvings_ = h;
                 break;
@@ -119,8 +119,8 @@ private:
         return occ_[static_cast<std::size_t>(q)] ? -1 : q;
     }
 
-    void evaluate(const std::vector<PixelPoint>& pts, GeodesicField& f, GeodesicMoments& m) const {
-        f = geodesic_field(occ_.data(), rows_, cols_, pts, limit_);
+    void evaluate(const std::vector<PixelPoint>& pts, GeodesicField& f, GeodesicMoments& m) {
+        geodesic_field(occ_.data(), rows_, cols_, pts, limit_, f, workspace_);
         m = geodesic_moments(f, weight_.empty() ? nullptr : weight_.data(), reachable_.data(), limit_, workers_);
     }
 
@@ -131,8 +131,9 @@ private:
     std::vector<double> weight_;
     double gain_;
     int workers_, max_halvings_;
+    GeodesicWorkspace workspace_;
     std::vector<std::uint8_t> reachable_;
-    GeodesicField field_;
+    GeodesicField field_, trial_field_;
     GeodesicMoments moments_;
     int last_halvings_ = 0;
     std::int64_t last_stuck_ = 0;
