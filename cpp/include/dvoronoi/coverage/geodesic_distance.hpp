@@ -130,41 +130,6 @@ inline bool better(double d, std::int32_t l, double d0, std::int32_t l0) {
 
 }  // namespace detail
 
-/*! Chessboard distance from each pixel to the nearest occupied pixel or the outside of the map (1 for a
-    pixel next to a wall), capped at `cap` (at most 255). Two raster passes. */
-inline std::vector<std::uint8_t> chessboard_clearance(const OccupancyView& g, int cap) {
-    const std::int64_t rows = g.rows, cols = g.cols;
-    std::vector<std::uint8_t> d(static_cast<std::size_t>(rows * cols));
-    for (std::int64_t r = 0; r < rows; ++r)
-        for (std::int64_t c = 0; c < cols; ++c) {
-            if (g.blocked(r, c)) {
-                d[r * cols + c] = 0;
-                continue;
-            }
-            const std::int64_t edge = std::min(std::min(r, c), std::min(rows - 1 - r, cols - 1 - c)) + 1;
-            int v = static_cast<int>(std::min<std::int64_t>(edge, cap));
-            if (r > 0) {
-                v = std::min(v, d[(r - 1) * cols + c] + 1);
-                if (c > 0) v = std::min(v, d[(r - 1) * cols + c - 1] + 1);
-                if (c + 1 < cols) v = std::min(v, d[(r - 1) * cols + c + 1] + 1);
-            }
-            if (c > 0) v = std::min(v, d[r * cols + c - 1] + 1);
-            d[r * cols + c] = static_cast<std::uint8_t>(v);
-        }
-    for (std::int64_t r = rows - 1; r >= 0; --r)
-        for (std::int64_t c = cols - 1; c >= 0; --c) {
-            int v = d[r * cols + c];
-            if (r + 1 < rows) {
-                v = std::min(v, d[(r + 1) * cols + c] + 1);
-                if (c > 0) v = std::min(v, d[(r + 1) * cols + c - 1] + 1);
-                if (c + 1 < cols) v = std::min(v, d[(r + 1) * cols + c + 1] + 1);
-            }
-            if (c + 1 < cols) v = std::min(v, d[r * cols + c + 1] + 1);
-            d[r * cols + c] = static_cast<std::uint8_t>(v);
-        }
-    return d;
-}
-
 //! Buffers of geodesic_field kept between calls on the same map (a Lloyd run calls it every step): the
 //! map's convex corners and clearance, and the per-pixel and per-corner state, so no call allocates.
 class GeodesicWorkspace {
@@ -177,7 +142,6 @@ public:
         std::uint32_t done : 1;
         PixelState() : label(-1), done(0) {}
     };
-    static constexpr std::int32_t SIGHT = 4;  // see geodesic_field
 
     GeodesicWorkspace(const std::uint8_t* occ, std::int32_t rows, std::int32_t cols) : occ_(occ), rows_(rows), cols_(cols) {
         const OccupancyView grid{occ, rows, cols};
@@ -188,7 +152,7 @@ public:
             for (std::int64_t i = 0; i <= cols; ++i)
                 corner[j * (cols + 1) + i] =
                     (grid.blocked(j - 1, i - 1) + grid.blocked(j - 1, i) + grid.blocked(j, i - 1) + grid.blocked(j, i)) == 1;
-        clear = chessboard_clearance(grid, SIGHT + 2);
+        clear = chessboard_clearance(grid, 255);
     }
     bool same_map(const std::uint8_t* occ, std::int32_t rows, std::int32_t cols) const {
         return occ == occ_ && rows == rows_ && cols == cols_;
@@ -281,23 +245,15 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
         heap.push({d, l, P + v});
     };
 
-    // The local test accepts a segment that p's own sight line does not cut but q's does: a wall corner
-    // inside the thin wedge between them. Walking q's segment exactly over its first SIGHT pixels (only
-    // for pixels that close to a wall) bounds the error such a corner can cause to ~1/(8 SIGHT) pixel.
-    constexpr std::int32_t SIGHT = GeodesicWorkspace::SIGHT;
+    // The local test (the segment leaves q into a pixel holding the anchor) is necessary, not sufficient:
+    // a chain of such pixels can bend around a wall that q's own segment crosses. So every segment an
+    // anchor is offered along is then walked exactly (segment_free_traced: long strides through open
+    // space, pixel by pixel only next to walls).
     const auto& clear = ws.clear;
-    auto sight_free = [&](const PixelPoint& cq, const PixelPoint& A) {
-        const double len = dist2d(A.u - cq.u, A.w - cq.w);
-        if (len <= SIGHT) return segment_free(grid, cq, A);
-        const double t = SIGHT / len;
-        return segment_free(grid, cq, {cq.u + t * (A.u - cq.u), cq.w + t * (A.w - cq.w)});
-    };
-    auto near_sight_free = [&](std::int64_t qr, std::int64_t qc, const PixelPoint& A) {
-        return clear[static_cast<std::size_t>(qr * cols + qc)] > SIGHT + 1 || sight_free({qc + 0.5, qr + 0.5}, A);
-    };
+    auto sight_free = [&](const PixelPoint& cq, const PixelPoint& A) { return segment_free_traced(grid, clear, cq, A); };
     // Where sight to the anchor is blocked, the path bends at a corner nearby, which may belong to no
     // neighbour (a shadow thinner than a pixel): try the settled corners within RESCUE pixels, exactly.
-    constexpr std::int64_t RESCUE = 4;
+    constexpr std::int64_t RESCUE = 4, CORNER_WINDOW = 6;
     auto rescue = [&](std::int64_t qr, std::int64_t qc) {
         const std::int64_t q = qr * cols + qc;
         const PixelPoint cq{qc + 0.5, qr + 0.5};
@@ -309,6 +265,16 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
                 if (!(d <= limit) || !better(d, vertex_label[v], st[q].d, st[q].label)) continue;
                 if (segment_free(grid, cq, {double(i), double(j)})) offer_pixel(q, d, vertex_label[v], n + v);
             }
+    };
+
+    // The pixel diagonal to q towards A: with the exit pixel, the two pixels q's segment passes between
+    // after leaving q's square (-1 when the segment runs along an axis or through q's corner, where the
+    // exit pixel alone carries it; -3 when that pixel is occupied).
+    auto side_bracket = [&](std::int64_t qr, std::int64_t qc, const PixelPoint& A) -> std::int64_t {
+        const double du = A.u - (qc + 0.5), dw = A.w - (qr + 0.5);
+        if (du == 0 || dw == 0 || std::fabs(du) == std::fabs(dw)) return -1;
+        const std::int64_t r = qr + (dw > 0 ? 1 : -1), c = qc + (du > 0 ? 1 : -1);
+        return grid.blocked(r, c) ? -3 : r * cols + c;
     };
 
     static constexpr int DR[8] = {-1, 1, 0, 0, -1, -1, 1, 1};
@@ -331,7 +297,8 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
                     if (!grid.blocked(r, c)) offer_pixel(r * cols + c, e.d + 0.7071067811865476, e.label, n + v);
                 }
                 // Corners that v sees but whose pixels see v only through a sliver (a path grazing a
-                // wall): those along the two wall edges at v, and those within two pixels, checked exactly.
+                // wall): those along the two wall edges at v, and those within CORNER_WINDOW pixels,
+                // checked exactly (corners are few: this costs little).
                 for (int k = 0; k < 4; ++k) {
                     const std::int64_t di = k == 0 ? 1 : k == 1 ? -1 : 0, dj = k == 2 ? 1 : k == 3 ? -1 : 0;
                     std::int64_t wi = i, wj = j;
@@ -349,8 +316,8 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
                         }
                     }
                 }
-                for (std::int64_t wj = std::max<std::int64_t>(0, j - 2); wj <= std::min<std::int64_t>(rows, j + 2); ++wj)
-                    for (std::int64_t wi = std::max<std::int64_t>(0, i - 2); wi <= std::min<std::int64_t>(cols, i + 2); ++wi) {
+                for (std::int64_t wj = std::max<std::int64_t>(0, j - CORNER_WINDOW); wj <= std::min<std::int64_t>(rows, j + CORNER_WINDOW); ++wj)
+                    for (std::int64_t wi = std::max<std::int64_t>(0, i - CORNER_WINDOW); wi <= std::min<std::int64_t>(cols, i + CORNER_WINDOW); ++wi) {
                         if ((wi == i && wj == j) || !convex(wi, wj)) continue;
                         const double d = e.d + dist2d(double(wi - i), double(wj - j));
                         const std::int64_t w = wj * (cols + 1) + wi;
@@ -381,30 +348,36 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
                 const std::int64_t q = qr * cols + qc;
                 if (st[q].done && st[q].d <= e.d) continue;  // settled before p: p cannot improve it
                 const std::int64_t nb = back_trace(qr, qc, A);
-                if (nb == -2 || nb == p) {
-                    if (near_sight_free(qr, qc, A)) {
-                        offer_pixel(q, Da + dist2d(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
-                    } else {
-                        rescue(qr, qc);
-                        relay(p, q, diagonal);
-                    }
-                } else if (nb == -1) {
+                if (nb == -2) {  // the anchor is in q's closed square
+                    offer_pixel(q, Da + dist2d(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
+                    continue;
+                }
+                if (nb == -1) {
                     rescue(qr, qc);
                     relay(p, q, diagonal);
-                } else {
-                    later[nlater++] = (std::int64_t(k) << 40) | nb;
+                    continue;
                 }
+                const std::int64_t n2 = side_bracket(qr, qc, A);
+                if (p == nb || p == n2) {
+                    // Both brackets see the anchor: then so does q, exactly (module comment).
+                    const std::int64_t other = p == nb ? n2 : nb;
+                    if (n2 == -1 || (other >= 0 && st[other].anchor == a)) {
+                        offer_pixel(q, Da + dist2d(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
+                        continue;
+                    }
+                }
+                later[nlater++] = (std::int64_t(k) << 40) | nb;
             }
             for (int t = 0; t < nlater; ++t) {
                 const int k = static_cast<int>(later[t] >> 40);
                 const std::int64_t nb = later[t] & ((std::int64_t(1) << 40) - 1);
-                if (st[nb].anchor == a) continue;
+                if (nb != p && st[nb].anchor == a) continue;  // the exit pixel holds A: it decides when taken
                 const std::int64_t qr = pr + DR[k], qc = pc + DC[k], q = qr * cols + qc;
                 const PixelPoint cq{qc + 0.5, qr + 0.5};
                 const double d = Da + dist2d(cq.u - A.u, cq.w - A.w);
                 // a relay through p is never shorter than the straight segment: nothing to offer
                 if (!(d <= limit) || !better(d, e.label, st[q].d, st[q].label)) continue;
-                if (segment_free(grid, cq, A)) {
+                if (sight_free(cq, A)) {
                     offer_pixel(q, d, e.label, a);
                 } else {
                     rescue(qr, qc);
