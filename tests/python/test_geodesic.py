@@ -343,3 +343,28 @@ def test_bad_input_is_named():
         dv.coverage.lloyd(good, 3.0, bounds=(0, 0, 50, 30), environment=occ)
     with pytest.raises(ValueError, match=r"points\[1\].*occupied"):
         dv.coverage.LloydStepper([[5.5, 5.5], [24.5, 5.5]], 3.0, environment=occ)
+
+
+# ----------------------------------------------------------------------------------------- CLI
+def test_cli_lloyd_on_a_map_equals_python(tmp_path):
+    from test_cli import CLI, run, write_points
+
+    if CLI is None:
+        pytest.skip("no dvoronoi executable")
+    occ = MAPS["building"](5)
+    path = tmp_path / "floor.map"
+    om.write_movingai_map(path, occ)
+    xy = random_agents(occ, 5, 5) * 0.25 + (2.0, -1.0)
+    pts = write_points(tmp_path / "agents.txt", xy.tolist())
+    res = run("lloyd", pts, "-r", 3.0, "--steps", 6, "--map", path, "--resolution", 0.25, "--origin", 2.0, -1.0,
+              "--trajectory", "-q", "-t", 1)
+    assert res.returncode == 0, res.stderr
+    doc = json.loads(res.stdout)
+    grid = dv.OccupancyGrid(occ, resolution=0.25, origin=(2.0, -1.0))
+    py = dv.coverage.lloyd(xy, 3.0, steps=6, environment=grid, workers=1)
+    assert doc["cost"] == py.cost.tolist()
+    assert np.array_equal(np.array(doc["trajectory"]), py.trajectory)
+    np.testing.assert_array_equal(doc["areas"], py.areas)
+    bad = write_points(tmp_path / "bad.txt", [(2.0 + 0.1, -1.0 + 0.1)])  # the corner pixel is a wall
+    res = run("lloyd", bad, "-r", 3.0, "--map", path, "--resolution", 0.25, "--origin", 2.0, -1.0)
+    assert res.returncode == 2 and "points[0]" in res.stderr and "occupied" in res.stderr

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -36,6 +37,14 @@ struct MapFrame {
     }
 };
 
+namespace detail {
+inline std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.15g", v);
+    return buf;
+}
+}  // namespace detail
+
 /*! Agents in pixel units; throws std::invalid_argument naming `points[i]` when an agent is not finite,
     outside the map, or in an occupied pixel (the pixel containing it; a point on a pixel edge belongs to
     the pixel right of / below it in the image, as floor() says). */
@@ -45,7 +54,7 @@ inline std::vector<PixelPoint> agents_on_map(const std::uint8_t* occ, const MapF
     const OccupancyView g{occ, frame.rows, frame.cols};
     for (std::int64_t i = 0; i < n; ++i) {
         const double x = xy[2 * i], y = xy[2 * i + 1];
-        const std::string name = "points[" + std::to_string(i) + "] = (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+        const std::string name = "points[" + std::to_string(i) + "] = (" + detail::number(x) + ", " + detail::number(y) + ")";
         if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument(name + " is not finite");
         const PixelPoint p = frame.to_pixel(x, y);
         const double c = std::floor(p.u), r = std::floor(p.w);
