@@ -16,7 +16,7 @@ the accuracy of its distances against the exact shortest paths. Prints a markdow
    warehouses; 40 x 40, 1-5 agents, several seeds): relative error of the distances at pixels more
    than 3 px from the sources against tests/python/geodesic_oracle.py (Dijkstra on the visibility
    graph of the sources and the convex corners of occupied pixels), and the share of pixels whose agent
-   differs. The same for the 8-connected Dijkstra, for scale.
+   differs. (For scale: an 8-connected pixel Dijkstra is up to 8.2 % long in open space, by geometry.)
 
 Benchmarks are not tests: nothing here fails on a time. The load average is printed (the machine may
 be shared).
@@ -136,7 +136,6 @@ def speed(args) -> None:
 def accuracy(args) -> None:
     sys.path.insert(0, str(ROOT / "tests" / "python"))
     import geodesic_oracle as O
-    from scipy.sparse.csgraph import dijkstra
 
     def corridor():
         occ = np.zeros((20, 28), bool)
@@ -152,11 +151,11 @@ def accuracy(args) -> None:
             "rooms": lambda s: om.rooms_with_islands(40, seed=s), "cave": lambda s: om.cave(40, seed=s),
             "building": lambda s: om.building(40, seed=s), "warehouse": lambda s: om.warehouse(40, seed=s)}
     print(f"## Accuracy against exact shortest paths ({args.seeds} seeds per map kind, 40 x 40, 1-5 agents)\n")
-    print("| map | pixels > 3 px | dvoronoi max rel. error | mean | agent differs | 8-connected max | mean |")
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    print("| map | pixels > 3 px | max relative error | mean | pixels whose agent differs |")
+    print("| --- | ---: | ---: | ---: | ---: |")
     worst = 0.0
     for name, make in maps.items():
-        mx = sm = cnt = diff = tot = mx8 = sm8 = 0.0
+        mx = sm = cnt = diff = tot = 0.0
         for s in range(args.seeds):
             occ = make(s)
             n = 1 + s % 5
@@ -171,16 +170,12 @@ def accuracy(args) -> None:
             cells = dv.coverage.geodesic_cells(xy, occ)
             m = np.isfinite(best) & (best > 3)
             rel = np.abs(cells.distances[m] - best[m]) / best[m]
-            d8 = dijkstra(pixel_graph(occ), indices=pick[:, 0] * W + pick[:, 1], min_only=True).reshape(H, W)
-            rel8 = np.abs(d8[m] - best[m]) / best[m]
             mx, sm, cnt = max(mx, rel.max()), sm + rel.sum(), cnt + m.sum()
-            mx8, sm8 = max(mx8, rel8.max()), sm8 + rel8.sum()
             reach = np.isfinite(best)
             diff += np.count_nonzero(cells.labels[reach] != exact.argmin(axis=0)[reach])
             tot += reach.sum()
         worst = max(worst, mx)
-        print(f"| {name} | {int(cnt)} | {mx * 100:.2f} % | {sm / cnt * 100:.4f} % | {diff / tot * 100:.3f} % "
-              f"| {mx8 * 100:.1f} % | {sm8 / cnt * 100:.2f} % |")
+        print(f"| {name} | {int(cnt)} | {mx * 100:.2f} % | {sm / cnt * 100:.4f} % | {diff / tot * 100:.3f} % |")
     print(f"\nLargest relative error of dvoronoi: {worst * 100:.2f} %\n")
 
 

@@ -277,6 +277,32 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
         return grid.blocked(r, c) ? -3 : r * cols + c;
     };
 
+    // A convex corner next to a pixel that sees the anchor while the corner does not (the anchor's shadow
+    // edge passes between them): its path bends at a settled corner that may lie farther than any
+    // window, so the settled corners within VERTEX_RESCUE pixels are tried, nearest path first, exactly.
+    constexpr std::int64_t VERTEX_RESCUE = 16;
+    std::vector<std::pair<double, std::int64_t>> found;
+    auto vertex_rescue = [&](std::int64_t i, std::int64_t j) {
+        const std::int64_t v = j * (cols + 1) + i;
+        if (vdone[v]) return;
+        found.clear();
+        for (std::int64_t wj = std::max<std::int64_t>(0, j - VERTEX_RESCUE); wj <= std::min<std::int64_t>(rows, j + VERTEX_RESCUE); ++wj)
+            for (std::int64_t wi = std::max<std::int64_t>(0, i - VERTEX_RESCUE); wi <= std::min<std::int64_t>(cols, i + VERTEX_RESCUE); ++wi) {
+                const std::int64_t w = wj * (cols + 1) + wi;
+                if (!vdone[w] || w == v) continue;
+                const double d = f.vertex_distance[w] + dist2d(double(wi - i), double(wj - j));
+                if (d <= limit && better(d, vertex_label[w], f.vertex_distance[v], vertex_label[v])) found.emplace_back(d, w);
+            }
+        std::sort(found.begin(), found.end());
+        for (const auto& [d, w] : found) {
+            const std::int64_t wi = w % (cols + 1), wj = w / (cols + 1);
+            if (segment_free_traced(grid, clear, {double(i), double(j)}, {double(wi), double(wj)})) {
+                offer_vertex(i, j, d, vertex_label[w], n + w);
+                return;
+            }
+        }
+    };
+
     static constexpr int DR[8] = {-1, 1, 0, 0, -1, -1, 1, 1};
     static constexpr int DC[8] = {0, 0, -1, 1, -1, 1, -1, 1};
 
@@ -391,7 +417,10 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
                 if (vdone[v] || !convex(i, j)) continue;
                 const double sx = (pc + 0.5) - double(i), sy = (pr + 0.5) - double(j);
                 if ((A.u - double(i)) * sx < 0 || (A.w - double(j)) * sy < 0) continue;
-                if (!sight_free({double(i), double(j)}, A)) continue;
+                if (!sight_free({double(i), double(j)}, A)) {
+                    vertex_rescue(i, j);
+                    continue;
+                }
                 offer_vertex(i, j, Da + dist2d(A.u - double(i), A.w - double(j)), e.label, a);
             }
         }
