@@ -177,7 +177,7 @@ class GeodesicCells(Result):
         n = len(self)
         palette = plt.get_cmap("tab20")(np.arange(20) % 20)
         palette[:, :3] = 0.55 + 0.45 * palette[:, :3]  # pale, so agents and walls stand out
-        img = np.where(self.labels >= 0, self.labels % 20, np.nan)
+        img = np.where(self.labels >= 0, (self.labels * 7) % 20, np.nan)  # neighbours' colours apart
         ax.imshow(img, extent=extent, cmap=ListedColormap(palette), vmin=0, vmax=19, interpolation="nearest",
                   zorder=0, gid="dvoronoi-geodesic-cells")
         walls = np.where(self.grid.occupied, 1.0, np.nan)
