@@ -6,6 +6,7 @@ graph of the sources and the convex corners of occupied pixels (shapely decides 
 from __future__ import annotations
 
 import json
+import pickle
 
 import numpy as np
 import pytest
@@ -312,6 +313,9 @@ def test_lloyd_result_surface(tmp_path):
     assert run.cost.shape == (7,) and run.steps == 6
     doc = json.loads(run.to_json())
     assert doc["steps"] == 6 and len(doc["cells"]) == 3 and len(doc["labels"]) == occ.shape[0]
+    again = pickle.loads(pickle.dumps(run))
+    assert np.array_equal(again.labels, run.labels) and np.array_equal(again.cost, run.cost)
+    assert again.neighbors(0).tolist() == run.neighbors(0).tolist()
     import matplotlib
 
     matplotlib.use("Agg")
