@@ -39,6 +39,7 @@ MAPS = {
     "rooms": lambda s: om.rooms_with_islands(32, seed=s),
     "cave": lambda s: om.cave(32, seed=s),
     "building": lambda s: om.building(32, seed=s),
+    "warehouse": lambda s: om.warehouse(32, seed=s),
 }
 
 
@@ -66,11 +67,12 @@ def pixel_of(grid: dv.OccupancyGrid, xy: np.ndarray) -> np.ndarray:
 
 # ----------------------------------------------------------------------------------------- accuracy
 @pytest.mark.parametrize("name", sorted(MAPS))
-@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("seed", range(6))
 def test_distances_match_exact_shortest_paths(name, seed):
-    """Within 2 % of the exact shortest path at pixels more than 3 pixels from the sources (measured:
-    below 0.6 %), never an unreachable pixel reached or the reverse, and labels equal wherever the
-    nearest agent wins by more than the error allows."""
+    """Never shorter than the exact shortest path (every path used is real), within 2 % of it at pixels
+    more than 3 pixels from the sources (docs/geodesic_coverage.md: at most 1.6 % measured), never an
+    unreachable pixel reached or the reverse, and labels equal wherever the nearest agent wins by more
+    than the error allows."""
     occ = MAPS[name](seed)
     n = 1 + seed % 4
     xy = random_agents(occ, n, seed)
@@ -79,6 +81,8 @@ def test_distances_match_exact_shortest_paths(name, seed):
     cells = dv.coverage.geodesic_cells(xy, occ)
     assert np.array_equal(np.isfinite(best), np.isfinite(cells.distances))
     far = np.isfinite(best) & (best > 3)
+    reach = np.isfinite(best)
+    assert np.all(cells.distances[reach] >= best[reach] * (1 - 1e-12))
     rel = np.abs(cells.distances[far] - best[far]) / best[far]
     assert rel.max() <= 0.02, f"{name}/{seed}: max relative error {rel.max():.4f}"
     second = np.sort(exact, axis=0)[1] if n > 1 else np.full_like(best, np.inf)
