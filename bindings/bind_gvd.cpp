@@ -61,8 +61,8 @@ struct NotJson {
 };
 
 /// Python objects (dict, list, tuple, str, int, float, bool, None, numpy arrays and scalars) as a
-/// JSON value, without the text round trip: json.dumps and parsing the text took 4 ms of a 65 ms
-/// diagram for 500 obstacles. Written by hand: pybind11_json would be one more dependency for
+/// JSON value, without the text round trip (json.dumps and parsing the text again cost a noticeable
+/// part of a diagram of many obstacles). Written by hand: pybind11_json would be one more dependency for
 /// twenty lines.
 nlohmann::json to_json(py::handle o) {
     using nlohmann::json;
@@ -273,6 +273,7 @@ void bind_gvd(py::module_& m) {
             d["peak_worker_bytes"] = s.peak_worker_bytes;
             d["worker_seconds"] = s.worker_seconds;
             d["worker_cpu_seconds"] = s.worker_cpu_seconds;
+            d["worker_evaluations"] = s.worker_evaluations;
             return d;
         })
         .def("to_json", [](PyResult& p, int indent) { return dvoronoi::io::gvd_to_json(p.graph()).dump(indent); },

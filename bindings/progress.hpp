@@ -5,7 +5,7 @@
 // re-raised after the computation.
 #pragma once
 
-#include "dvoronoi/partition/limited_partition.hpp"
+#include "dvoronoi/core/parallel.hpp"
 
 #include <pybind11/pybind11.h>
 

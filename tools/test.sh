@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fresh machine -> every test: system packages, the Python package with its test extras, the C++
+# Fresh machine -> every test: system packages, the Python package with its test extras, the wheel, the C++
 # tests (unit tests and the CGAL oracle target) under ctest, the C++ unit tests again under
 # AddressSanitizer and UndefinedBehaviorSanitizer, the docs site, then pytest (API, CLI, oracle, docs).
 set -euo pipefail
@@ -11,6 +11,10 @@ python3 -m pip install --quiet "mpi4py>=3.1"
 if ! python3 -c "from mpi4py import MPI" 2>/dev/null; then
   python3 -m pip install --quiet --force-reinstall --no-binary mpi4py "mpi4py>=3.1"
 fi
+# The wheel a user would get: its contents (module, program, py.typed, stubs) and a fresh venv that
+# installs it and runs the library, `dvoronoi` and `python -m dvoronoi`.
+python3 -m pip install --quiet "scikit-build-core>=0.10" "pybind11>=2.12"
+bash tools/check_wheel.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DDVORONOI_BUILD_TESTS=ON -DDVORONOI_BUILD_CLI=ON
 cmake --build build -j "$(nproc)"
 ctest --test-dir build --output-on-failure

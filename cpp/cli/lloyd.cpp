@@ -144,6 +144,7 @@ int run_lloyd(const LloydOptions& o) {
     }
 
     nlohmann::json doc;
+    doc["kind"] = "lloyd";  // the result type, as in every result JSON (dv.load reads it back)
     doc["radius"] = o.radius;
     doc["gain"] = o.gain;
     doc["steps"] = o.steps;

@@ -24,7 +24,8 @@ namespace dvoronoi::cli {
 namespace {
 
 struct NetworkOptions {
-    std::string algorithm, points, obstacles, bounds, columns, routing = "gpsr", output, svg;
+    std::string algorithm, points, obstacles, columns, routing = "gpsr", output, svg;
+    std::vector<std::string> bounds;  // XMIN YMIN XMAX YMAX, as in every subcommand (or one deprecated "a,b,c,d")
     double range = 0.0, loss = 0.0, radius = 0.0, anchor_fraction = 0.0;
     std::uint64_t seed = 0;
     std::int64_t budget = 0;
@@ -33,18 +34,28 @@ struct NetworkOptions {
     bool no_route_discovery = false, dv_hop_async = false, anchors_relay = false;
 };
 
-network::Box parse_bounds(const std::string& text) {
+/// --bounds XMIN YMIN XMAX YMAX (the syntax of every subcommand); the older single comma-separated
+/// word XMIN,YMIN,XMAX,YMAX is still read so existing scripts keep working.
+network::Box parse_bounds(const std::vector<std::string>& words) {
+    std::vector<std::string> items = words;
+    if (words.size() == 1 && words[0].find(',') != std::string::npos) {
+        items.clear();
+        std::stringstream ss(words[0]);
+        std::string item;
+        while (std::getline(ss, item, ',')) items.push_back(item);
+    }
+    std::string given;
+    for (const auto& w : words) given += (given.empty() ? "" : " ") + w;
     std::vector<double> v;
-    std::stringstream ss(text);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
+    for (const auto& item : items) {
         char* end = nullptr;
         const double x = std::strtod(item.c_str(), &end);
         if (item.empty() || *end != '\0' || !std::isfinite(x))
-            throw UsageError("--bounds: expected XMIN,YMIN,XMAX,YMAX (finite numbers), got '" + text + "'");
+            throw UsageError("--bounds: expected 4 finite numbers XMIN YMIN XMAX YMAX, got '" + given + "'");
         v.push_back(x);
     }
-    if (v.size() != 4) throw UsageError("--bounds: expected XMIN,YMIN,XMAX,YMAX, got '" + text + "'");
+    if (v.size() != 4)
+        throw UsageError("--bounds: expected 4 numbers XMIN YMIN XMAX YMAX, got " + std::to_string(v.size()));
     const network::Box b{v[0], v[1], v[2], v[3]};
     if (!(b.xmin < b.xmax && b.ymin < b.ymax)) throw UsageError("--bounds: need XMIN < XMAX and YMIN < YMAX");
     return b;
@@ -155,7 +166,6 @@ int run_network(const NetworkOptions& o) {
     std::vector<network::Polygon> cells;
     std::vector<char> highlight;
     std::vector<double> areas;
-    std::vector<std::size_t> nb_count(static_cast<std::size_t>(net.size()), 0);
     if (o.algorithm == "cc") {
         const auto r = network::run_cc(net, run, cc);
         counts = r.counts;
@@ -184,7 +194,6 @@ int run_network(const NetworkOptions& o) {
         } else {
             j["bounds"] = nullptr;
         }
-        for (std::size_t i = 0; i < r.neighbors.size(); ++i) nb_count[i] = r.neighbors[i].size();
     } else if (o.algorithm == "bd07") {
         network::Bd07Options bo;
         bo.route_discovery = !o.no_route_discovery;
@@ -198,7 +207,6 @@ int run_network(const NetworkOptions& o) {
         j["areas"] = areas;
         j["probes"] = r.probes;
         j["route_discoveries"] = r.discoveries;
-        for (std::size_t i = 0; i < r.neighbors.size(); ++i) nb_count[i] = r.neighbors[i].size();
     } else {
         const double R = o.radius > 0.0 ? o.radius : 0.5 * o.range;
         Points positions = net.points;
@@ -232,8 +240,6 @@ int run_network(const NetworkOptions& o) {
         j["dv_hop_received"] = rows(dv_counts.received, dv_counts.types.size());
         j["dropped_coincident"] = r.dropped_coincident;
         areas = r.partition.areas;
-        for (Index i = 0; i < net.size(); ++i)
-            nb_count[static_cast<std::size_t>(i)] = static_cast<std::size_t>(r.partition.indptr[static_cast<std::size_t>(i) + 1] - r.partition.indptr[static_cast<std::size_t>(i)]);
     }
     progress.finish();
     j["message_types"] = counts.types;
@@ -245,7 +251,10 @@ int run_network(const NetworkOptions& o) {
     std::string text;
     if (ext == ".csv") {
         std::ostringstream cs;
-        cs << "node,x,y,neighbors";
+        // The columns of the other writers (io/csv.hpp): 'agent' and the neighbours space-separated, ascending.
+        const std::vector<Index> indptr = j["indptr"].get<std::vector<Index>>();
+        const std::vector<Index> indices = j["indices"].get<std::vector<Index>>();
+        cs << "agent,x,y,neighbors";
         if (!areas.empty()) cs << ",area";
         for (const auto& t : dv_counts.types) cs << ",sent_" << t << ",received_" << t;
         for (const auto& t : counts.types) cs << ",sent_" << t << ",received_" << t;
@@ -253,7 +262,9 @@ int run_network(const NetworkOptions& o) {
         cs.precision(17);
         for (Index i = 0; i < net.size(); ++i) {
             const auto ii = static_cast<std::size_t>(i);
-            cs << i << ',' << net.pos(i).x() << ',' << net.pos(i).y() << ',' << nb_count[ii];
+            cs << i << ',' << net.pos(i).x() << ',' << net.pos(i).y() << ',';
+            for (Index q = indptr[ii]; q < indptr[ii + 1]; ++q)
+                cs << (q > indptr[ii] ? " " : "") << indices[static_cast<std::size_t>(q)];
             if (!areas.empty()) cs << ',' << areas[ii];
             for (std::size_t t = 0; t < dv_counts.types.size(); ++t)
                 cs << ',' << dv_counts.sent[ii * dv_counts.types.size() + t] << ',' << dv_counts.received[ii * dv_counts.types.size() + t];
@@ -291,7 +302,8 @@ Command add_network(CLI::App& parent) {
     sub->add_option("--loss", o->loss, "probability that one try over a link fails (repeated and counted)")->capture_default_str();
     sub->add_option("--seed", o->seed, "seed of the delivery order and of link failures")->capture_default_str();
     sub->add_option("--obstacles", o->obstacles, "file of obstacle segments, 'x0 y0 x1 y1' per line");
-    sub->add_option("--bounds", o->bounds, "XMIN,YMIN,XMAX,YMAX: BD07's region (default: the points' bounding box); CC clips its cells to it");
+    sub->add_option("--bounds", o->bounds, "XMIN YMIN XMAX YMAX: BD07's region (default: the points' bounding box); CC clips its cells to it")
+        ->expected(1, 4);
     sub->add_option("--budget", o->budget, "most transmissions allowed (0 = 10^9); exceeding it is an error");
     sub->add_flag("--no-cap-adjacency", o->no_cap, "CC: do not send capped adjacency lists (Section 2.3, optimisation 1)");
     sub->add_option("--adjacency-cap", o->adjacency_cap, "CC: adjacency list entries sent along")->capture_default_str();

@@ -211,6 +211,9 @@ int run_obstacles(const Args& a, int rank, int size) {
     MPI_Reduce(&local[5], &peak, 1, MPI_UNSIGNED_LONG_LONG, MPI_MAX, 0, MPI_COMM_WORLD);
     std::vector<double> seconds(static_cast<std::size_t>(size));
     MPI_Gather(&traced_seconds, 1, MPI_DOUBLE, seconds.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    std::vector<unsigned long long> evaluations(static_cast<std::size_t>(size));
+    const unsigned long long my_evaluations = local[1] + local[2];
+    MPI_Gather(&my_evaluations, 1, MPI_UNSIGNED_LONG_LONG, evaluations.data(), 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     std::vector<double> cpu_seconds(static_cast<std::size_t>(size));
     MPI_Gather(&traced_cpu, 1, MPI_DOUBLE, cpu_seconds.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     if (rank != 0) return 0;
@@ -230,6 +233,7 @@ int run_obstacles(const Args& a, int rank, int size) {
     r.stats.peak_worker_bytes = peak;
     r.stats.worker_seconds = seconds;
     r.stats.worker_cpu_seconds = cpu_seconds;
+    r.stats.worker_evaluations.assign(evaluations.begin(), evaluations.end());
     gvd::build_graph(r);
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::json doc = io::gvd_to_json(r);

@@ -10,7 +10,8 @@ One agent's cell from the positions it knows (a robot's control step):
 >>> cell.neighbors, cell.area, cell.centroid
 
 Every result answers in the same shape: ``neighbors(i)``, CSR ``indptr``/``indices``, ``areas``,
-``centroids``, ``cell(i)``, ``to_json()``, ``to_geojson()``, ``plot()``.
+``centroids``, ``cell(i)``, ``to_json()``, ``to_geojson()``, ``plot()``, ``__geo_interface__``,
+``to_shapely()``, ``to_geopandas()``; ``dv.load(path)`` reads a result JSON back.
 """
 from ._core import CoincidentError, LimitedCell, Piece, __version__, limited_cell
 from ._partition import LimitedPartition, limited_cells
@@ -23,6 +24,7 @@ from . import distances
 from .distances import DistanceNeighbors, neighbors_from_distances
 from . import coverage
 from . import network
+from ._load import LoadedResult, load
 
 __all__ = [
     "limited_cell",
@@ -48,5 +50,7 @@ __all__ = [
     "DistanceNeighbors",
     "coverage",
     "network",
+    "load",
+    "LoadedResult",
     "__version__",
 ]

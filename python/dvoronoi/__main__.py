@@ -1,8 +1,17 @@
-"""``python -m dvoronoi demo``: the limited cells of the Intel lab motes, with a picture."""
+"""``python -m dvoronoi``: the ``dvoronoi`` command-line program (the same program, same options),
+plus ``python -m dvoronoi demo``: the limited cells of the Intel lab motes, with a picture.
+
+The program is the compiled CLI that ``pip install`` puts next to the interpreter (its scripts
+folder); ``$DVORONOI_CLI`` names another one.
+"""
 from __future__ import annotations
 
 import argparse
+import os
+import shutil
+import subprocess
 import sys
+import sysconfig
 from typing import List, Optional
 
 
@@ -40,7 +49,43 @@ def _demo(args: argparse.Namespace) -> int:
     return 0
 
 
+def cli_path() -> Optional[str]:
+    """The ``dvoronoi`` program: ``$DVORONOI_CLI``, else the one installed with this package (the
+    scripts folder of this interpreter's environment, or the user scheme's), else the PATH's."""
+    env = os.environ.get("DVORONOI_CLI")
+    if env:
+        return env
+    exe = "dvoronoi.exe" if os.name == "nt" else "dvoronoi"
+    folders = [sysconfig.get_path("scripts"), os.path.dirname(sys.executable)]
+    try:
+        folders.append(sysconfig.get_path("scripts", f"{os.name}_user"))
+    except KeyError:  # pragma: no cover - no user scheme on this platform
+        pass
+    for folder in folders:
+        candidate = os.path.join(folder, exe)
+        if os.path.isfile(candidate) and os.access(candidate, os.X_OK):
+            return candidate
+    return shutil.which(exe)
+
+
+def run_cli(argv: List[str]) -> int:
+    """Run the ``dvoronoi`` program with `argv` and return its exit code."""
+    exe = cli_path()
+    if exe is None:
+        print("python -m dvoronoi: error: the dvoronoi program is not installed with this package "
+              "(pip install . builds it; or set DVORONOI_CLI to its path)", file=sys.stderr)
+        return 2
+    try:
+        return subprocess.call([exe, *argv])
+    except OSError as e:
+        print(f"python -m dvoronoi: error: cannot run {exe}: {e}", file=sys.stderr)
+        return 2
+
+
 def main(argv: Optional[List[str]] = None) -> int:
+    args_in = sys.argv[1:] if argv is None else list(argv)
+    if not args_in or args_in[0] != "demo":
+        return run_cli(args_in)  # every subcommand, --help and --version: the CLI itself
     parser = argparse.ArgumentParser(prog="python -m dvoronoi",
                                      description="dvoronoi: exact range-limited Voronoi cells.")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -48,7 +93,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     demo.add_argument("--out", default="dvoronoi_demo.png", help="PNG file to write (default: %(default)s)")
     demo.add_argument("--radius", type=float, default=3.0, help="cell radius R in metres (default: %(default)s)")
     demo.add_argument("--method", choices=["auto", "scan", "chords"], default="auto")
-    args = parser.parse_args(argv)
+    args = parser.parse_args(args_in)
     if args.command == "demo":
         try:
             return _demo(args)

@@ -17,7 +17,7 @@ def _umask() -> int:
 _MODE = 0o666 & ~_umask()
 
 
-def atomic_write(path: PathLike, write: Callable[[IO[bytes]], None]) -> None:
+def atomic_write(path: PathLike, write: Callable[[IO[bytes]], object]) -> None:
     """Call ``write(f)`` on a temporary file next to `path`, then move it over `path`.
 
     On any error the temporary file is removed and `path` is not touched.

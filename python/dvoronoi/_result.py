@@ -3,7 +3,8 @@
 A result that relates agents has ``neighbors(i)`` (int64, ascending unless the result defines an
 order), the relation as CSR arrays ``indptr``/``indices`` (scipy's layout, input order), ``to_csr()``,
 ``to_json(path=None)`` and ``plot(ax=None, ...)``. A result with cells adds ``areas``, ``centroids``,
-``cell(i)`` and ``to_geojson(path=None, tolerance=None)``.
+``cell(i)`` and ``to_geojson(path=None, tolerance=None)``, ``__geo_interface__``, ``to_shapely()``
+and ``to_geopandas()`` (:class:`GeoMixin`).
 
 Subclasses provide the arrays and ``_json_text(indent)``; cell results also provide the flat piece
 arrays (``piece_ptr``, ``piece_neighbor``, ``piece_x``, ``piece_y``, ``piece_span``), ``points`` and
@@ -12,23 +13,30 @@ arrays (``piece_ptr``, ``piece_neighbor``, ``piece_x``, ``piece_y``, ``piece_spa
 from __future__ import annotations
 
 import functools
+import json
 import operator
-from typing import TYPE_CHECKING, Any, Dict, Optional
+from typing import TYPE_CHECKING, Any, Dict, List, Optional
 
 import numpy as np
 
 from ._io import PathLike, atomic_write_text
 
 if TYPE_CHECKING:  # pragma: no cover
+    import geopandas
     import matplotlib.axes
     import scipy.sparse
+    import shapely
 
 
 class Result:
     """Base of every result that relates agents (neighbour relation as CSR arrays)."""
 
-    indptr: np.ndarray
-    indices: np.ndarray
+    if TYPE_CHECKING:  # what every result has; subclasses provide them as attributes or (cached) properties
+        @property
+        def indptr(self) -> np.ndarray: ...
+
+        @property
+        def indices(self) -> np.ndarray: ...
 
     def __len__(self) -> int:
         return int(len(self.indptr) - 1)
@@ -88,18 +96,84 @@ class Result:
         return plotting.plot(self, ax=ax, **kwargs)
 
 
-class CellResult(Result):
+def _import_optional(module: str, caller: str) -> Any:
+    """Import an optional dependency, or say which call needs it and how to install it."""
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ImportError as e:
+        package = module.split(".")[0]
+        raise ImportError(f"{caller} needs {package}, which is not installed: pip install {package}") from e
+
+
+class GeoMixin:
+    """The cells as geometries for the GIS world: ``__geo_interface__`` (read by shapely, geopandas,
+    fiona and others), ``to_shapely()`` and ``to_geopandas()``.
+
+    All three are built from :meth:`to_geojson`'s FeatureCollection: one Feature per agent in input
+    order, polygon rings closed and counter-clockwise, properties ``agent``, the exact ``area`` and the
+    ``neighbors``. Arcs are replaced by inscribed chords no farther than `tolerance` from the arc
+    (default ``radius / 1000``; ``__geo_interface__`` uses the default), so a polygon's area is below
+    the exact ``areas[i]`` by at most ``tolerance`` times the cell's arc length.
+    """
+
+    def _geo_text(self, tolerance: Optional[float]) -> str:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    @property
+    def __geo_interface__(self) -> Dict[str, Any]:
+        """The cells as a GeoJSON FeatureCollection mapping, arcs densified to the default tolerance."""
+        doc: Dict[str, Any] = json.loads(self._geo_text(None))
+        return doc
+
+    def to_shapely(self, tolerance: Optional[float] = None) -> "List[Optional[shapely.Polygon]]":
+        """One ``shapely.Polygon`` per agent in input order (None for a cell without a polygon, such as
+        an unbounded Voronoi cell without ``bounds``), arcs densified to `tolerance` (see
+        :class:`GeoMixin`). Needs shapely."""
+        geometry = _import_optional("shapely.geometry", "to_shapely()")
+        features = json.loads(self._geo_text(tolerance))["features"]
+        return [None if f["geometry"] is None else geometry.shape(f["geometry"]) for f in features]
+
+    def to_geopandas(self, tolerance: Optional[float] = None) -> "geopandas.GeoDataFrame":
+        """The cells as a ``geopandas.GeoDataFrame``, one row per agent (index = agent), columns
+        ``geometry``, ``area`` (exact), ``neighbors`` and any others the GeoJSON properties carry;
+        arcs densified to `tolerance` (see :class:`GeoMixin`). No CRS is set. Needs geopandas."""
+        gpd = _import_optional("geopandas", "to_geopandas()")
+        frame = gpd.GeoDataFrame.from_features(json.loads(self._geo_text(tolerance))["features"])
+        return frame.set_index("agent", drop=True) if "agent" in frame.columns else frame
+
+
+class CellResult(GeoMixin, Result):
     """Base of every result with cells: ``areas``, ``centroids``, ``cell(i)``, GeoJSON export."""
 
-    areas: np.ndarray
-    centroids: np.ndarray
-    points: np.ndarray
-    radius: float
-    piece_ptr: np.ndarray
-    piece_neighbor: np.ndarray
-    piece_x: np.ndarray
-    piece_y: np.ndarray
-    piece_span: np.ndarray
+    if TYPE_CHECKING:  # provided by subclasses as attributes or (cached) properties
+        @property
+        def areas(self) -> np.ndarray: ...
+
+        @property
+        def centroids(self) -> np.ndarray: ...
+
+        @property
+        def points(self) -> np.ndarray: ...
+
+        @property
+        def radius(self) -> float: ...
+
+        @property
+        def piece_ptr(self) -> np.ndarray: ...
+
+        @property
+        def piece_neighbor(self) -> np.ndarray: ...
+
+        @property
+        def piece_x(self) -> np.ndarray: ...
+
+        @property
+        def piece_y(self) -> np.ndarray: ...
+
+        @property
+        def piece_span(self) -> np.ndarray: ...
 
     def cell(self, i: int) -> Any:  # pragma: no cover - abstract
         raise NotImplementedError
@@ -128,3 +202,6 @@ class CellResult(Result):
 
     def _geojson_text(self, tolerance: Optional[float]) -> str:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def _geo_text(self, tolerance: Optional[float]) -> str:
+        return self._geojson_text(tolerance)

@@ -9,6 +9,8 @@ polygon); the library never invents a boundary.
 from __future__ import annotations
 
 import json
+import math
+import warnings
 from functools import cached_property
 from typing import Any, Optional
 
@@ -17,9 +19,9 @@ import numpy as np
 from . import _args, _core
 from ._partition import ProgressArg, progress_callback
 from ._io import PathLike, atomic_write_text
-from ._result import Result
+from ._result import GeoMixin, Result
 
-class VoronoiPartition(Result):
+class VoronoiPartition(GeoMixin, Result):
     """Exact Voronoi neighbours (cells sharing an edge of positive length) and hull flags of n agents.
 
     Attributes
@@ -146,8 +148,21 @@ class VoronoiPartition(Result):
         return np.stack([rows[keep], self.indices[keep]], axis=1)
 
     def delaunay_matrix(self) -> "Any":
-        """The Delaunay graph as a symmetric ``n x n`` ``scipy.sparse.csr_matrix`` of ones."""
+        """Deprecated alias of :meth:`to_csr` (the Delaunay graph as a symmetric ``n x n``
+        ``scipy.sparse.csr_matrix`` of ones): every result names its CSR matrix ``to_csr()``."""
+        warnings.warn("VoronoiPartition.delaunay_matrix() is deprecated; use to_csr()", DeprecationWarning,
+                      stacklevel=2)
         return self.to_csr()
+
+    def _geo_text(self, tolerance: Optional[float]) -> str:
+        # Exact Voronoi cells are polygons (no arcs): `tolerance` is accepted for the shared
+        # signature of to_shapely()/to_geopandas() and has no effect.
+        if tolerance is not None and not (isinstance(tolerance, (int, float)) and tolerance > 0
+                                          and math.isfinite(tolerance)):
+            raise ValueError(f"tolerance must be a positive finite number or None, got {tolerance!r}")
+        text = self.to_geojson()
+        assert text is not None
+        return text
 
     def _json_text(self, indent: Optional[int]) -> str:
         areas = [None if np.isnan(a) else float(a) for a in self.areas]

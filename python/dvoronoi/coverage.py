@@ -243,8 +243,9 @@ class CoverageCells(CellResult):
                 "centroid": tuple(map(float, self.centroids[i]))}
 
     def _json_doc(self) -> dict:
-        return {"radius": self.radius,
+        return {"kind": "coverage_cells", "radius": self.radius,  # "kind": what dv.load reads back
                 "bounds": None if self.bounds is None else self.bounds.tolist(),
+                "points": self.points.tolist(),  # the agents, as the CLI's lloyd JSON has them
                 "cells": [{"agent": i, **{k: v for k, v in self.cell(i).items() if k != "vertices"},
                            "neighbors": self.neighbors(i).tolist()} for i in range(len(self))]}
 
@@ -435,7 +436,7 @@ class LloydResult(CoverageCells):
 
     def _json_doc(self) -> dict:
         doc = super()._json_doc()
-        doc.update({"gain": self.gain, "steps": self.steps, "cost": self.cost.tolist(),
+        doc.update({"kind": "lloyd", "gain": self.gain, "steps": self.steps, "cost": self.cost.tolist(),
                     "frame_steps": self.frame_steps.tolist(), "trajectory": self.trajectory.tolist()})
         return doc
 

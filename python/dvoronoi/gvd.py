@@ -171,7 +171,7 @@ class GridVoronoi(Result):
         """Centers of the Voronoi vertex cells, shape (m, 2)."""
         return self.centers[self.vertices]
 
-    def _dense(self, values: np.ndarray, fill: Any, dtype: Any) -> np.ndarray:
+    def _dense(self, values: Any, fill: Any, dtype: Any) -> np.ndarray:
         out = np.full(self.shape, fill, dtype=dtype)
         out[self.cells[:, 1], self.cells[:, 0]] = values
         return out

@@ -291,6 +291,9 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
         cannot deliver (obstacles); ``route_discoveries`` is how many there were.
     """
 
+    indptr: np.ndarray
+    indices: np.ndarray
+
     def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
                  obstacles: np.ndarray, bounds: Optional[Sequence[float]]) -> None:
         self._init_network(d, points, comm_range, loss, seed, obstacles, "cc")
@@ -444,6 +447,9 @@ class Bd07Result(_CellsMixin, _NetworkMixin, CellResult):
     ``areas``, ``centroids``; ``probes`` vertices probed; message types location, probe, reply.
     """
 
+    indptr: np.ndarray
+    indices: np.ndarray
+
     def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
                  obstacles: np.ndarray, bounds: Optional[Sequence[float]]) -> None:
         self._init_network(d, points, comm_range, loss, seed, obstacles, "bd07")
@@ -479,6 +485,10 @@ class BoundaryScanResult(_CellsMixin, _NetworkMixin, CellResult):
     ``dv_hop_sent``/``dv_hop_received`` count the localisation (anchor_flood, hop_size), and
     ``estimates``, ``localized``, ``position_error``, ``anchors`` describe it.
     """
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    radius: float
 
     def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
                  obstacles: np.ndarray, anchors: Optional[np.ndarray]) -> None:

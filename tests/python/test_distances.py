@@ -353,3 +353,20 @@ def test_three_row_edge_list_is_not_a_matrix():
     bad[0, 1] += 0.1
     with pytest.raises(ValueError, match=r"distances\[\d, \d\].*differ"):
         dv.neighbors_from_distances(bad)
+
+
+def test_serial_number_indices_are_refused_not_allocated():
+    # Before: one row '0 2000000000 1' sized the team by the largest index (2e9 robots: memory
+    # exhausted). Now a clear error with the renumbering; the renumbered list gives the two robots.
+    edges = np.array([[0, 2_000_000_000, 1.0]])
+    with pytest.raises(ValueError, match=r"indices go up to 2000000000 but only 2 robots appear.*np.unique"):
+        dv.neighbors_from_distances(edges)
+    ids, inv = np.unique(edges[:, :2], return_inverse=True)
+    renumbered = edges.copy()
+    renumbered[:, :2] = inv.reshape(-1, 2)
+    r = dv.neighbors_from_distances(renumbered)
+    assert len(r) == 2 and ids.tolist() == [0, 2_000_000_000]
+    assert r.neighbors(0).tolist() == [1] and r.neighbors(1).tolist() == [0]
+    # Gaps of a few missing robots are still positions (isolated robots), as documented.
+    small = dv.neighbors_from_distances(np.array([[0, 5, 1.0], [5, 9, 1.0]]))
+    assert len(small) == 10 and small.neighbors(3).tolist() == []

@@ -46,7 +46,7 @@ def test_cc_matches_python_api(network_files, tmp_path):
     pts, bars, p, o = network_files
     out, svg = tmp_path / "cc.json", tmp_path / "cc.svg"
     r = run("network", "cc", p, "--range", 25, "--loss", 0.2, "--seed", 4, "--obstacles", o,
-            "--bounds", "0,0,100,100", "-o", out, "--svg", svg)
+            "--bounds", 0, 0, 100, 100, "-o", out, "--svg", svg)
     assert r.returncode == 0, r.stderr
     doc = json.loads(out.read_text())
     py = dv.network.simulate("cc", pts, 25.0, loss=0.2, seed=4, obstacles=bars, bounds=(0, 0, 100, 100))
@@ -62,11 +62,18 @@ def test_cc_matches_python_api(network_files, tmp_path):
 def test_bd07_and_bs_csv(network_files, tmp_path):
     pts, _, p, _ = network_files
     out = tmp_path / "bd.csv"
-    r = run("network", "bd07", p, "--range", 30, "--bounds", "0,0,100,100", "-o", out, "-q")
+    r = run("network", "bd07", p, "--range", 30, "--bounds", 0, 0, 100, 100, "-o", out, "-q")
     assert r.returncode == 0, r.stderr
     rows = list(csv.DictReader(out.open()))
     py = dv.network.simulate("bd07", pts, 30.0, bounds=(0, 0, 100, 100))
     assert len(rows) == 70
+    # the columns of every CSV writer: 'agent' and the neighbour list (space-separated, ascending)
+    assert [int(x["agent"]) for x in rows] == list(range(70))
+    assert [[int(v) for v in x["neighbors"].split()] for x in rows] == [py.neighbors(i).tolist() for i in range(70)]
+    # the older comma-separated --bounds is still read
+    old = tmp_path / "bd_old.csv"
+    assert run("network", "bd07", p, "--range", 30, "--bounds", "0,0,100,100", "-o", old, "-q").returncode == 0
+    assert old.read_text() == out.read_text()
     assert [int(x["sent_probe"]) for x in rows] == py.sent[:, 1].tolist()
     assert sum(float(x["area"]) for x in rows) == pytest.approx(1e4, rel=1e-9)
     r = run("network", "bs", p, "--range", 20, "--anchor-fraction", 0.3, "-q")
@@ -92,7 +99,8 @@ def test_errors_name_the_argument_and_write_nothing(network_files, tmp_path):
     bad.write_text("1 2 3 4\n5 6 x 8\n")
     r = run("network", "cc", p, "--range", 20, "--obstacles", bad, "-o", out)
     assert r.returncode == 2 and f"{bad}:2:" in r.stderr and not out.exists()
-    r = run("network", "bd07", p, "--range", 20, "--bounds", "0,0,-1", "-o", out)
-    assert r.returncode == 2 and "--bounds" in r.stderr and not out.exists()
+    for bounds in (["0,0,-1"], [0, 0, -1], [0, 0, "x", 1], [1, 0, 0, 1]):
+        r = run("network", "bd07", p, "--range", 20, "--bounds", *bounds, "-o", out)
+        assert r.returncode == 2 and "--bounds" in r.stderr and not out.exists(), bounds
     r = run("network", "bd07", p, "--range", 20, "--budget", 10, "-o", out)
     assert r.returncode == 1 and "budget" in r.stderr and not out.exists()

@@ -17,6 +17,7 @@ import numpy as np
 from .. import _args, _core
 from .._partition import ProgressArg, progress_callback
 from .._result import Result
+from ._frames import FrameTransform, Frames, FrameTransforms, SecondRound, check_pose
 
 __all__ = ["neighbors_from_distances", "DistanceNeighbors", "LocalRegion", "as_distance_graph"]
 
@@ -61,6 +62,16 @@ def _edge_list(arr: np.ndarray, n: Optional[int]):
     rows, cols = idx[:, 0].astype(np.int64), idx[:, 1].astype(np.int64)
     need = int(max(rows.max(initial=-1), cols.max(initial=-1))) + 1
     if n is None:
+        # Indices are positions 0..n-1, so the robot count would follow the largest index: IDs such as
+        # serial numbers would size every per-robot array by the largest ID (2e9 robots for one row).
+        # Refuse sparse IDs clearly instead; the CLI, which reads files of IDs, renumbers them itself.
+        present = len(np.unique(np.concatenate([rows, cols]))) if len(rows) else 0
+        if need > max(4 * present, present + 65536):
+            raise ValueError(
+                f"distances edge list: robot indices go up to {need - 1} but only {present} robots appear; "
+                "indices are positions 0..n-1, not IDs. Renumber IDs such as serial numbers first: "
+                "ids, inv = np.unique(edges[:, :2], return_inverse=True); edges[:, :2] = inv.reshape(-1, 2) "
+                "(robot k is then ids[k]), or pass n to size the team explicitly")
         n = need
     return int(n), rows, cols, np.ascontiguousarray(arr[:, 2], dtype=np.float64), "edges"
 
@@ -150,7 +161,8 @@ def as_distance_graph(distances: Any, *, n: Optional[int] = None, squared: bool 
         elif arr.ndim == 2 and arr.shape[1] == 3:
             if arr.shape[0] == 3:  # read as an edge list by the rule: a mistake names the rule
                 try:
-                    return _core.distance_graph(*_edge_list(arr, n)[:4], bool(squared), bool(symmetrize), "edges")
+                    nn, rows, cols, vals, _ = _edge_list(arr, n)
+                    return _core.distance_graph(nn, rows, cols, vals, bool(squared), bool(symmetrize), "edges")
                 except ValueError as e:
                     raise ValueError(f"{e} [{_READ_3X3}]") from None
             nn, rows, cols, vals, label = _edge_list(arr, n)
@@ -226,6 +238,54 @@ class DistanceNeighbors(Result):
     def regions(self) -> Iterator[LocalRegion]:
         for i in range(len(self)):
             yield self.region(i)
+
+    # ------------------------------------------------------------ the second round (Section IV-A)
+    @cached_property
+    def _frames(self) -> Frames:
+        return Frames(len(self), self.indptr, self.indices, self.path_length, self.graph)
+
+    def frame_transform(self, i: int, j: int) -> FrameTransform:
+        """The second round seen by robot i: the rigid motion (rotation, translation, flip) taking
+        Voronoi neighbour j's local frame (:meth:`region`) to i's, fitted over the robots both frames
+        place (i, j and their common neighbours) from the coordinates j sent. Exact up to rounding
+        with exact distances; a least-squares (orthogonal Procrustes, reflection allowed) fit with
+        noisy ones, its RMS misfit in ``residual``. Raises ValueError when j is not in row i."""
+        return self._frames.transform(self._index(i), self._index(j))
+
+    def frame_transforms(self) -> FrameTransforms:
+        """Every directed edge's transform at once, aligned with ``indices`` (see
+        :class:`~dvoronoi.distances.FrameTransforms`)."""
+        return self._frames.all_transforms()
+
+    def two_hop(self, i: int) -> Tuple[np.ndarray, np.ndarray]:
+        """What robot i knows after the second round: ``(robots, xy)``, every robot that i or one of
+        its Voronoi neighbours places (its neighbours and its neighbours' neighbours), ascending, with
+        coordinates in i's local frame (:meth:`region`): i's own for itself and its neighbours, the
+        neighbours' coordinates mapped by :meth:`frame_transform` for the others (the mean where
+        several neighbours place one robot; neighbours without a valid fit are left out)."""
+        return self._frames.two_hop(self._index(i))
+
+    @property
+    def second_round(self) -> SecondRound:
+        """Message counts of the second round (one message per directed Voronoi edge, payload the
+        sender's path); see :class:`~dvoronoi.distances.SecondRound`."""
+        return self._frames.second_round()
+
+    def localize(self, anchor: int = 0, position: Tuple[float, float] = (0.0, 0.0), heading: float = 0.0,
+                 flip: bool = False) -> np.ndarray:
+        """Place the team in global coordinates from one robot's absolute pose (the paper's "if one
+        robot knows its absolute position and orientation").
+
+        The anchor is at `position`; `heading` (radians, counter-clockwise from the global +x axis)
+        is the direction of its local +x axis, i.e. towards its first path neighbour
+        ``path(anchor)[0]``; `flip` says its local frame is mirrored in the global one (its path turns
+        clockwise there). Every other robot is placed by chaining second-round transforms outward
+        from the anchor along fewest hops (breadth-first over the edges with a valid fit). Returns
+        ``(n, 2)`` positions; robots not connected to the anchor through valid fits are NaN.
+        """
+        anchor = self._index(anchor)
+        position, heading = check_pose(position, heading)
+        return self._frames.localize(anchor, position, heading, bool(flip))
 
     def edges(self) -> np.ndarray:
         """The (symmetrised) neighbour graph as an ``(E, 2)`` int64 array of pairs ``i < j``, sorted."""
@@ -344,7 +404,10 @@ def neighbors_from_distances(distances: Any, consistency: bool = True, *, square
         collinear and cocircular robots, with rounded distances it is exact except where rounding
         moves an exactly degenerate configuration (see the C++ header distance_predicates.hpp).
     n
-        Number of robots for an edge list (default: largest index + 1).
+        Number of robots for an edge list (default: largest index + 1). Indices are positions, not
+        IDs: an edge list whose largest index is far above the number of robots it mentions (IDs
+        such as serial numbers) is refused with the renumbering to apply (the CLI renumbers IDs
+        itself).
     workers
         Threads: None or -1 = all cores, k >= 1 = k (``threads`` is a deprecated alias, 0 = all
         cores). ``progress``: as in :func:`dvoronoi.limited_cells`.

@@ -2,6 +2,7 @@
 // side labelled j on the bisector of the agent and j, a side labelled -1 on the box's boundary — also
 // when a Voronoi vertex lies exactly on the box's edge (lattices in boxes with half-integer edges).
 #include "dvoronoi/cells/clip.hpp"
+#include "dvoronoi/coverage/environment.hpp"
 #include "dvoronoi/partition/voronoi_partition.hpp"
 
 #include <doctest/doctest.h>
@@ -149,8 +150,13 @@ TEST_CASE("a closed ring (the first vertex repeated at the end) is the same poly
     CHECK(b.vertices() == a.vertices());
     CHECK(c.vertices().size() == 4);
     CHECK(c.area() == doctest::Approx(2.0));
-    // Only the last vertex is dropped: a repeat elsewhere is still two coinciding vertices.
-    Points twice(5, 2);
-    twice << 0, 0, 2, 0, 2, 0, 2, 1, 0, 1;
-    CHECK_THROWS_WITH_AS(ConvexRegion::polygon(twice), "bounds: vertices 1 and 2 coincide", InputError);
+    // A vertex repeated in place, or repeated closing vertices, are the same polygon too (before:
+    // "bounds: vertices 1 and 2 coincide", while obstacle documents dropped them); lloyd's
+    // environment reads the list the same way (one function, detail::convex_ring).
+    Points twice(7, 2);
+    twice << 0, 0, 2, 0, 2, 0, 2, 1, 0, 1, 0, 0, 0, 0;
+    CHECK(ConvexRegion::polygon(twice).vertices() == a.vertices());
+    std::vector<Vec2> twice_v;
+    for (Index k = 0; k < twice.rows(); ++k) twice_v.push_back(twice.row(k).transpose());
+    CHECK(ConvexPolygon(twice_v).vertices() == a.vertices());
 }

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "dvoronoi/core/accurate.hpp"
+#include "dvoronoi/core/convex_ring.hpp"
 #include "dvoronoi/core/predicates.hpp"
 #include "dvoronoi/core/types.hpp"
 
@@ -44,43 +45,15 @@ public:
         return r;
     }
 
-    /// A convex polygon given by its vertices in order (either orientation; collinear vertices are
-    /// dropped; a closed ring, its first vertex repeated at the end as GeoJSON and shapely write it,
-    /// is the same polygon). \throws InputError naming `name` when a coordinate is not finite, fewer
-    /// than three vertices remain, two consecutive vertices coincide, or the polygon is not convex
-    /// (decided with exact orientation tests).
+    /// A convex polygon given by its vertices in order, read by detail::convex_ring: either
+    /// orientation, closed rings, repeated and straight-on vertices are the same polygon.
+    /// \throws InputError naming `name` when a coordinate is not finite, fewer than three vertices
+    /// that are not collinear remain, or the polygon is not convex or not simple (exact tests).
     static ConvexRegion polygon(PointsRef pts, const std::string& name = "bounds") {
-        detail::require_finite_points(pts, name.c_str());
         std::vector<Vec2> v;
         for (Index k = 0; k < pts.rows(); ++k) v.push_back(pts.row(k).transpose());
-        detail::open_ring(v);
-        const std::size_t m = v.size();
-        for (std::size_t k = 0; k < m; ++k)
-            if (v[k] == v[(k + 1) % m])
-                throw InputError(name + ": vertices " + std::to_string(k) + " and " + std::to_string((k + 1) % m) +
-                                 " coincide");
-        std::vector<Vec2> kept;
-        int turn = 0;
-        for (std::size_t k = 0; k < m; ++k) {
-            const int o = pred::orient(v[(k + m - 1) % m], v[k], v[(k + 1) % m]);
-            if (o == 0) continue;
-            if (turn != 0 && o != turn)
-                throw InputError(name + ": the polygon is not convex (vertex " + std::to_string(k) + " turns the other way)");
-            turn = o;
-            kept.push_back(v[k]);
-        }
-        if (kept.size() < 3) throw InputError(name + ": a polygon needs at least three vertices that are not collinear");
-        if (turn < 0) std::reverse(kept.begin(), kept.end());
-        // Simple: the turns all agree, so the polygon winds once only if its angles sum to 2 pi.
-        double winding = 0.0;
-        for (std::size_t k = 0; k < kept.size(); ++k) {
-            const Vec2 a = kept[(k + 1) % kept.size()] - kept[k];
-            const Vec2 b = kept[(k + 2) % kept.size()] - kept[(k + 1) % kept.size()];
-            winding += std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
-        }
-        if (winding > 7.0) throw InputError(name + ": the polygon winds around more than once (not simple)");
         ConvexRegion r;
-        r.v_ = std::move(kept);
+        r.v_ = detail::convex_ring(std::move(v), name);
         return r;
     }
 

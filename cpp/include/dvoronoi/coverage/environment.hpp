@@ -2,6 +2,7 @@
 // inside it and their limited cells are clipped to it (coverage/clip.hpp).
 #pragma once
 
+#include "dvoronoi/core/convex_ring.hpp"
 #include "dvoronoi/core/predicates.hpp"
 #include "dvoronoi/core/types.hpp"
 
@@ -14,50 +15,18 @@ namespace dvoronoi {
 
 /// A convex polygon with counter-clockwise vertices (a box is a polygon of four).
 ///
-/// Construction checks the input once: at least three finite vertices, no repeated vertex, every
-/// turn strictly convex (exact orientation test), either orientation accepted (clockwise input is
-/// reversed). A closed ring (the first vertex repeated at the end, as GeoJSON and shapely write it)
-/// is the same polygon. Containment is decided exactly; the boundary counts as inside.
+/// Construction reads the vertex list once with detail::convex_ring, as the exact cells' `bounds`
+/// do: either orientation, a closed ring, repeated and straight-on vertices give the same polygon;
+/// fewer than three vertices that are not collinear, a reflex turn, a spike or a second winding is
+/// an error. Containment is decided exactly; the boundary counts as inside.
 class ConvexPolygon {
 public:
     ConvexPolygon() = default;
 
     /// \throws InputError naming `name` and the offending vertex.
     explicit ConvexPolygon(std::vector<Vec2> vertices, const std::string& name = "bounds")
-        : v_(std::move(vertices)) {
-        detail::open_ring(v_);
+        : v_(detail::convex_ring(std::move(vertices), name)) {
         const std::size_t n = v_.size();
-        if (n < 3)
-            throw InputError(name + " must have at least 3 vertices, got " + std::to_string(n));
-        for (std::size_t k = 0; k < n; ++k)
-            detail::require_finite_point(v_[k], name + "[" + std::to_string(k) + "]");
-        double twice_area = 0.0;
-        for (std::size_t k = 0; k < n; ++k) {
-            const Vec2& a = v_[k];
-            const Vec2& b = v_[(k + 1) % n];
-            twice_area += a.x() * b.y() - a.y() * b.x();
-        }
-        if (twice_area < 0.0) std::reverse(v_.begin(), v_.end());
-        for (std::size_t k = 0; k < n; ++k) {
-            const Vec2& a = v_[k];
-            const Vec2& b = v_[(k + 1) % n];
-            const Vec2& c = v_[(k + 2) % n];
-            if (a == b)
-                throw InputError(name + ": vertices " + std::to_string(k) + " and " +
-                                 std::to_string((k + 1) % n) + " coincide");
-            if (pred::orient(a, b, c) <= 0)
-                throw InputError(name + " is not a strictly convex polygon (vertex " +
-                                 std::to_string((k + 1) % n) +
-                                 " makes a reflex or straight turn; vertices must be given in order)");
-        }
-        // A polygon that winds more than once has only left turns too: its angles sum past 2 pi.
-        double turning = 0.0;
-        for (std::size_t k = 0; k < n; ++k) {
-            const Vec2 e0 = v_[(k + 1) % n] - v_[k], e1 = v_[(k + 2) % n] - v_[(k + 1) % n];
-            turning += std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
-        }
-        if (turning > 3.0 * 3.14159265358979323846)
-            throw InputError(name + " winds around more than once (self-intersecting polygon)");
         area_ = 0.0;
         for (std::size_t k = 0; k < n; ++k) {
             const Vec2& a = v_[k];

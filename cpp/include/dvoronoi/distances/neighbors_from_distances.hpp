@@ -4,7 +4,7 @@
 
 #include "dvoronoi/distances/consistency.hpp"
 #include "dvoronoi/distances/voronoi_neighbors.hpp"
-#include "dvoronoi/partition/limited_partition.hpp"  // ProgressFn, ProgressTracker, thread team
+#include "dvoronoi/core/parallel.hpp"
 
 #include <algorithm>
 #include <vector>

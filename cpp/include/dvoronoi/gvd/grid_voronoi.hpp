@@ -174,6 +174,7 @@ inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
         st.corners_labelled += c.queries;
         st.part_evaluations += c.counters.part_evaluations;
         st.edge_evaluations += c.counters.edge_evaluations;
+        st.worker_evaluations.push_back(c.counters.part_evaluations + c.counters.edge_evaluations);
         st.traced_cells += tracers[uk].size();
         st.bridged_cells += tracers[uk].explored() - tracers[uk].size();
         st.obstacle_walks += tracers[uk].seed_counts().walks;

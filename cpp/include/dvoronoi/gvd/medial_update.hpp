@@ -262,11 +262,22 @@ private:
         const std::int32_t W = g_.cols;
         const std::size_t base = f_.at(r, 0);
         std::vector<std::int32_t> redo;
-        const std::int32_t xlo = 2 * cols.front(), xhi = 2 * cols.back() + 2;
-        for (std::int32_t x = first_at_least(f_, r, xlo); x < W && f_.fx[base + static_cast<std::size_t>(x)] <= xhi; ++x) {
-            const std::size_t i = base + static_cast<std::size_t>(x);
-            if (g_.occupied[i]) continue;  // still occupied: its own centre
-            if (!m_.bits.holds_point(f_.fx[i], f_.fy[i])) redo.push_back(x);
+        // One interval of nearest x per run of adjacent changed columns: the runs of a row are often
+        // far apart (blobs whose columns' changes reach the same row), and the pixels between their
+        // intervals have nearest points on columns that did not change.
+        std::int32_t from = 0;  // x ascends with the runs (nearest x does along a row)
+        for (std::size_t a = 0; a < cols.size();) {
+            std::size_t b = a;
+            while (b + 1 < cols.size() && cols[b + 1] == cols[b] + 1) ++b;
+            const std::int32_t xlo = 2 * cols[a], xhi = 2 * cols[b] + 2;
+            std::int32_t x = std::max(from, first_at_least(f_, r, xlo));
+            for (; x < W && f_.fx[base + static_cast<std::size_t>(x)] <= xhi; ++x) {
+                const std::size_t i = base + static_cast<std::size_t>(x);
+                if (g_.occupied[i]) continue;  // still occupied: its own centre
+                if (!m_.bits.holds_point(f_.fx[i], f_.fy[i])) redo.push_back(x);
+            }
+            from = x;
+            a = b + 1;
         }
         // one window per group of pixels with no occupied pixel between them
         const std::uint8_t* o = &g_.occupied[base];

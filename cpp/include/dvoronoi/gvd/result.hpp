@@ -45,6 +45,9 @@ struct GvdStats {
     std::uint64_t peak_worker_bytes = 0;  ///< largest per-worker tracing memory (labels, cells)
     std::vector<double> worker_seconds;   ///< wall time per worker
     std::vector<double> worker_cpu_seconds;  ///< CPU time per worker thread (not inflated by other load)
+    /// Distance evaluations (convex parts + edges) per worker: the work the paper's cost is made of,
+    /// counted exactly, so a model of K workers' time does not depend on the machine's load.
+    std::vector<std::uint64_t> worker_evaluations;
 };
 
 /// CPU time of the calling thread in seconds (0 where the platform has no per-thread clock).

@@ -59,7 +59,8 @@ inline nlohmann::json gvd_to_json(const gvd::GridVoronoi& r) {
                   {"part_evaluations", s.part_evaluations}, {"edge_evaluations", s.edge_evaluations},
                   {"traced_cells", s.traced_cells}, {"discarded_cells", s.discarded_cells},
                   {"border_lines_scanned", s.border_lines_scanned}, {"peak_worker_bytes", s.peak_worker_bytes},
-                  {"worker_seconds", s.worker_seconds}, {"worker_cpu_seconds", s.worker_cpu_seconds}};
+                  {"worker_seconds", s.worker_seconds}, {"worker_cpu_seconds", s.worker_cpu_seconds},
+                  {"worker_evaluations", s.worker_evaluations}};
     return j;
 }
 

@@ -6,6 +6,7 @@
 #include "dvoronoi/cells/limited_cell.hpp"
 #include "dvoronoi/core/grid_index.hpp"
 #include "dvoronoi/core/pages.hpp"
+#include "dvoronoi/core/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -91,9 +92,6 @@ struct LimitedPartition {
                              std::to_string(size()) + ")");
     }
 };
-
-/// Progress callback: called with (agents done, agents total) from the calling thread only.
-using ProgressFn = std::function<void(Index, Index)>;
 
 namespace detail {
 
@@ -277,107 +275,6 @@ void gather_in_input_order(const std::vector<Index>& pos_of, const std::vector<R
         const auto pos = static_cast<std::size_t>(pos_of[static_cast<std::size_t>(i)]);
         fn(i, pos, by_pos[pos]);
     }
-}
-
-/// This thread's number in its OpenMP team (0 without OpenMP).
-inline int thread_id() {
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-}
-
-/// Progress and failures of a parallel loop over blocks of agents: counts finished agents, calls the
-/// callback from the calling thread (OpenMP thread 0), and turns an exception thrown by the callback
-/// (e.g. a Python KeyboardInterrupt) into a cancellation that is rethrown after the parallel region.
-/// An exception thrown by an agent's work must not leave the parallel region (that would terminate
-/// the program): the worker catches it and hands it to fail(), which keeps the failure of the lowest
-/// loop position, so the error reported does not depend on the thread count, and lets the blocks
-/// after it be skipped.
-class ProgressTracker {
-public:
-    ProgressTracker(const ProgressFn& progress, Index total) : progress_(progress), total_(total) {}
-    bool cancelled() const { return cancelled_.load(std::memory_order_relaxed); }
-    /// True when the block starting at loop position `lo` need not run: the callback failed, or an
-    /// agent before `lo` did (its failure is the one reported).
-    bool skip(Index lo) const { return cancelled() || lo > failed_at_.load(std::memory_order_relaxed); }
-    void block_done(Index agents) {
-        const Index now = done_.fetch_add(agents) + agents;
-        if (!progress_ || thread_id() != 0) return;  // only the calling thread reports
-        try {
-            progress_(now, total_);
-        } catch (...) {
-            failure_ = std::current_exception();
-            cancelled_ = true;
-        }
-    }
-    /// Called in a worker's catch block: the work at loop position `pos` (agent `agent`) threw. A
-    /// RangeError is given the agent in front of its message: `before` agent `after` (default
-    /// "points[17]: ...").
-    void fail(Index pos, Index agent, const char* before = "points[", const char* after = "]") {
-        std::exception_ptr e = std::current_exception();
-        try {
-            throw;
-        } catch (const RangeError& r) {
-            try {
-                e = std::make_exception_ptr(
-                    RangeError(before + std::to_string(agent) + after + ": " + r.what()));
-            } catch (...) {  // no memory for the longer message: keep the original
-            }
-        } catch (...) {
-        }
-        const std::lock_guard<std::mutex> lock(mu_);
-        if (pos < failed_at_.load(std::memory_order_relaxed)) {
-            failed_at_.store(pos, std::memory_order_relaxed);
-            agent_failure_ = e;
-        }
-    }
-    /// After the parallel region: rethrow the callback's exception, else the first agent's failure.
-    void rethrow_if_failed() const {
-        if (failure_) std::rethrow_exception(failure_);
-        if (agent_failure_) std::rethrow_exception(agent_failure_);
-    }
-    /// At the very end: the callback sees (total, total).
-    void report_all() const {
-        if (progress_) progress_(total_, total_);
-    }
-
-private:
-    const ProgressFn& progress_;
-    Index total_;
-    std::atomic<Index> done_{0};
-    std::atomic<bool> cancelled_{false};
-    std::exception_ptr failure_;
-    std::mutex mu_;
-    std::atomic<Index> failed_at_{std::numeric_limits<Index>::max()};
-    std::exception_ptr agent_failure_;
-};
-
-/// f(), with `what: ` in front of the message of a RangeError it throws: for the steps over all
-/// agents (a convex hull, a triangulation), where no single agent is to blame.
-template <class F>
-auto naming_range_error(const char* what, F&& f) -> decltype(f()) {
-    try {
-        return f();
-    } catch (const RangeError& e) {
-        throw RangeError(std::string(what) + ": " + e.what());
-    }
-}
-
-/// Agents per block of the parallel drivers (the unit of scheduling and of progress reports).
-inline constexpr Index kBlock = 2048;
-
-/// OpenMP team size for `blocks` blocks: `threads` (0 = all cores), never more than one thread per
-/// block, so small inputs start no team.
-inline int thread_team(int threads, Index blocks) {
-#ifdef _OPENMP
-    const int wanted = threads > 0 ? threads : omp_get_max_threads();
-#else
-    const int wanted = 1;
-    (void)threads;
-#endif
-    return static_cast<int>(std::min<Index>(wanted, std::max<Index>(blocks, 1)));
 }
 
 /// Where an agent's run starts while each thread appends runs to its own column: offset * team +

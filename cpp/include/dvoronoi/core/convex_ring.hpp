@@ -1,0 +1,85 @@
+// One reading of a convex region given as a vertex list, shared by the exact cells' `bounds`
+// (cells/clip.hpp) and coverage's environment (coverage/environment.hpp), so that every spelling of
+// the same polygon is accepted, or refused, the same way everywhere.
+#pragma once
+
+#include "dvoronoi/core/predicates.hpp"
+#include "dvoronoi/core/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace dvoronoi::detail {
+
+/// The strictly convex, counter-clockwise vertex ring of the polygon `v` describes.
+///
+/// Spellings of the same polygon give the same ring: either orientation; a closed ring (the first
+/// vertex repeated at the end, as GeoJSON and shapely write it); a vertex repeated in place (`A, B,
+/// B, C`); a vertex on the straight segment between its neighbours. All decided with exact
+/// orientation tests and exact comparisons. The ring starts at the first vertex that is kept.
+/// \throws InputError naming `name` when a coordinate is not finite, the path turns back on itself
+///         (a spike), turns both ways (not convex), winds more than once, or fewer than three
+///         vertices that are not collinear remain.
+inline std::vector<Vec2> convex_ring(std::vector<Vec2> v, const std::string& name) {
+    for (std::size_t k = 0; k < v.size(); ++k)
+        require_finite_point(v[k], name + "[" + std::to_string(k) + "]");
+    // Index of each vertex in the input, for messages that point at what the user wrote.
+    std::vector<std::size_t> at(v.size());
+    for (std::size_t k = 0; k < at.size(); ++k) at[k] = k;
+    {
+        std::size_t m = 0;
+        for (std::size_t k = 0; k < v.size(); ++k)
+            if (m == 0 || !(v[k] == v[m - 1])) v[m] = v[k], at[m++] = at[k];
+        while (m > 1 && v[m - 1] == v[0]) --m;  // the closing vertex, repeated any number of times
+        v.resize(m);
+        at.resize(m);
+    }
+    const std::size_t m = v.size();
+    const auto no_polygon = [&](const std::string& why) {
+        return InputError(name + ": a polygon needs at least three vertices that are not collinear (" + why + ")");
+    };
+    // All on one line: say so before a straight-back turn would be called a spike.
+    bool turns = false;
+    for (std::size_t k = 0; k < m && m >= 3 && !turns; ++k)
+        turns = pred::orient(v[(k + m - 1) % m], v[k], v[(k + 1) % m]) != 0;
+    if (!turns)
+        throw no_polygon(m < 3 ? std::to_string(m) + " distinct" : "all " + std::to_string(m) + " lie on one line");
+    std::vector<Vec2> kept;
+    int turn = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+        const Vec2& a = v[(k + m - 1) % m];
+        const Vec2& b = v[k];
+        const Vec2& c = v[(k + 1) % m];
+        const int o = pred::orient(a, b, c);
+        if (o == 0) {
+            // Straight on (b between a and c: exact coordinate comparisons) is dropped; turning
+            // back is a spike.
+            const bool between = (std::min(a.x(), c.x()) <= b.x() && b.x() <= std::max(a.x(), c.x())) &&
+                                 (std::min(a.y(), c.y()) <= b.y() && b.y() <= std::max(a.y(), c.y()));
+            if (!between)
+                throw InputError(name + ": the polygon turns back on itself at vertex " + std::to_string(at[k]) +
+                                 " (its edges overlap)");
+            continue;
+        }
+        if (turn != 0 && o != turn)
+            throw InputError(name + ": the polygon is not convex (vertex " + std::to_string(at[k]) +
+                             " turns the other way)");
+        turn = o;
+        kept.push_back(b);
+    }
+    if (kept.size() < 3) throw no_polygon(std::to_string(kept.size()) + " corners");
+    if (turn < 0) std::reverse(kept.begin(), kept.end());
+    // The turns all agree, so the polygon is simple exactly when its exterior angles sum to 2 pi.
+    double winding = 0.0;
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+        const Vec2 e0 = kept[(k + 1) % kept.size()] - kept[k];
+        const Vec2 e1 = kept[(k + 2) % kept.size()] - kept[(k + 1) % kept.size()];
+        winding += std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
+    }
+    if (winding > 7.0) throw InputError(name + ": the polygon winds around more than once (not simple)");
+    return kept;
+}
+
+}  // namespace dvoronoi::detail

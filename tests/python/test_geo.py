@@ -1,0 +1,106 @@
+"""The GIS bridge of results with cells: __geo_interface__, to_shapely(tolerance), to_geopandas().
+
+Polygons are checked against the exact cells: area within the stated densification bound (below the
+exact area by at most tolerance x arc length), every vertex on or inside the exact cell's circle.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import dvoronoi as dv
+
+shapely = pytest.importorskip("shapely", reason="shapely is not installed (pip install .[test])")
+from shapely.geometry import shape  # noqa: E402
+
+RNG = np.random.default_rng(5)
+P = RNG.random((80, 2))
+
+
+def _arc_length(part, i):
+    lo, hi = part.piece_ptr[i], part.piece_ptr[i + 1]
+    arcs = part.piece_neighbor[lo:hi] == -1
+    return float(part.radius * np.sum(part.piece_span[lo:hi][arcs]))
+
+
+def cell_results():
+    return {
+        "limited": dv.limited_cells(P, 0.12),
+        "coverage": dv.coverage.lloyd(P, 0.12, steps=2, bounds=(0, 0, 1, 1)),
+        "network_cc": dv.network.simulate("cc", P * 100, 30.0, seed=2, bounds=(0, 0, 100, 100)),
+        "network_bd07": dv.network.simulate("bd07", P * 100, 30.0, bounds=(0, 0, 100, 100)),
+    }
+
+
+@pytest.mark.parametrize("name", ["limited", "coverage", "network_cc", "network_bd07"])
+def test_geo_interface_is_the_geojson_export(name):
+    r = cell_results()[name]
+    fc = r.__geo_interface__
+    assert fc["type"] == "FeatureCollection" and len(fc["features"]) == len(r)
+    import json
+
+    assert fc == json.loads(r.to_geojson())  # the default tolerance, as the export
+    polys = [None if f["geometry"] is None else shape(f["geometry"]) for f in fc["features"]]
+    assert all(p is None or p.is_valid for p in polys)
+    # shapely reads the protocol of the whole result too
+    assert len(shapely.geometry.shape(fc["features"][0]["geometry"]).exterior.coords) >= 4
+
+
+@pytest.mark.parametrize("tolerance", [1e-3, 1e-5])
+def test_to_shapely_areas_within_the_stated_bound(tolerance):
+    part = dv.limited_cells(P, 0.12)
+    polys = part.to_shapely(tolerance=tolerance)
+    assert len(polys) == len(part)
+    for i, poly in enumerate(polys):
+        exact = float(part.areas[i])
+        assert poly.is_valid
+        assert poly.area <= exact + 1e-12
+        assert exact - poly.area <= tolerance * _arc_length(part, i) + 1e-12
+        # every vertex lies in the cell's disk (chords are inscribed)
+        d = np.hypot(*(np.asarray(poly.exterior.coords) - P[i]).T)
+        assert np.all(d <= part.radius * (1 + 1e-12))
+    # a finer tolerance gives areas closer to the exact ones (the arcs are really densified)
+    coarse = sum(p.area for p in part.to_shapely(tolerance=1e-2))
+    fine = sum(p.area for p in polys)
+    assert abs(fine - part.areas.sum()) < abs(coarse - part.areas.sum())
+    with pytest.raises(ValueError, match="tolerance"):
+        part.to_shapely(tolerance=-1.0)
+
+
+def test_voronoi_partition_polygons():
+    vor = dv.voronoi_cells(P, bounds=(0, 0, 1, 1))
+    polys = vor.to_shapely()
+    assert sum(p.area for p in polys) == pytest.approx(1.0, rel=1e-12)
+    assert np.allclose([p.area for p in polys], vor.areas, rtol=1e-12)
+    unbounded = dv.voronoi_cells(P).to_shapely()
+    hull = dv.voronoi_cells(P).on_hull
+    assert [p is None for p in unbounded] == hull.tolist()  # unbounded cells have no polygon
+    with pytest.raises(ValueError, match="tolerance"):
+        vor.to_shapely(tolerance=0.0)
+
+
+def test_to_geopandas():
+    gpd = pytest.importorskip("geopandas", reason="geopandas is not installed")
+    part = dv.limited_cells(P, 0.12)
+    frame = part.to_geopandas(tolerance=1e-4)
+    assert isinstance(frame, gpd.GeoDataFrame) and len(frame) == len(part)
+    assert frame.index.tolist() == list(range(len(part)))
+    assert np.array_equal(frame["area"].to_numpy(), part.areas)  # the exact areas
+    assert frame["neighbors"].iloc[3] == part.neighbors(3).tolist()
+    assert np.allclose(frame.geometry.area, part.areas, rtol=0, atol=1e-4 * 2 * math.pi * 0.12)
+
+
+def test_missing_optional_package_says_what_to_install(monkeypatch):
+    import sys
+
+    # None in sys.modules makes `import name` raise ImportError, as if the package were not installed.
+    for name in ("shapely", "shapely.geometry", "geopandas"):
+        monkeypatch.setitem(sys.modules, name, None)
+    part = dv.limited_cells(P[:5], 0.12)
+    with pytest.raises(ImportError, match=r"to_shapely\(\) needs shapely.*pip install shapely"):
+        part.to_shapely()
+    with pytest.raises(ImportError, match=r"to_geopandas\(\) needs geopandas.*pip install geopandas"):
+        part.to_geopandas()
+    assert part.__geo_interface__["type"] == "FeatureCollection"  # needs nothing
