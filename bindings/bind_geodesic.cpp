@@ -134,6 +134,7 @@ void bind_geodesic(py::module_& m) {
             const cov::OccupancyView g{occ.data(), static_cast<std::int32_t>(occ.shape(0)), static_cast<std::int32_t>(occ.shape(1))};
             return cov::segment_free(g, {u0, w0}, {u1, w1});
         },
+        py::arg("occupied"), py::arg("u0"), py::arg("w0"), py::arg("u1"), py::arg("w1"),
         "Does the segment (pixel units, u right, w down) stay in free space (private; for tests).");
 
     py::class_<Lloyd>(m, "_GeodesicLloyd", "Geodesic Lloyd stepper (private; see dvoronoi.coverage.LloydStepper).")
@@ -158,7 +159,8 @@ void bind_geodesic(py::module_& m) {
                  auto agents = agents_of(occ, s.frame, points);
                  py::gil_scoped_release release;
                  s.core.set_points(std::move(agents));
-             })
+             },
+             py::arg("points"), py::arg("occupied"))
         .def_property_readonly("points", [](const Lloyd& s) { return map_points(s.core.points(), s.frame); })
         .def_property_readonly("labels", [](const Lloyd& s) { return image_labels(s.core.field()); })
         .def_property_readonly("distances", [](const Lloyd& s) { return image_distances(s.core.field(), s.frame.resolution); })

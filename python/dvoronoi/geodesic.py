@@ -127,6 +127,9 @@ class GeodesicCells(Result):
     grid : the :class:`~dvoronoi.OccupancyGrid`; radius : the range or None.
     """
 
+    # A float here; a Lloyd run's per-step array (GeodesicLloydResult), as for the convex LloydResult.
+    cost: Any
+
     def __init__(self, points: np.ndarray, grid: OccupancyGrid, radius: Optional[float], arrays: Dict[str, Any],
                  geometric: Optional[Dict[str, Any]] = None) -> None:
         self.points = points
@@ -140,9 +143,17 @@ class GeodesicCells(Result):
         geo = arrays if geometric is None else geometric
         self.areas = geo["pixels"].astype(np.float64) * grid.resolution ** 2
         self.centroids = geo["centroids"]
-        self.indptr, self.indices = _neighbours(self.labels, len(points))
+        self._csr = _neighbours(self.labels, len(points))
         for a in (self.labels, self.distances, self.areas, self.centroids, self.masses, self.mass_centroids):
             a.flags.writeable = False
+
+    @property
+    def indptr(self) -> np.ndarray:
+        return self._csr[0]
+
+    @property
+    def indices(self) -> np.ndarray:
+        return self._csr[1]
 
     def __len__(self) -> int:
         return len(self.points)
