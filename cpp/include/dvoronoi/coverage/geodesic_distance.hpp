@@ -6,23 +6,29 @@
 // convex corners of occupied pixels (pixel corners with exactly one occupied pixel around them), so
 //   d(q) = min over anchors a that see q of  D(a) + |q - a|,
 // anchors being the sources and those corners. This is an any-angle wavefront (a Dijkstra over pixels
-// and corners): every pixel carries its anchor, the last bend of its path, and
-//   - a pixel q takes anchor a from a neighbour n when the segment from q's centre towards a leaves q's
-//     square into n and n has anchor a (a local line-of-sight test: one comparison, no ray walk), or
-//     directly when a lies in q's closed square;
-//   - a convex corner v becomes an anchor when a pixel p next to it holds anchor a and a lies in p's
-//     quadrant seen from v (the segment v-a enters p), with D(v) = D(a) + |v - a|;
-//   - where no neighbour offers line of sight (rare: at shadow boundaries), a pixel relays through its
+// and corners, in a bucket queue): every pixel carries its anchor, the last bend of its path, and
+//   - a pixel q takes anchor a when the two pixels its segment to a passes between after leaving q's
+//     square (the brackets) both hold a: then q's segment is free, exactly (no occupied unit square
+//     fits in the thin triangle between two free segments whose base is one pixel), with no ray walk;
+//     directly when a lies in q's closed square; otherwise only after walking the segment exactly
+//     (segment_free_traced), which happens along shadow and cell boundaries;
+//   - a convex corner v becomes an anchor when a pixel p next to it holds anchor a, a lies in p's
+//     quadrant seen from v and the segment v-a is free (walked exactly): D(v) = D(a) + |v - a|; corners
+//     also reach the corners along their two wall edges and those within CORNER_WINDOW pixels;
+//   - where sight is blocked, a pixel (or corner) tries the settled corners nearby (a shadow thinner
+//     than a pixel hides the right bend from every neighbour), and a pixel relays through its
 //     neighbour's centre (an 8-connected step), which keeps every reachable pixel reached.
-// The local test can misjudge visibility only next to a shadow boundary, where the error is second
-// order; measured against an exact visibility-graph shortest path (tests/python/test_geodesic.py and
-// docs/geodesic_coverage.md) the relative error is below 1 % at pixels more than 3 pixels from the sources.
+// Every path used is a real path through free space, so no distance is shorter than the true one (up
+// to rounding); one can be longer where the best bend is missed. Measured against exact visibility-graph
+// shortest paths (tools/bench_geodesic.py --accuracy, docs/geodesic_coverage.md): at most 1.6 % longer
+// at pixels more than 3 pixels from the sources, 0.002 % on average.
 //
 // Coordinates are image pixel units: pixel (r, c) covers [c, c+1] x [r, r+1] (u to the right, w down),
 // its centre is (c + 0.5, r + 0.5); corner vertex (i, j) is the point (i, j).
 //
 // Ties: every pixel goes to the source with the smallest computed distance, ties to the lower index.
-// Complexity O(P log P) for P reached pixels. Single-threaded and deterministic.
+// O(P) queue operations for P reached pixels (a walk per pixel only on boundaries). Single-threaded and
+// deterministic.
 #pragma once
 
 #include "dvoronoi/coverage/grid_segment.hpp"
@@ -310,119 +316,117 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
         offer_pixel(q, st[p].d + (diagonal ? 1.4142135623730951 : 1.0), st[p].label, n + V + p);
     };
 
-    {
-        while (!heap.empty()) {
-            const detail::WaveEntry e = heap.pop();
-            if (e.node >= P) {  // a corner vertex: its three free pixels see it
-                const std::int64_t v = e.node - P;
-                if (vdone[v] || e.d != f.vertex_distance[v] || e.label != vertex_label[v]) continue;
-                vdone[v] = 1;
-                const std::int64_t i = v % (cols + 1), j = v / (cols + 1);
-                for (int k = 0; k < 4; ++k) {
-                    const std::int64_t r = j - 1 + (k >> 1), c = i - 1 + (k & 1);
-                    if (!grid.blocked(r, c)) offer_pixel(r * cols + c, e.d + 0.7071067811865476, e.label, n + v);
-                }
-                // Corners that v sees but whose pixels see v only through a sliver (a path grazing a
-                // wall): those along the two wall edges at v, and those within CORNER_WINDOW pixels,
-                // checked exactly (corners are few: this costs little).
-                for (int k = 0; k < 4; ++k) {
-                    const std::int64_t di = k == 0 ? 1 : k == 1 ? -1 : 0, dj = k == 2 ? 1 : k == 3 ? -1 : 0;
-                    std::int64_t wi = i, wj = j;
-                    int side = -1;
-                    for (;;) {  // along the grid line while the same one side is occupied (no pinch point)
-                        const bool s1 = di ? grid.blocked(wj - 1, di > 0 ? wi : wi - 1) : grid.blocked(dj > 0 ? wj : wj - 1, wi - 1);
-                        const bool s2 = di ? grid.blocked(wj, di > 0 ? wi : wi - 1) : grid.blocked(dj > 0 ? wj : wj - 1, wi);
-                        if (s1 == s2 || (side >= 0 && side != int(s1))) break;
-                        side = int(s1);
-                        wi += di;
-                        wj += dj;
-                        if (convex(wi, wj)) {
-                            offer_vertex(wi, wj, e.d + double(std::abs(wi - i) + std::abs(wj - j)), e.label, n + v);
-                            break;
-                        }
+    while (!heap.empty()) {
+        const detail::WaveEntry e = heap.pop();
+        if (e.node >= P) {  // a corner vertex: its three free pixels see it
+            const std::int64_t v = e.node - P;
+            if (vdone[v] || e.d != f.vertex_distance[v] || e.label != vertex_label[v]) continue;
+            vdone[v] = 1;
+            const std::int64_t i = v % (cols + 1), j = v / (cols + 1);
+            for (int k = 0; k < 4; ++k) {
+                const std::int64_t r = j - 1 + (k >> 1), c = i - 1 + (k & 1);
+                if (!grid.blocked(r, c)) offer_pixel(r * cols + c, e.d + 0.7071067811865476, e.label, n + v);
+            }
+            // Corners that v sees but whose pixels see v only through a sliver (a path grazing a
+            // wall): those along the two wall edges at v, and those within CORNER_WINDOW pixels,
+            // checked exactly (corners are few: this costs little).
+            for (int k = 0; k < 4; ++k) {
+                const std::int64_t di = k == 0 ? 1 : k == 1 ? -1 : 0, dj = k == 2 ? 1 : k == 3 ? -1 : 0;
+                std::int64_t wi = i, wj = j;
+                int side = -1;
+                for (;;) {  // along the grid line while the same one side is occupied (no pinch point)
+                    const bool s1 = di ? grid.blocked(wj - 1, di > 0 ? wi : wi - 1) : grid.blocked(dj > 0 ? wj : wj - 1, wi - 1);
+                    const bool s2 = di ? grid.blocked(wj, di > 0 ? wi : wi - 1) : grid.blocked(dj > 0 ? wj : wj - 1, wi);
+                    if (s1 == s2 || (side >= 0 && side != int(s1))) break;
+                    side = int(s1);
+                    wi += di;
+                    wj += dj;
+                    if (convex(wi, wj)) {
+                        offer_vertex(wi, wj, e.d + double(std::abs(wi - i) + std::abs(wj - j)), e.label, n + v);
+                        break;
                     }
                 }
-                for (std::int64_t wj = std::max<std::int64_t>(0, j - CORNER_WINDOW); wj <= std::min<std::int64_t>(rows, j + CORNER_WINDOW); ++wj)
-                    for (std::int64_t wi = std::max<std::int64_t>(0, i - CORNER_WINDOW); wi <= std::min<std::int64_t>(cols, i + CORNER_WINDOW); ++wi) {
-                        if ((wi == i && wj == j) || !convex(wi, wj)) continue;
-                        const double d = e.d + dist2d(double(wi - i), double(wj - j));
-                        const std::int64_t w = wj * (cols + 1) + wi;
-                        if (vdone[w] || !(d <= limit) || !better(d, e.label, f.vertex_distance[w], vertex_label[w])) continue;
-                        if (segment_free(grid, {double(i), double(j)}, {double(wi), double(wj)})) offer_vertex(wi, wj, d, e.label, n + v);
-                    }
+            }
+            for (std::int64_t wj = std::max<std::int64_t>(0, j - CORNER_WINDOW); wj <= std::min<std::int64_t>(rows, j + CORNER_WINDOW); ++wj)
+                for (std::int64_t wi = std::max<std::int64_t>(0, i - CORNER_WINDOW); wi <= std::min<std::int64_t>(cols, i + CORNER_WINDOW); ++wi) {
+                    if ((wi == i && wj == j) || !convex(wi, wj)) continue;
+                    const double d = e.d + dist2d(double(wi - i), double(wj - j));
+                    const std::int64_t w = wj * (cols + 1) + wi;
+                    if (vdone[w] || !(d <= limit) || !better(d, e.label, f.vertex_distance[w], vertex_label[w])) continue;
+                    if (segment_free(grid, {double(i), double(j)}, {double(wi), double(wj)})) offer_vertex(wi, wj, d, e.label, n + v);
+                }
+            continue;
+        }
+        const std::int64_t p = e.node;
+        if (st[p].done || e.d != st[p].d || e.label != st[p].label) continue;
+        st[p].done = 1;
+        const std::int64_t a = st[p].anchor;
+        const PixelPoint A = f.anchor_point(a);
+        // a relay's distance is its pixel's (it relayed when it was taken, at that distance)
+        const double Da = a >= n + V ? st[a - n - V].d : f.anchor_distance(a);
+        const std::int64_t pr = p / cols, pc = p % cols;
+        // First the neighbours whose line of sight to the anchor runs through p (or that hold the
+        // anchor in their square), then the others: their back-trace pixel has the anchor already
+        // (it offered it), or it holds another anchor or none, and then the segment is walked exactly
+        // (this happens only along shadow and cell boundaries), with a relay through p if it is blocked.
+        std::int64_t later[8];
+        int nlater = 0;
+        for (int k = 0; k < 8; ++k) {
+            const std::int64_t qr = pr + DR[k], qc = pc + DC[k];
+            if (grid.blocked(qr, qc)) continue;
+            const bool diagonal = k >= 4;
+            if (diagonal && grid.blocked(qr, pc) && grid.blocked(pr, qc)) continue;  // pinch point
+            const std::int64_t q = qr * cols + qc;
+            if (st[q].done && st[q].d <= e.d) continue;  // settled before p: p cannot improve it
+            const std::int64_t nb = back_trace(qr, qc, A);
+            if (nb == -2) {  // the anchor is in q's closed square
+                offer_pixel(q, Da + dist2d(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
                 continue;
             }
-            const std::int64_t p = e.node;
-            if (st[p].done || e.d != st[p].d || e.label != st[p].label) continue;
-            st[p].done = 1;
-            const std::int64_t a = st[p].anchor;
-            const PixelPoint A = f.anchor_point(a);
-            // a relay's distance is its pixel's (it relayed when it was taken, at that distance)
-            const double Da = a >= n + V ? st[a - n - V].d : f.anchor_distance(a);
-            const std::int64_t pr = p / cols, pc = p % cols;
-            // First the neighbours whose line of sight to the anchor runs through p (or that hold the
-            // anchor in their square), then the others: their back-trace pixel has the anchor already
-            // (it offered it), or it holds another anchor or none, and then the segment is walked exactly
-            // (this happens only along shadow and cell boundaries), with a relay through p if it is blocked.
-            std::int64_t later[8];
-            int nlater = 0;
-            for (int k = 0; k < 8; ++k) {
-                const std::int64_t qr = pr + DR[k], qc = pc + DC[k];
-                if (grid.blocked(qr, qc)) continue;
-                const bool diagonal = k >= 4;
-                if (diagonal && grid.blocked(qr, pc) && grid.blocked(pr, qc)) continue;  // pinch point
-                const std::int64_t q = qr * cols + qc;
-                if (st[q].done && st[q].d <= e.d) continue;  // settled before p: p cannot improve it
-                const std::int64_t nb = back_trace(qr, qc, A);
-                if (nb == -2) {  // the anchor is in q's closed square
+            if (nb == -1) {
+                rescue(qr, qc);
+                relay(p, q, diagonal);
+                continue;
+            }
+            const std::int64_t n2 = side_bracket(qr, qc, A);
+            if (p == nb || p == n2) {
+                // Both brackets see the anchor: then so does q, exactly (module comment).
+                const std::int64_t other = p == nb ? n2 : nb;
+                if (n2 == -1 || (other >= 0 && st[other].anchor == a)) {
                     offer_pixel(q, Da + dist2d(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
                     continue;
                 }
-                if (nb == -1) {
-                    rescue(qr, qc);
-                    relay(p, q, diagonal);
-                    continue;
-                }
-                const std::int64_t n2 = side_bracket(qr, qc, A);
-                if (p == nb || p == n2) {
-                    // Both brackets see the anchor: then so does q, exactly (module comment).
-                    const std::int64_t other = p == nb ? n2 : nb;
-                    if (n2 == -1 || (other >= 0 && st[other].anchor == a)) {
-                        offer_pixel(q, Da + dist2d(qc + 0.5 - A.u, qr + 0.5 - A.w), e.label, a);
-                        continue;
-                    }
-                }
-                later[nlater++] = (std::int64_t(k) << 40) | nb;
             }
-            for (int t = 0; t < nlater; ++t) {
-                const int k = static_cast<int>(later[t] >> 40);
-                const std::int64_t nb = later[t] & ((std::int64_t(1) << 40) - 1);
-                if (nb != p && st[nb].anchor == a) continue;  // the exit pixel holds A: it decides when taken
-                const std::int64_t qr = pr + DR[k], qc = pc + DC[k], q = qr * cols + qc;
-                const PixelPoint cq{qc + 0.5, qr + 0.5};
-                const double d = Da + dist2d(cq.u - A.u, cq.w - A.w);
-                // a relay through p is never shorter than the straight segment: nothing to offer
-                if (!(d <= limit) || !better(d, e.label, st[q].d, st[q].label)) continue;
-                if (sight_free(cq, A)) {
-                    offer_pixel(q, d, e.label, a);
-                } else {
-                    rescue(qr, qc);
-                    relay(p, q, k >= 4);
-                }
+            later[nlater++] = (std::int64_t(k) << 40) | nb;
+        }
+        for (int t = 0; t < nlater; ++t) {
+            const int k = static_cast<int>(later[t] >> 40);
+            const std::int64_t nb = later[t] & ((std::int64_t(1) << 40) - 1);
+            if (nb != p && st[nb].anchor == a) continue;  // the exit pixel holds A: it decides when taken
+            const std::int64_t qr = pr + DR[k], qc = pc + DC[k], q = qr * cols + qc;
+            const PixelPoint cq{qc + 0.5, qr + 0.5};
+            const double d = Da + dist2d(cq.u - A.u, cq.w - A.w);
+            // a relay through p is never shorter than the straight segment: nothing to offer
+            if (!(d <= limit) || !better(d, e.label, st[q].d, st[q].label)) continue;
+            if (sight_free(cq, A)) {
+                offer_pixel(q, d, e.label, a);
+            } else {
+                rescue(qr, qc);
+                relay(p, q, k >= 4);
             }
-            // Convex corners of p that see the anchor through p become anchors.
-            for (int k = 0; k < 4; ++k) {
-                const std::int64_t i = pc + (k & 1), j = pr + (k >> 1);
-                const std::int64_t v = j * (cols + 1) + i;
-                if (vdone[v] || !convex(i, j)) continue;
-                const double sx = (pc + 0.5) - double(i), sy = (pr + 0.5) - double(j);
-                if ((A.u - double(i)) * sx < 0 || (A.w - double(j)) * sy < 0) continue;
-                if (!sight_free({double(i), double(j)}, A)) {
-                    vertex_rescue(i, j);
-                    continue;
-                }
-                offer_vertex(i, j, Da + dist2d(A.u - double(i), A.w - double(j)), e.label, a);
+        }
+        // Convex corners of p that see the anchor through p become anchors.
+        for (int k = 0; k < 4; ++k) {
+            const std::int64_t i = pc + (k & 1), j = pr + (k >> 1);
+            const std::int64_t v = j * (cols + 1) + i;
+            if (vdone[v] || !convex(i, j)) continue;
+            const double sx = (pc + 0.5) - double(i), sy = (pr + 0.5) - double(j);
+            if ((A.u - double(i)) * sx < 0 || (A.w - double(j)) * sy < 0) continue;
+            if (!sight_free({double(i), double(j)}, A)) {
+                vertex_rescue(i, j);
+                continue;
             }
+            offer_vertex(i, j, Da + dist2d(A.u - double(i), A.w - double(j)), e.label, a);
         }
     }
     f.distance.resize(static_cast<std::size_t>(P));

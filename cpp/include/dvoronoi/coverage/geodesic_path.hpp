@@ -13,8 +13,8 @@ namespace dvoronoi::coverage {
 
 /*! The polyline from pixel q's source to point `t` (in pixel q): source, the anchors (bends) in order,
     then `t`; each segment checked with segment_free. When the segment from `t` to q's anchor is not free
-    the path goes through q's centre first. Empty when q is unreached or a segment is not free (the local
-    line-of-sight test of the wavefront misjudged a shadow boundary; rare). */
+    the path goes through q's centre first. Empty when q is unreached or a segment is not free (the
+    wavefront checks every segment it uses, so this is a guard, not an expected case). */
 inline std::vector<PixelPoint> geodesic_path(const GeodesicField& f, const OccupancyView& g, std::int64_t q,
                                              PixelPoint t) {
     std::vector<PixelPoint> path;
