@@ -12,6 +12,7 @@ void bind_gvd_occupancy(py::module_& m);
 void bind_distances(py::module_& m);
 void bind_coverage(py::module_& m);
 void bind_network(py::module_& m);
+void bind_geodesic(py::module_& m);
 
 PYBIND11_MODULE(_core, m) {
     m.doc() = "dvoronoi compiled core (use the `dvoronoi` package, which re-exports it).";
@@ -23,4 +24,5 @@ PYBIND11_MODULE(_core, m) {
     bind_distances(m);
     bind_coverage(m);
     bind_network(m);
+    bind_geodesic(m);
 }

@@ -1,6 +1,7 @@
 // `dvoronoi lloyd POINTS -r R --steps K`: Lloyd coverage control on limited cells (uniform density),
 // optionally in a convex environment, with the run as JSON and the cells of each step as SVG files.
 #include "common.hpp"
+#include "lloyd_map.hpp"
 
 #include "dvoronoi/coverage/lloyd.hpp"
 #include "dvoronoi/io/svg.hpp"
@@ -33,6 +34,7 @@ struct LloydOptions {
     int svg_every = 1;
     bool trajectory = false;
     bool quiet = false;
+    LloydMapRequest map;  // --map: geodesic cells on an occupancy grid (lloyd_map.cpp)
 };
 
 std::optional<ConvexPolygon> environment(const LloydOptions& o) {
@@ -64,6 +66,15 @@ nlohmann::json points_json(const Points& p) {
 }
 
 int run_lloyd(const LloydOptions& o) {
+    if (!o.map.map.empty()) {
+        if (!o.bounds.empty() || !o.polygon.empty()) throw UsageError("--map: give the environment as --map or --bounds/--polygon, not both");
+        if (!o.svg_dir.empty()) throw UsageError("--svg-dir: not drawn for --map runs (Python's run.animate draws them)");
+        LloydMapRequest r = o.map;
+        r.points = o.points, r.columns = o.columns, r.output = o.output, r.radius = o.radius, r.steps = o.steps;
+        r.threads = o.threads, r.record_every = o.svg_every, r.gain = o.gain, r.trajectory = o.trajectory, r.quiet = o.quiet;
+        return run_lloyd_map(r);
+    }
+    if (!o.map.origin.empty() || o.map.resolution > 0) throw UsageError("--resolution/--origin: only with --map");
     if (!std::isfinite(o.radius) || !(o.radius > 0.0))
         throw UsageError("--radius: must be a positive finite number, got " + show(o.radius));
     if (!(o.gain > 0.0 && o.gain <= 1.0))
@@ -180,6 +191,15 @@ Command add_lloyd(CLI::App& parent) {
         ->capture_default_str();
     sub->add_flag("--trajectory", o->trajectory, "include the recorded positions in the JSON");
     sub->add_flag("-q,--quiet", o->quiet, "no progress counter on stderr");
+    sub->add_option("--map", o->map.map,
+                    "occupancy grid (ROS YAML, PGM, PNG, MovingAI .map): geodesic cells, agents move around walls; "
+                    "-r is then the geodesic range (inf: none)");
+    sub->add_option("--resolution", o->map.resolution, "--map images without YAML: map units per pixel (default 1)");
+    sub->add_option("--origin", o->map.origin, "--map images without YAML: map coordinates X Y of the lower-left corner")
+        ->expected(2);
+    sub->add_option("--unknown", o->map.unknown, "--map: unknown pixels count as occupied or free")
+        ->check(CLI::IsMember({"occupied", "free"}))
+        ->capture_default_str();
     return {sub, [o] { return run_lloyd(*o); }};
 }
 

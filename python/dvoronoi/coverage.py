@@ -302,9 +302,16 @@ class LloydStepper:
     ...     cost = s.step()          # H before the move; s.points are the new positions
     """
 
+    def __new__(cls, *args: Any, environment: Any = None, **kwargs: Any) -> Any:
+        if environment is not None:  # an occupancy grid: geodesic cells (dvoronoi.geodesic)
+            from .geodesic import GeodesicLloydStepper
+
+            return GeodesicLloydStepper(*args, environment=environment, **kwargs)
+        return super().__new__(cls)
+
     def __init__(self, points: Any, radius: float, density: Any = None, gain: float = 1.0,
                  bounds: BoundsArg = None, order: int = 8, workers: Optional[int] = None, *,
-                 threads: Optional[int] = None) -> None:
+                 threads: Optional[int] = None, environment: Any = None) -> None:
         team = _args.workers(workers, threads)
         radius = _args.real(radius, "radius")
         self.density = _check_density(density)
@@ -442,7 +449,7 @@ class LloydResult(CoverageCells):
 def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gain: float = 1.0,
           bounds: BoundsArg = None, order: int = 8, record_every: int = 1,
           workers: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None, *,
-          threads: Optional[int] = None) -> LloydResult:
+          threads: Optional[int] = None, environment: Any = None) -> LloydResult:
     """Run Lloyd's algorithm on limited cells for `steps` steps.
 
     Parameters
@@ -471,6 +478,11 @@ def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gai
     progress : bool or callable, optional
         None: a tqdm bar over the steps from ``PROGRESS_BAR_FROM`` agent-steps on; True/False:
         always/never; a callable is called as ``progress(done_steps, steps)``.
+    environment : occupancy grid, optional
+        Instead of `bounds`: an :class:`~dvoronoi.OccupancyGrid`, a map file or an H x W array (what
+        :func:`dvoronoi.grid_voronoi` takes). Cells are then geodesic, agents move along shortest paths
+        around walls, `radius` is the geodesic range (None: unlimited) and `density` may also be an
+        H x W array; see :mod:`dvoronoi.geodesic` (`order` is not used).
 
     Returns
     -------
@@ -485,6 +497,14 @@ def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gai
     TypeError
         A density that is not callable, non-integer counts.
     """
+    if environment is not None:  # an occupancy grid: geodesic cells (dvoronoi.geodesic)
+        from . import geodesic
+
+        if bounds is not None:
+            raise ValueError("give the region as bounds= (a convex polygon) or environment= (an occupancy grid), not both")
+        return geodesic.lloyd(points, radius, environment, density=density, steps=steps, gain=gain,
+                              record_every=record_every, workers=_args.workers(workers, threads) or None,
+                              progress=progress)
     team = _args.workers(workers, threads)
     steps = _check_count(steps, "steps", 0)
     record_every = _check_count(record_every, "record_every", 1)
@@ -529,3 +549,9 @@ def animate(result: LloydResult, path: Optional[PathLike] = None, fps: int = 10,
 
     anim = plotting.animate(result, path, fps=fps, **kwargs)
     return anim
+
+
+# Geodesic cells on occupancy grids live in dvoronoi.geodesic; reachable from here as the rest of coverage.
+from .geodesic import GeodesicCells, geodesic_cells  # noqa: E402
+
+__all__ += ["geodesic_cells", "GeodesicCells"]
