@@ -308,12 +308,8 @@ int run_map(const Args& a, int rank, int size) {
     gvd::MedialDiagram m;
     m.grid = std::move(map.grid);
     m.options = mo;
+    m.features = gvd::feature_map_for(m.grid);  // this rank writes (and reads) only its band's rows
     gvd::FeatureMap& f = m.features;
-    f.rows = H;
-    f.cols = W;
-    ::dvoronoi::detail::assign_prefaulted(f.vgap, m.grid.size());
-    ::dvoronoi::detail::assign_prefaulted(f.fx, m.grid.size());
-    ::dvoronoi::detail::assign_prefaulted(f.fy, m.grid.size());
     m.mask = gvd::PixelMask(H, W);
     gvd::detail::column_pass(m.grid, f, 0, W);
     // Bands as medial_diagram splits rows over threads; with more ranks than rows some are empty.
@@ -321,11 +317,11 @@ int run_map(const Args& a, int rank, int size) {
     const std::int32_t r0 = band(rank), r1 = band(rank + 1);
     std::vector<std::int16_t> nearest;  // fx, fy of the band's diagram pixels, row-major
     if (r0 < r1) {
-        // mark_rows reads the nearest points of rows r0-1 .. r1: the row pass covers one halo row each side
+        // marking reads the nearest points of rows r0-1 .. r1: the row pass covers one halo row each side
         gvd::detail::RowEnvelope env;
         for (std::int32_t r = std::max(0, r0 - 1); r < std::min(H, r1 + 1); ++r) gvd::detail::row_pass(m.grid, f, r, env);
         m.bits = gvd::OccupancyBits(m.grid);  // the box rule reads walls anywhere near the band's nearest points
-        gvd::detail::mark_rows(m, r0, r1);
+        gvd::detail::RowMarker(m).mark(r0, r1);
         for (std::int32_t r = r0; r < r1; ++r)
             for (std::int32_t c = 0; c < W; ++c)
                 if (m.mask(r, c)) {
