@@ -1,6 +1,9 @@
-// Shared machinery of the parallel drivers (limited and exact cells, distances, coverage): the
-// OpenMP team size, the progress callback and the tracker that reports progress and carries
-// failures out of a parallel region.
+// Shared machinery of the parallel drivers: the OpenMP team size, the progress callback and the
+// tracker that reports progress and carries failures out of a parallel region (limited and exact
+// cells, distances, coverage); and a team of std::threads for workers that wait for each other's
+// messages (the grid diagram's cooperative slices), which OpenMP cannot promise to start together:
+// a region may get fewer threads than asked (nested regions, OMP_DYNAMIC, thread limits), and a
+// worker waiting for a message from one that never started would hang.
 #pragma once
 
 #include "dvoronoi/core/types.hpp"
@@ -12,6 +15,8 @@
 #include <limits>
 #include <mutex>
 #include <string>
+#include <thread>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -126,4 +131,34 @@ inline int thread_team(int threads, Index blocks) {
 }
 
 }  // namespace detail
+
+/// fn(k) for k = 0..count-1, one std::thread each (the calling thread alone when count is 1, so one
+/// worker never pays for a thread).
+template <class Fn>
+void run_team(int count, Fn&& fn) {
+    if (count <= 1) {
+        if (count == 1) fn(0);
+        return;
+    }
+    std::vector<std::thread> team;
+    team.reserve(static_cast<std::size_t>(count));
+    for (int k = 0; k < count; ++k) team.emplace_back([&fn, k] { fn(k); });
+    for (auto& t : team) t.join();
+}
+
+/// fn(state, lo, hi) over [0, count) in chunks of `chunk`, handed to `workers` threads as each
+/// becomes free; each thread's `state` is make()'s. Rows of a map cost what their free pixels and
+/// their diagram cost, so fixed shares leave a worker idle on maps whose parts differ (a cave's
+/// halves differ by a quarter); the chunks each thread gets depend on timing, so fn must give the
+/// same result for any split.
+template <class Make, class Fn>
+void run_chunks(int workers, std::int32_t count, std::int32_t chunk, Make&& make, Fn&& fn) {
+    std::atomic<std::int32_t> next{0};
+    run_team(workers, [&](int) {
+        auto state = make();
+        for (std::int32_t lo; (lo = next.fetch_add(chunk, std::memory_order_relaxed)) < count;)
+            fn(state, lo, std::min(count, lo + chunk));
+    });
+}
+
 }  // namespace dvoronoi

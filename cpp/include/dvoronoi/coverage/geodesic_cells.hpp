@@ -10,7 +10,7 @@
 #pragma once
 
 #include "dvoronoi/coverage/geodesic_distance.hpp"
-#include "dvoronoi/gvd/team.hpp"
+#include "dvoronoi/core/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -114,7 +114,7 @@ inline GeodesicMoments geodesic_moments(const GeodesicField& f, const double* we
     std::vector<GeodesicMoments> part(static_cast<std::size_t>(blocks));
     std::atomic<std::int32_t> next{0};
     const double r2 = std::isfinite(limit) ? limit * limit : 0.0;
-    gvd::run_team(std::max(1, std::min(workers, blocks)), [&](int) {
+    run_team(std::max(1, std::min(workers, blocks)), [&](int) {
         for (std::int32_t b; (b = next++) < blocks;) {
             GeodesicMoments& m = part[static_cast<std::size_t>(b)];
             m.mass.assign(static_cast<std::size_t>(n), 0.0);
@@ -168,7 +168,7 @@ inline std::vector<std::int64_t> nearest_cell_pixels(const GeodesicField& f, con
     std::vector<double> best(std::size_t(blocks) * n, inf);
     std::vector<std::int64_t> arg(std::size_t(blocks) * n, -1);
     std::atomic<std::int32_t> next{0};
-    gvd::run_team(std::max(1, std::min(workers, blocks)), [&](int) {
+    run_team(std::max(1, std::min(workers, blocks)), [&](int) {
         for (std::int32_t b; (b = next++) < blocks;) {
             double* bb = best.data() + std::size_t(b) * n;
             std::int64_t* ab = arg.data() + std::size_t(b) * n;

@@ -19,7 +19,7 @@
 
 #include "dvoronoi/core/pages.hpp"
 #include "dvoronoi/gvd/occupancy_grid.hpp"
-#include "dvoronoi/gvd/team.hpp"
+#include "dvoronoi/core/parallel.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -25,7 +25,7 @@
 #include "dvoronoi/gvd/result.hpp"
 #include "dvoronoi/gvd/slice_merge.hpp"
 #include "dvoronoi/gvd/slice_tracer.hpp"
-#include "dvoronoi/gvd/team.hpp"
+#include "dvoronoi/core/parallel.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -14,7 +14,7 @@
 #pragma once
 
 #include "dvoronoi/gvd/distance.hpp"
-#include "dvoronoi/gvd/team.hpp"
+#include "dvoronoi/core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>

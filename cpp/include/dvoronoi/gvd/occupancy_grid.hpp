@@ -12,7 +12,7 @@
 #pragma once
 
 #include "dvoronoi/core/types.hpp"
-#include "dvoronoi/gvd/team.hpp"
+#include "dvoronoi/core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,7 +8,7 @@
 #include "dvoronoi/gvd/grid.hpp"
 #include "dvoronoi/gvd/lazy_grid.hpp"
 #include "dvoronoi/gvd/slice_tracer.hpp"
-#include "dvoronoi/gvd/team.hpp"
+#include "dvoronoi/core/parallel.hpp"
 
 #include <algorithm>
 #include <array>
