@@ -6,6 +6,11 @@ count what that costs (SPEC "Networks of agents").
 >>> res.neighbors(0), res.on_hull, res.total_transmissions, res.total_deliveries
 >>> res.plot_messages()
 
+One call in C++ runs the whole simulation, ``dvoronoi::network::run`` (``network/run.hpp``): the
+graph, the algorithm, and every node's cell with its area and centroid. The result classes here wrap
+that compiled result (they pickle), and ``to_json()`` is the document ``io/network_json.hpp`` writes,
+the same bytes as ``dvoronoi network ... -o run.json`` for the same run.
+
 Algorithms (the simulator is C++: ``cpp/include/dvoronoi/network/``):
 
 ``"cc"``

@@ -25,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -35,9 +36,19 @@ namespace detail {
 
 using ojson = nlohmann::ordered_json;
 
+/// A number, or null when it is not finite (NaN: not localised; inf: an unbounded cell's area), so
+/// the document holds what its text says.
+inline ojson num(double v) { return std::isfinite(v) ? ojson(v) : ojson(nullptr); }
+
+inline ojson nums(const std::vector<double>& v) {
+    ojson out = ojson::array();
+    for (double x : v) out.push_back(num(x));
+    return out;
+}
+
 inline ojson xy_rows(const Points& p) {
     ojson out = ojson::array();
-    for (Eigen::Index i = 0; i < p.rows(); ++i) out.push_back(ojson::array({p(i, 0), p(i, 1)}));
+    for (Eigen::Index i = 0; i < p.rows(); ++i) out.push_back(ojson::array({num(p(i, 0)), num(p(i, 1))}));
     return out;
 }
 
@@ -108,7 +119,7 @@ inline ojson body(const network::CcRun& r) {
     for (char h : r.on_hull) hull.push_back(h != 0);
     j["on_hull"] = std::move(hull);
     j["bounds"] = box_json(r.bounds);
-    j["areas"] = r.cells.areas;
+    j["areas"] = nums(r.cells.areas);
     j["centroids"] = xy_rows(r.cells.centroids);
     j["condition"] = optional_json(r.condition);
     j["dt_components"] = optional_json(r.dt_components);
@@ -126,7 +137,7 @@ inline ojson body(const network::Bd07Run& r) {
     j["bounds"] = box_json(r.bounds);
     j["indptr"] = r.indptr;
     j["indices"] = r.indices;
-    j["areas"] = r.cells.areas;
+    j["areas"] = nums(r.cells.areas);
     j["centroids"] = xy_rows(r.cells.centroids);
     j["probes"] = r.probes;
     j["condition"] = optional_json(r.condition);
@@ -144,8 +155,8 @@ inline ojson body(const network::BsRun& r) {
     j["radius"] = r.radius;
     j["indptr"] = r.indptr;
     j["indices"] = r.indices;
-    j["areas"] = r.cells.areas;
-    j["perimeters"] = r.perimeters;
+    j["areas"] = nums(r.cells.areas);
+    j["perimeters"] = nums(r.perimeters);
     j["centroids"] = xy_rows(r.cells.centroids);
     j["anchors"] = optional_json(r.anchors);
     j["dv_hop_types"] = r.dv_hop_counts.types;
@@ -167,6 +178,12 @@ inline nlohmann::ordered_json network_json(const network::Result& r) {
 /// The document as text: compact when indent < 0, else indented by `indent` spaces. No final newline.
 inline std::string network_json_text(const network::Result& r, int indent = -1) {
     return network_json(r).dump(indent);
+}
+
+/// The same for one typed result (no copy into the variant).
+template <class R, class = std::enable_if_t<std::is_base_of_v<network::RunBase, R>>>
+std::string network_json_text(const R& r, int indent = -1) {
+    return detail::body(r).dump(indent);
 }
 
 }  // namespace dvoronoi::io
