@@ -274,7 +274,11 @@ class _CellsMixin:
     areas: np.ndarray
     centroids: np.ndarray
     points: np.ndarray
-    radius: float
+
+    @property
+    def radius(self) -> float:
+        """The limiting circle's radius; NaN for polygon cells (CC, BD07)."""
+        return float("nan")
 
     def cell(self, i: int) -> NetworkCell:
         i = self._index(i)  # type: ignore[attr-defined]
@@ -348,15 +352,10 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
         cannot deliver (obstacles); ``route_discoveries`` is how many there were.
     """
 
-    indptr: np.ndarray
-    indices: np.ndarray
-
     def __init__(self, core: "_core._NetworkCcRun") -> None:
         if not isinstance(core, _core._NetworkCcRun):
             raise TypeError("CcResult wraps a CC run; call dvoronoi.network.simulate('cc', ...)")
         self._core = core
-
-    radius = float("nan")
 
     @cached_property
     def _ccw(self) -> np.ndarray:
@@ -459,15 +458,10 @@ class Bd07Result(_CellsMixin, _NetworkMixin, CellResult):
     ``areas``, ``centroids``; ``probes`` vertices probed; message types location, probe, reply.
     """
 
-    indptr: np.ndarray
-    indices: np.ndarray
-
     def __init__(self, core: "_core._NetworkBd07Run") -> None:
         if not isinstance(core, _core._NetworkBd07Run):
             raise TypeError("Bd07Result wraps a BD07 run; call dvoronoi.network.simulate('bd07', ...)")
         self._core = core
-
-    radius = float("nan")
 
     @property
     def bounds(self) -> Optional[tuple]:
@@ -502,17 +496,13 @@ class BoundaryScanResult(_CellsMixin, _NetworkMixin, CellResult):
     ``estimates``, ``localized``, ``position_error``, ``anchors`` describe it.
     """
 
-    indptr: np.ndarray
-    indices: np.ndarray
-    radius: float
-
     def __init__(self, core: "_core._NetworkBsRun") -> None:
         if not isinstance(core, _core._NetworkBsRun):
             raise TypeError("BoundaryScanResult wraps a Boundary Scan run; call dvoronoi.network.simulate('bs', ...)")
         self._core = core
 
     @property
-    def radius(self) -> float:  # type: ignore[override]
+    def radius(self) -> float:
         return float(self._core.radius)
 
     @cached_property
