@@ -61,8 +61,8 @@ struct NotJson {
 };
 
 /// Python objects (dict, list, tuple, str, int, float, bool, None, numpy arrays and scalars) as a
-/// JSON value, without the text round trip: json.dumps and parsing the text took 4 ms of a 65 ms
-/// diagram for 500 obstacles. Written by hand: pybind11_json would be one more dependency for
+/// JSON value, without the text round trip (json.dumps and parsing the text again cost a noticeable
+/// part of a diagram of many obstacles). Written by hand: pybind11_json would be one more dependency for
 /// twenty lines.
 nlohmann::json to_json(py::handle o) {
     using nlohmann::json;

@@ -161,8 +161,8 @@ def exact_cells(out: Path) -> Path:
     fig, ax = plt.subplots(figsize=(6.0, 6.0))
     vor.plot(ax=ax, delaunay=True)
     hull = np.flatnonzero(vor.on_hull)
-    ax.scatter(points[hull, 0], points[hull, 1], s=40, facecolors="none", edgecolors="tab:red", zorder=5,
-               label=f"on_hull ({len(hull)} agents: unbounded cells, clipped to the box)")
+    ring = next(a for a in ax.collections if a.get_gid() == "dvoronoi-hull")  # plot() circles them
+    ring.set_label(f"on_hull ({len(hull)} agents: unbounded cells, clipped to the box)")
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.06), fontsize=8, frameon=False)
     ax.set_title("voronoi_cells(points, bounds=(0, 0, 10, 10)): exact cells and the Delaunay graph", fontsize=9)
     _square(ax, -0.3, 10.3)
@@ -195,7 +195,8 @@ def networks(out: Path) -> Path:
     for (x0, y0, x1, y1) in bars:
         axes[0].plot([x0, x1], [y0, y1], color="k", lw=2.5)
     axes[0].set_title(f"CC over GPSR: 100 nodes, range 20, 20% loss, 6 walls (black)\n"
-                      f"Theorem 2's condition: {res.condition}; nodes not exact: {len(res.wrong_nodes)}", fontsize=9)
+                      f"Theorem 2's condition: {res.condition}; nodes not exact (red crosses): {len(res.wrong_nodes)}",
+                      fontsize=9)
     _square(axes[0], -2, 102)
     res.plot_messages(ax=axes[1])
     axes[1].set_title(f"messages per node ({res.total_transmissions} transmissions in all)", fontsize=9)
@@ -228,11 +229,8 @@ def coverage(out: Path) -> Path:
     fig, axes = plt.subplots(1, 3, figsize=(13.5, 4.6))
     dv.coverage.LloydStepper(points, 0.12, density=density, bounds=(0, 0, 1, 1)).cells().plot(ax=axes[0])
     axes[0].set_title("start: 40 agents in a corner, R = 0.12", fontsize=9)
-    run.plot(ax=axes[1])
-    traj = np.asarray(run.trajectory)
-    for i in range(traj.shape[1]):
-        axes[1].plot(traj[:, i, 0], traj[:, i, 1], color="0.35", lw=0.6)
-    axes[1].set_title("after 60 Lloyd steps (grey: trajectories)", fontsize=9)
+    run.plot(ax=axes[1])  # the density as background, the trajectories in grey
+    axes[1].set_title("after 60 Lloyd steps (grey: density and trajectories)", fontsize=9)
     for ax in axes[:2]:
         gx, gy = np.meshgrid(np.linspace(0, 1, 120), np.linspace(0, 1, 120))
         ax.contour(gx, gy, density(gx, gy), levels=4, colors="tab:orange", linewidths=0.6)

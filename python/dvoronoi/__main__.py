@@ -32,8 +32,9 @@ def _demo(args: argparse.Namespace) -> int:
     print(f"total cell area: {total:.2f} m^2 (covered area; {n} full disks would be "
           f"{n * np.pi * args.radius ** 2:.2f} m^2)")
 
-    import matplotlib
+    from dvoronoi._optional import require_matplotlib
 
+    matplotlib = require_matplotlib("python -m dvoronoi demo")
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -97,7 +98,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     if args.command == "demo":
         try:
             return _demo(args)
-        except (ValueError, OSError) as e:
+        except (ValueError, OSError, ImportError) as e:
             print(f"python -m dvoronoi demo: error: {e}", file=sys.stderr)
             return 1
     return 2  # pragma: no cover

@@ -8,6 +8,7 @@ from typing import Any, Callable, Iterator, Optional, Union
 import numpy as np
 
 from . import _args, _core
+from ._optional import tqdm_class
 from ._result import CellResult
 
 #: From this many agents on, ``limited_cells(progress=None)`` shows a tqdm progress bar.
@@ -162,8 +163,10 @@ def progress_callback(points: Any, progress: ProgressArg, desc: str) -> Iterator
     if not (show and n):
         yield None
         return
-    from tqdm.auto import tqdm
-
+    tqdm = tqdm_class(required=bool(progress))  # optional: no bar that was not asked for without it
+    if tqdm is None:
+        yield None
+        return
     bar = tqdm(total=n, unit="agents", desc=desc)
     try:
         yield lambda done, total: bar.update(done - bar.n)

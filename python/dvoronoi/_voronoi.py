@@ -182,51 +182,12 @@ class VoronoiPartition(GeoMixin, Result):
         }, indent=indent)
 
     def plot(self, ax: Any = None, *, cells: bool = True, delaunay: bool = False, **kwargs: Any) -> Any:
-        """Draw the cells (clipped to ``bounds`` when given; without bounds the bounded cells, and hull
-        agents' rays up to the view's edge), the agents (hull agents circled) and, with
-        ``delaunay=True``, the Delaunay graph. Returns the Axes."""
-        import matplotlib.pyplot as plt
-        from matplotlib.collections import LineCollection, PolyCollection
+        """Draw the cells (clipped to ``bounds`` when given; else every cell, hull cells cut at the
+        agents' box), the agents (hull agents circled) and, with ``delaunay=True``, the Delaunay
+        graph. Returns the Axes (see :func:`dvoronoi.plotting.plot_voronoi`)."""
+        from . import plotting
 
-        if ax is None:
-            _, ax = plt.subplots()
-        pts = self.points
-        if cells and len(self):
-            polys = [p for p in (self.polygon(i) for i in range(len(self))) if p is not None and len(p) >= 3]
-            ax.add_collection(PolyCollection(polys, facecolors=kwargs.get("facecolor", "#dbe9f6"),
-                                             edgecolors=kwargs.get("edgecolor", "0.25"),
-                                             linewidths=kwargs.get("linewidth", 0.6), gid="dvoronoi-cells"))
-            if self.bounds is None and np.any(self.on_hull):
-                lo, hi = pts.min(axis=0), pts.max(axis=0)
-                reach = 2.0 * float(np.max(hi - lo)) + 1.0
-                rays = []
-                for i in np.flatnonzero(self.on_hull):
-                    for e in self.cell(int(i)).edges:
-                        s, t, d = np.array(e.start), np.array(e.end), np.array(e.direction)
-                        a = s - reach * d if e.from_infinity else s
-                        b = t + reach * d if e.to_infinity else t
-                        rays.append([a, b])
-                ax.add_collection(LineCollection(rays, colors=kwargs.get("edgecolor", "0.25"),
-                                                 linewidths=kwargs.get("linewidth", 0.6), gid="dvoronoi-rays"))
-        if delaunay:
-            edges = self.delaunay_edges()
-            ax.add_collection(LineCollection(pts[edges], colors="tab:orange", linewidths=0.6,
-                                             gid="dvoronoi-delaunay"))
-        ax.scatter(pts[:, 0], pts[:, 1], s=kwargs.get("point_size", 8), c="k", zorder=3, gid="dvoronoi-agents")
-        hull = pts[self.on_hull]
-        ax.scatter(hull[:, 0], hull[:, 1], s=3 * kwargs.get("point_size", 8), facecolors="none",
-                   edgecolors="tab:red", zorder=4, label="hull agents")
-        ax.set_aspect("equal")
-        if self.bounds is not None:
-            b = self.bounds
-            ax.set_xlim(b[:, 0].min(), b[:, 0].max())
-            ax.set_ylim(b[:, 1].min(), b[:, 1].max())
-        elif len(self):
-            lo, hi = pts.min(axis=0), pts.max(axis=0)
-            pad = 0.05 * float(np.max(hi - lo) or 1.0)
-            ax.set_xlim(lo[0] - pad, hi[0] + pad)
-            ax.set_ylim(lo[1] - pad, hi[1] + pad)
-        return ax
+        return plotting.plot_voronoi(self, ax=ax, cells=cells, delaunay=delaunay, **kwargs)
 
     def __repr__(self) -> str:
         n = len(self)

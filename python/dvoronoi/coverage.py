@@ -46,6 +46,7 @@ from typing import Any, Callable, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _args, _core
+from ._optional import tqdm_class
 from ._io import PathLike
 from ._result import CellResult
 
@@ -279,15 +280,11 @@ class CoverageCells(CellResult):
         return json.dumps({"type": "FeatureCollection", "features": features})
 
     def plot(self, ax: Any = None, **kwargs: Any):
-        """The cells (see :func:`dvoronoi.plotting.plot`) and the environment's outline."""
+        """The cells and the environment's outline; a Lloyd run adds its density and trajectories
+        (see :func:`dvoronoi.plotting.plot_coverage`)."""
         from . import plotting
 
-        ax = plotting.plot(self, ax=ax, **kwargs)
-        if self.bounds is not None:
-            ring = np.vstack([self.bounds, self.bounds[:1]])
-            ax.plot(ring[:, 0], ring[:, 1], color="0.15", linewidth=1.2, gid="dvoronoi-bounds")
-            ax.autoscale_view()
-        return ax
+        return plotting.plot_coverage(self, ax=ax, **kwargs)
 
     def __repr__(self) -> str:
         return f"CoverageCells(n={len(self)}, radius={self.radius:g}, total_area={float(np.sum(self.areas)):.6g})"
@@ -501,10 +498,9 @@ def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gai
     if callable(progress) and not isinstance(progress, bool):
         callback = progress
     elif progress or (progress is None and n * steps >= PROGRESS_BAR_FROM):
-        from tqdm.auto import tqdm
-
-        bar = tqdm(total=steps, unit="steps", desc="lloyd")
-        callback = lambda done, total: bar.update(done - bar.n)  # noqa: E731
+        tqdm = tqdm_class(required=bool(progress))  # optional: no bar that was not asked for without it
+        bar = None if tqdm is None else tqdm(total=steps, unit="steps", desc="lloyd")
+        callback = None if bar is None else lambda done, total: bar.update(done - bar.n)  # noqa: E731
     try:
         if stepper.density is None:
             trajectory, cost = stepper._core.run(steps, record_every, callback)
@@ -526,69 +522,10 @@ def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gai
 
 
 # ----------------------------------------------------------------------------------------- pictures
-def animate(result: LloydResult, path: Optional[PathLike] = None, fps: int = 10, cells: bool = True,
-            dpi: int = 100, figsize: Tuple[float, float] = (6.0, 6.0)):
-    """Animate a Lloyd run with matplotlib: agents (and, with ``cells=True``, their clipped cells
-    recomputed at every recorded frame) over the recorded frames, the cost in the title.
+def animate(result: LloydResult, path: Optional[PathLike] = None, fps: int = 10, **kwargs: Any):
+    """Animate a Lloyd run with matplotlib; see :func:`dvoronoi.plotting.animate` (cells, density,
+    trails, a progress bar while writing `path`, ``.gif`` or ``.mp4``)."""
+    from . import plotting
 
-    `path` ending in ``.gif`` is written with Pillow, ``.mp4`` with ffmpeg (must be installed);
-    the file appears only when complete. Returns the ``matplotlib.animation.FuncAnimation``.
-    """
-    import matplotlib.pyplot as plt
-    from matplotlib import animation
-
-    fps = _check_count(fps, "fps", 1)
-    writer = None
-    suffix = None
-    if path is not None:
-        import os
-
-        suffix = os.path.splitext(os.fspath(path))[1].lower()
-        if suffix == ".gif":
-            writer = animation.PillowWriter(fps=fps)
-        elif suffix == ".mp4":
-            if not animation.FFMpegWriter.isAvailable():
-                raise RuntimeError("writing .mp4 needs ffmpeg on the PATH; write a .gif instead")
-            writer = animation.FFMpegWriter(fps=fps)
-        else:
-            raise ValueError(f"path must end in .gif or .mp4, got {os.fspath(path)!r}")
-    traj = result.trajectory
-    fig, ax = plt.subplots(figsize=figsize, dpi=dpi)
-    lo = traj.reshape(-1, 2).min(axis=0) - result.radius
-    hi = traj.reshape(-1, 2).max(axis=0) + result.radius
-    if result.bounds is not None:
-        lo = np.minimum(lo, result.bounds.min(axis=0))
-        hi = np.maximum(hi, result.bounds.max(axis=0))
-
-    def draw(k: int):
-        ax.clear()
-        if cells:
-            arrays = _core.coverage_cells(traj[k], result.radius, result.bounds)
-            CoverageCells(arrays, result.bounds).plot(ax=ax, point_size=4)
-        else:
-            ax.scatter(traj[k, :, 0], traj[k, :, 1], s=4, c="k")
-        ax.set_xlim(lo[0], hi[0])
-        ax.set_ylim(lo[1], hi[1])
-        ax.set_aspect("equal")
-        s = int(result.frame_steps[k])
-        ax.set_title(f"step {s}   H = {result.cost[s]:.6g}")
-        return ()
-
-    anim = animation.FuncAnimation(fig, draw, frames=len(traj), blit=False)
-    if path is not None:
-        import os
-        import tempfile
-
-        folder = os.path.dirname(os.path.abspath(os.fspath(path)))
-        fd, tmp = tempfile.mkstemp(suffix=suffix, dir=folder)
-        os.close(fd)
-        try:
-            anim.save(tmp, writer=writer, dpi=dpi)
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
-        finally:
-            plt.close(fig)
+    anim = plotting.animate(result, path, fps=fps, **kwargs)
     return anim

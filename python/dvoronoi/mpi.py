@@ -180,9 +180,9 @@ class DistributedLloyd:
         errors = self.comm.allgather(None if error is None else f"{type(error).__name__}: {error}")
         if error is not None:
             raise error
-        for r, e in enumerate(errors):
-            if e is not None:
-                raise ValueError(f"rank {r} failed: {e}")
+        for r, failed in enumerate(errors):
+            if failed is not None:
+                raise ValueError(f"rank {r} failed: {failed}")
         return result
 
     def _moments(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -315,7 +315,7 @@ def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bound
     ids, pts = _scatter_input(comm, points, root)
     run = DistributedLloyd(comm, ids, pts, radius, gain=gain, bounds=bounds, density=density,
                            order=order, workers=team or None)
-    frames = [run.gather(root)]
+    frames: List[Optional[np.ndarray]] = [run.gather(root)]
     cost = np.empty(steps + 1)
     halo_bytes, migration_bytes = [], []
     comm.Barrier()
@@ -333,7 +333,7 @@ def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bound
         return None
     cells = _assemble_cells(parts, radius, run.bounds)
     frame_steps = np.unique(np.concatenate([np.arange(0, steps + 1, record_every), [steps]])).astype(np.int64)
-    return {"trajectory": np.stack(frames), "frame_steps": frame_steps, "cost": cost, "cells": cells,
+    return {"trajectory": np.stack([f for f in frames if f is not None]), "frame_steps": frame_steps, "cost": cost, "cells": cells,
             "stats": {"ranks": comm.Get_size(), "agents": len(cells), "steps": steps,
                       "seconds_per_step": elapsed / max(steps, 1),
                       "halo_bytes_per_step": float(np.mean(halo_bytes)) if halo_bytes else 0.0,
@@ -347,8 +347,7 @@ def _assemble_cells(parts: List[Tuple[np.ndarray, Dict[str, np.ndarray]]], radiu
     n = len(ids)
     order = np.empty(n, dtype=np.int64)
     order[ids] = np.arange(n)  # global id -> row in the concatenation
-    cat = {k: (np.concatenate([p[1][k] for p in parts]) if k != "radius" else radius)
-           for k in parts[0][1]}
+    cat = {k: np.concatenate([p[1][k] for p in parts]) for k in parts[0][1] if k != "radius"}
     counts = np.concatenate([np.diff(p[1]["piece_ptr"]) for p in parts])
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
     ncounts = np.concatenate([np.diff(p[1]["indptr"]) for p in parts])
@@ -386,14 +385,14 @@ def _read_points(path: str) -> np.ndarray:
     """'x y' or 'x,y' per line, '#' comments, an optional header line; errors name file:line, and a
     coordinate must be a finite number (as the CLI's reader: NaN, inf and 1e999 are refused there,
     not later as an anonymous points[i])."""
-    rows = []
+    rows: List[Tuple[float, float]] = []
     with open(path, "rb") as f:
         raw = f.read()
     try:
         content = raw.decode("utf-8-sig")
     except UnicodeDecodeError as e:
-        line = raw[:e.start].count(b"\n") + 1
-        raise ValueError(f"{path}:{line}: not UTF-8 text (a point file has 'x y' per line)") from None
+        at = raw[:e.start].count(b"\n") + 1
+        raise ValueError(f"{path}:{at}: not UTF-8 text (a point file has 'x y' per line)") from None
     for lineno, line in enumerate(content.split("\n"), 1):  # lines as the CLI counts them ('\r\n' too)
         text = line.split("#", 1)[0].replace(",", " ").split()
         if not text:
@@ -452,6 +451,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     out = lloyd(points, args.radius, steps=args.steps, gain=args.gain, bounds=bounds,
                 record_every=record, comm=comm, workers=args.threads or None)
     if rank == 0:
+        assert out is not None  # lloyd returns the result on the root rank
         s = out["stats"]
         print(f"dvoronoi.mpi: {s['agents']} agents on {s['ranks']} ranks, {s['steps']} steps: "
               f"{s['seconds_per_step'] * 1e3:.2f} ms/step, halo {s['halo_bytes_per_step'] / 1e3:.1f} kB/step, "

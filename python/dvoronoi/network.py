@@ -222,22 +222,11 @@ class _NetworkMixin:
         return self.received.sum(axis=1)
 
     def plot_network(self, ax: Any = None, **kwargs: Any) -> Any:
-        """Draw the nodes, their links and the obstacles; returns the Axes."""
-        import matplotlib.pyplot as plt
-        from matplotlib.collections import LineCollection
+        """Draw the nodes, their links and the obstacles; returns the Axes (see
+        :func:`dvoronoi.plotting.plot_network`)."""
+        from . import plotting
 
-        if ax is None:
-            _, ax = plt.subplots()
-        pts = self.points
-        ax.add_collection(LineCollection(pts[self.links], colors=kwargs.get("link_color", "0.7"),
-                                         linewidths=kwargs.get("linewidth", 0.6), zorder=1))
-        if len(self.obstacles):
-            ax.add_collection(LineCollection(self.obstacles.reshape(-1, 2, 2), colors="tab:red",
-                                             linewidths=2.0, zorder=2, label="obstacles"))
-        ax.scatter(pts[:, 0], pts[:, 1], s=kwargs.get("point_size", 10), c="k", zorder=3)
-        ax.set_aspect("equal")
-        ax.autoscale_view()
-        return ax
+        return plotting.plot_network(self, ax=ax, **kwargs)
 
     def _sent_columns(self):
         """(message type, transmissions sent per node) for the bar chart, in protocol order."""
@@ -427,24 +416,11 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
         return np.asarray(order, dtype=np.int64)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """Cells (clipped if bounds were given; interior cells otherwise), the Delaunay graph and the
-        network; returns the Axes."""
-        import matplotlib.pyplot as plt
-        from matplotlib.collections import LineCollection
+        """Cells (clipped if bounds were given; interior cells otherwise), the Delaunay graph, the
+        network and wrong nodes; returns the Axes (see :func:`dvoronoi.plotting.plot_cc`)."""
+        from . import plotting
 
-        if ax is None:
-            _, ax = plt.subplots()
-        self.plot_network(ax=ax)
-        if len(self.piece_x):
-            from . import plotting
-
-            plotting.plot(self, ax=ax, show_points=False, **kwargs)
-        e = self.delaunay_edges()
-        ax.add_collection(LineCollection(self.points[e], colors="tab:blue", linewidths=0.5, linestyles="--"))
-        hull = self.points[self.on_hull]
-        ax.scatter(hull[:, 0], hull[:, 1], s=30, facecolors="none", edgecolors="tab:red", zorder=4)
-        ax.autoscale_view()
-        return ax
+        return plotting.plot_cc(self, ax=ax, **kwargs)
 
     def __repr__(self) -> str:
         return (f"CcResult(n={len(self)}, transmissions={self.total_transmissions}, "

@@ -440,14 +440,15 @@ def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_s
     # The result's own grid object (its occupancy is read back from the core when asked for, so updates
     # never touch the caller's grid and the caller's later edits never reach the result).
     own = OccupancyGrid.__new__(OccupancyGrid)
-    own.occupied, own.resolution, own.origin = None, grid.resolution, grid.origin
+    own.occupied = None  # type: ignore[assignment]  # read back from the core when asked for
+    own.resolution, own.origin = grid.resolution, grid.origin
     own.unknown_pixels = grid.unknown_pixels
     source, grid = grid, own
-    options = {"min_separation": float(min_separation), "prune_length": float(prune_length), "workers": int(workers),
-               "occupied_thresh": float(occupied_thresh), "unknown": unknown}
+    options: Dict[str, Any] = {"min_separation": float(min_separation), "prune_length": float(prune_length),
+                               "workers": int(workers), "occupied_thresh": float(occupied_thresh), "unknown": unknown}
     try:
         core = _core._medial_build(_as_bytes(source.occupied), grid.resolution, grid.origin[0], grid.origin[1],
-                                   options["min_separation"], options["prune_length"], options["workers"])
+                                   float(min_separation), float(prune_length), int(workers))
     except ValueError as e:
         raise ValueError(str(e)) from None
     if core.count == 0 and not source.occupied.all():

@@ -48,7 +48,7 @@ nearest neighbour (a 256 map to 2048 for benchmarks).
 from __future__ import annotations
 
 import os
-from typing import List, Sequence, Tuple, Union
+from typing import Any, Dict, List, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -370,8 +370,8 @@ def rooms_with_islands(size: Size, seed: int = 0) -> np.ndarray:
     occ = np.zeros((H, W), dtype=bool)
     t = int(rng.integers(1, 4))
     _frame(occ, t)
-    ny = int(min(max(1, (H - 2 * t) // 12), rng.integers(2, 5)))
-    nx = int(min(max(1, (W - 2 * t) // 12), rng.integers(2, 5)))
+    ny = min(max(1, (H - 2 * t) // 12), int(rng.integers(2, 5)))
+    nx = min(max(1, (W - 2 * t) // 12), int(rng.integers(2, 5)))
     ys = _split(rng, t, H - t, ny, 0.35)
     xs = _split(rng, t, W - t, nx, 0.35)
     wy = [int(rng.integers(1, 4)) for _ in range(ny + 1)]
@@ -513,7 +513,7 @@ def read_movingai_map(path: Union[str, os.PathLike], free_chars: str = MOVINGAI_
         raise ValueError(f"{name}:{line}: not an ASCII MovingAI map file") from None
     lines = text.split("\n")
     lines = [ln[:-1] if ln.endswith("\r") else ln for ln in lines]
-    header = {}
+    header: Dict[str, Any] = {}
     k = 0
     while True:
         if k >= len(lines) or (k == len(lines) - 1 and not lines[k].strip()):

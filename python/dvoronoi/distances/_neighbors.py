@@ -161,7 +161,8 @@ def as_distance_graph(distances: Any, *, n: Optional[int] = None, squared: bool 
         elif arr.ndim == 2 and arr.shape[1] == 3:
             if arr.shape[0] == 3:  # read as an edge list by the rule: a mistake names the rule
                 try:
-                    return _core.distance_graph(*_edge_list(arr, n)[:4], bool(squared), bool(symmetrize), "edges")
+                    nn, rows, cols, vals, _ = _edge_list(arr, n)
+                    return _core.distance_graph(nn, rows, cols, vals, bool(squared), bool(symmetrize), "edges")
                 except ValueError as e:
                     raise ValueError(f"{e} [{_READ_3X3}]") from None
             nn, rows, cols, vals, label = _edge_list(arr, n)

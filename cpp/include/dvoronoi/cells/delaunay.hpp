@@ -23,8 +23,8 @@
 // Complexity for m = 1 + others.rows() points: O(m^2) in the worst case. With the randomized order the
 // expected number of triangles created is O(m) (at most 6 per insertion on average, by backward
 // analysis); the visibility walks take O(sqrt m) steps each on evenly spread inputs, so about
-// O(m^1.5) in total. Measured (one core, -O2): about 2.6 us for 10 others, 10 us for 30 (random or
-// a square lattice), 20 us for 50; roughly half of it is the walks' orientation tests.
+// O(m^1.5) in total; the walks' orientation tests are about half of the time (timings: the docs'
+// performance page).
 //
 // Thread-safety: delaunay_cell is a pure function (all scratch is local); a detail::Delaunay or
 // DelaunayWorkspace object is scratch for one thread at a time.

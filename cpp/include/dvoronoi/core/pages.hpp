@@ -6,6 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -15,6 +18,30 @@
 
 namespace dvoronoi {
 namespace detail {
+
+/// An allocator whose value-less construct() leaves trivial types uninitialised, so resize(n) does
+/// not write n zeros: for arrays that their parallel passes fill completely, where a serial fill
+/// before them would be a sequential part of the run.
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = DefaultInitAllocator<U>;
+    };
+    using std::allocator<T>::allocator;
+    template <class U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
+/// A vector whose resize() leaves new trivial elements uninitialised (see DefaultInitAllocator).
+template <class T>
+using UninitVector = std::vector<T, DefaultInitAllocator<T>>;
 
 /// Maps the pages of [p, p + bytes) by one system call (MADV_POPULATE_WRITE, Linux 5.14+) instead
 /// of one page fault each; elsewhere, on older kernels or for small buffers it does nothing and the
@@ -35,8 +62,8 @@ inline void prefault(const void* p, std::size_t bytes) {
 
 /// Asks for huge pages under [p, p + bytes) (its whole 2 MB pages). For arrays accessed in scattered
 /// order: with 4 KB pages such an access misses the TLB at nearly every agent once the arrays
-/// outgrow it, and under a hypervisor each miss is a two-level page walk (measured: 2% of
-/// limited_cells at 1e6 agents). Not for arrays filled in order: fresh huge pages map slower here.
+/// outgrow it, and under a hypervisor each miss is a two-level page walk. Not for arrays filled in
+/// order: fresh huge pages map slower than small ones.
 inline void advise_huge_pages(const void* p, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
@@ -68,8 +95,7 @@ void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
 }
 
 /// prefault for several buffers at once, each split over up to `team` threads: page faults are
-/// handled by the faulting thread, and two threads map pages about 1.5-2x as fast as one (measured:
-/// 96 MB in 21-23 ms against 32-55 ms).
+/// handled by the faulting thread, so two threads map pages faster than one.
 inline void prefault_together(std::initializer_list<std::pair<const void*, std::size_t>> buffers, int team) {
 #pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
     for (int t = 0; t < team; ++t)

@@ -32,8 +32,9 @@ namespace dvoronoi::gvd {
 /// Nearest points of every pixel: fx, fy in doubled pixel units (an occupied pixel's own centre).
 struct FeatureMap {
     std::int32_t rows = 0, cols = 0;
-    std::vector<std::int16_t> vgap;  ///< signed row offset to the nearest occupied pixel of the column (0: occupied)
-    std::vector<std::int16_t> fx, fy;
+    // Not zero-filled when sized: the column and row passes write every element, in parallel.
+    ::dvoronoi::detail::UninitVector<std::int16_t> vgap;  ///< signed row offset to the nearest occupied pixel of the column (0: occupied)
+    ::dvoronoi::detail::UninitVector<std::int16_t> fx, fy;
 
     std::size_t at(std::int32_t r, std::int32_t c) const {
         return static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c);
@@ -294,14 +295,18 @@ inline void column_passes(const OccupancyGrid& g, FeatureMap& f, int workers) {
     });
 }
 
-/// An empty map of g's size, its arrays mapped in bulk (they are filled in order; core/pages.hpp).
-inline FeatureMap feature_map_for(const OccupancyGrid& g) {
+/// A map of g's size whose values the passes are still to write: its pages mapped in bulk by
+/// `workers` threads (core/pages.hpp), not filled (a serial fill would cap the passes' speed-up).
+inline FeatureMap feature_map_for(const OccupancyGrid& g, int workers = 1) {
     FeatureMap f;
     f.rows = g.rows;
     f.cols = g.cols;
-    ::dvoronoi::detail::assign_prefaulted(f.vgap, g.size());
-    ::dvoronoi::detail::assign_prefaulted(f.fx, g.size());
-    ::dvoronoi::detail::assign_prefaulted(f.fy, g.size());
+    f.vgap.resize(g.size());
+    f.fx.resize(g.size());
+    f.fy.resize(g.size());
+    const std::size_t bytes = g.size() * sizeof(std::int16_t);
+    ::dvoronoi::detail::prefault_together({{f.vgap.data(), bytes}, {f.fx.data(), bytes}, {f.fy.data(), bytes}},
+                                          std::max(1, workers));
     return f;
 }
 
@@ -310,15 +315,13 @@ inline FeatureMap feature_map_for(const OccupancyGrid& g) {
 /// \note O(rows x cols); 6 bytes per pixel.
 inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
     check_grid(g);
-    FeatureMap f = feature_map_for(g);
+    FeatureMap f = feature_map_for(g, workers);
     column_passes(g, f, workers);
     const int k_rows = std::max(1, std::min(workers, g.rows));
-    run_team(k_rows, [&](int k) {
-        detail::RowEnvelope env;
-        const auto r0 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.rows) * k / k_rows);
-        const auto r1 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.rows) * (k + 1) / k_rows);
-        for (std::int32_t r = r0; r < r1; ++r) detail::row_pass(g, f, r, env);
-    });
+    run_chunks(k_rows, g.rows, 16, [] { return detail::RowEnvelope(); },
+               [&](detail::RowEnvelope& env, std::int32_t r0, std::int32_t r1) {
+                   for (std::int32_t r = r0; r < r1; ++r) detail::row_pass(g, f, r, env);
+               });
     return f;
 }
 

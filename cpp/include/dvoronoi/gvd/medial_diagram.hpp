@@ -362,9 +362,6 @@ private:
     std::int32_t sep2_;
 };
 
-/// Marks rows [r0, r1) of `m.mask` (reads the nearest points of rows r0-1 .. r1).
-inline void mark_rows(MedialDiagram& m, std::int32_t r0, std::int32_t r1) { RowMarker(m).mark(r0, r1); }
-
 }  // namespace detail
 
 /// The medial diagram of `grid` (copied into the result) with options.workers threads; the same
@@ -381,12 +378,10 @@ inline MedialDiagram medial_diagram(OccupancyGrid grid, const MedialOptions& opt
     m.mask = PixelMask(m.grid.rows, m.grid.cols);
     // (Marking each row while pass 2 still has its neighbours in cache was measured: no faster, as
     // the bands' vertical pairs are then judged twice.)
+    // Chunks of 64 rows: each chunk judges the vertical pairs above its first row again.
     const int k_rows = std::max(1, std::min(options.workers, m.grid.rows));
-    run_team(k_rows, [&](int k) {
-        const auto r0 = static_cast<std::int32_t>(static_cast<std::int64_t>(m.grid.rows) * k / k_rows);
-        const auto r1 = static_cast<std::int32_t>(static_cast<std::int64_t>(m.grid.rows) * (k + 1) / k_rows);
-        detail::mark_rows(m, r0, r1);
-    });
+    run_chunks(k_rows, m.grid.rows, 64, [&m] { return detail::RowMarker(m); },
+               [](detail::RowMarker& marker, std::int32_t r0, std::int32_t r1) { marker.mark(r0, r1); });
     return m;
 }
 

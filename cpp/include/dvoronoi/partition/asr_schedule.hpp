@@ -27,7 +27,7 @@ namespace dvoronoi::detail {
 
 /// R_k = d1 * 2^(k-1), the schedule's radius: the same value as std::ldexp(d1, k - 1) (scaling by
 /// a power of two is exact, and overflows to infinity alike), without its library call for the
-/// usual small k (measured: ldexp was 0.6% of voronoi_cells at 1e6 agents).
+/// usual small k (it is called for every agent and step).
 inline double schedule_radius(double d1, int k) {
     if (k >= 1 && k <= 64) return d1 * static_cast<double>(std::uint64_t{1} << (k - 1));
     return std::ldexp(d1, k - 1);
