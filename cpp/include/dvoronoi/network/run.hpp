@@ -178,6 +178,16 @@ inline FlatCells cc_unbounded_cells(const Network& net, const std::vector<std::v
             continue;
         }
         const Vec2 c = net.pos(i);
+        // A cell CC reports bounded has a Voronoi vertex between consecutive neighbours (a left
+        // turn, exact); should an answer ever lack one, the cell gets no polygon rather than a
+        // vertex at infinity.
+        bool turns = true;
+        for (std::size_t k = 0; k < nb.size() && turns; ++k)
+            turns = pred::orient(c, net.pos(nb[k]), net.pos(nb[(k + 1) % nb.size()])) > 0;
+        if (!turns) {
+            f.piece_ptr.push_back(static_cast<Index>(f.piece_x.size()));
+            continue;
+        }
         local.vertices.clear();
         local.edge_label.clear();
         for (std::size_t k = 0; k < nb.size(); ++k) {
