@@ -3,19 +3,15 @@
 // cells and the transmissions per node and message type.
 #include "common.hpp"
 
+#include "dvoronoi/io/network_csv.hpp"
+#include "dvoronoi/io/network_json.hpp"
 #include "dvoronoi/io/network_svg.hpp"
-#include "dvoronoi/network/bd07.hpp"
-#include "dvoronoi/network/cc.hpp"
-#include "dvoronoi/network/delaunay_check.hpp"
-#include "dvoronoi/network/distributed_boundary_scan.hpp"
-#include "dvoronoi/network/dv_hop.hpp"
-
-#include <nlohmann/json.hpp>
+#include "dvoronoi/network/run.hpp"
 
 #include <cmath>
 #include <iostream>
 #include <memory>
-#include <random>
+#include <variant>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -71,33 +67,19 @@ std::vector<network::Segment> read_obstacles(const std::string& path) {
     return out;
 }
 
-nlohmann::json rows(const std::vector<std::int64_t>& flat, std::size_t cols) {
-    nlohmann::json out = nlohmann::json::array();
-    for (std::size_t r = 0; cols && r < flat.size() / cols; ++r)
-        out.push_back(std::vector<std::int64_t>(flat.begin() + static_cast<std::ptrdiff_t>(r * cols),
-                                                flat.begin() + static_cast<std::ptrdiff_t>((r + 1) * cols)));
-    return out;
-}
-
-nlohmann::json points_json(const Points& p) {
-    nlohmann::json out = nlohmann::json::array();
-    for (Index i = 0; i < p.rows(); ++i) {
-        nlohmann::json r = nlohmann::json::array();
-        for (int d = 0; d < 2; ++d) r.push_back(std::isfinite(p(i, d)) ? nlohmann::json(p(i, d)) : nlohmann::json());
-        out.push_back(r);
+/// Cells for the picture: the polygons of a run that has them (CC with bounds, BD07).
+std::vector<network::Polygon> polygons(const network::RunBase& r) {
+    std::vector<network::Polygon> out;
+    for (Index i = 0; i < r.size(); ++i) {
+        network::Polygon p;
+        for (Index k = r.cells.piece_ptr[static_cast<std::size_t>(i)]; k < r.cells.piece_ptr[static_cast<std::size_t>(i) + 1]; ++k) {
+            const auto kk = static_cast<std::size_t>(k);
+            p.vertices.emplace_back(r.cells.piece_x[kk], r.cells.piece_y[kk]);
+            p.edge_label.push_back(r.cells.piece_neighbor[kk]);
+        }
+        out.push_back(std::move(p));
     }
     return out;
-}
-
-void csr_json(nlohmann::json& j, const std::vector<std::vector<Index>>& lists, bool sorted) {
-    std::vector<Index> indptr{0}, indices;
-    for (auto l : lists) {
-        if (sorted) std::sort(l.begin(), l.end());
-        indices.insert(indices.end(), l.begin(), l.end());
-        indptr.push_back(static_cast<Index>(indices.size()));
-    }
-    j["indptr"] = indptr;
-    j["indices"] = indices;
 }
 
 int run_network(const NetworkOptions& o) {
@@ -108,182 +90,83 @@ int run_network(const NetworkOptions& o) {
     if (!(o.anchor_fraction >= 0.0 && o.anchor_fraction <= 1.0))
         throw UsageError("--anchor-fraction: must be in [0, 1], got " + show(o.anchor_fraction));
     if (o.radius < 0.0 || !std::isfinite(o.radius)) throw UsageError("--radius: must be a positive finite number");
+    if (o.adjacency_cap < 0) throw UsageError("--adjacency-cap: must be >= 0");
     const bool to_stdout = o.output.empty() || o.output == "-";
     const std::string ext = to_stdout ? ".json" : lower_extension(o.output);
     if (ext != ".json" && ext != ".csv")
         throw UsageError("-o/--output: cannot tell the output format of '" + o.output + "'; use .json or .csv");
-    network::CcOptions cc;
-    cc.cap_adjacency = !o.no_cap;
-    cc.adjacency_cap = o.adjacency_cap;
-    cc.forward = !o.no_forward;
-    cc.route_discovery = !o.no_route_discovery;
+    network::Options opt;
+    opt.algorithm = network::parse_algorithm(o.algorithm);
+    opt.range = o.range;
+    opt.run = network::RunOptions{o.loss, o.seed, o.budget};
+    opt.cc.cap_adjacency = !o.no_cap;
+    opt.cc.adjacency_cap = o.adjacency_cap;
+    opt.cc.forward = !o.no_forward;
+    opt.cc.route_discovery = !o.no_route_discovery;
+    opt.bd07.route_discovery = !o.no_route_discovery;
     try {
-        cc.routing = network::parse_routing(o.routing);
+        opt.cc.routing = network::parse_routing(o.routing);
     } catch (const InputError& e) {
         throw UsageError(std::string("--routing: ") + e.what());
     }
-    const bool has_bounds = !o.bounds.empty();
-    network::Box box = has_bounds ? parse_bounds(o.bounds) : network::Box{};
+    if (!o.bounds.empty()) opt.bounds = parse_bounds(o.bounds);
+    opt.radius = o.radius;
+    opt.anchor_fraction = o.anchor_fraction;
+    opt.dv_hop.synchronous = !o.dv_hop_async;
+    opt.dv_hop.anchors_relay = o.anchors_relay;
 
     const io::PointFile file = read_points_argument(o.points, o.columns);
-    const auto obstacles = o.obstacles.empty() ? std::vector<network::Segment>{} : read_obstacles(o.obstacles);
+    if (!o.obstacles.empty()) opt.obstacles = read_obstacles(o.obstacles);
     std::unique_ptr<io::AtomicFile> out, svg;
     if (!to_stdout) out = open_output(o.output, "-o/--output");
     if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
 
-    network::Network net;
+    Progress progress("network " + o.algorithm, 1, o.quiet, 1);
+    network::Result result;
     try {
-        net = network::make_network(file.points, o.range, obstacles);
+        result = network::run(file.points, opt);
     } catch (const CoincidentError& e) {
         throw InputError(coincident_message(file, e));
     }
-    if (!has_bounds && net.size() > 0) {
-        box = {net.points.col(0).minCoeff(), net.points.col(1).minCoeff(), net.points.col(0).maxCoeff(),
-               net.points.col(1).maxCoeff()};
-        if (!(box.xmin < box.xmax)) box.xmin -= 1, box.xmax += 1;
-        if (!(box.ymin < box.ymax)) box.ymin -= 1, box.ymax += 1;
-    }
-    const network::RunOptions run{o.loss, o.seed, o.budget};
-    Progress progress("network " + o.algorithm, 1, o.quiet, 1);
-
-    nlohmann::json j;
-    j["kind"] = "network_" + o.algorithm;
-    j["algorithm"] = o.algorithm;
-    j["comm_range"] = o.range;
-    j["loss"] = o.loss;
-    j["seed"] = o.seed;
-    j["points"] = points_json(net.points);
-    std::vector<std::array<Index, 2>> links;
-    for (Index i = 0; i < net.size(); ++i)
-        for (Index k : net.adj[static_cast<std::size_t>(i)])
-            if (k > i) links.push_back({i, k});
-    j["links"] = links;
-    j["blocked_links"] = net.blocked_links;
-    nlohmann::json obs = nlohmann::json::array();
-    for (const auto& s : obstacles) obs.push_back({s.a.x(), s.a.y(), s.b.x(), s.b.y()});
-    j["obstacles"] = obs;
-    network::TransmissionCounts counts, dv_counts;
-    std::vector<network::Polygon> cells;
-    std::vector<char> highlight;
-    std::vector<double> areas;
-    if (o.algorithm == "cc") {
-        const auto r = network::run_cc(net, run, cc);
-        counts = r.counts;
-        j["lost_messages"] = r.lost;
-        j["route_discoveries"] = r.discoveries;
-        csr_json(j, r.neighbors, true);
-        std::vector<Index> ccw;
-        for (const auto& l : r.neighbors) ccw.insert(ccw.end(), l.begin(), l.end());
-        j["neighbors_ccw"] = ccw;
-        std::vector<bool> hull;
-        for (char h : r.on_hull) hull.push_back(h != 0);
-        j["on_hull"] = hull;
-        highlight = r.on_hull;
-        const auto chk = network::delaunay_check(net);
-        j["condition"] = chk.condition;
-        j["wrong_nodes"] = network::wrong_nodes(chk, r.neighbors, &r.on_hull);
-        if (has_bounds) {
-            j["bounds"] = {box.xmin, box.ymin, box.xmax, box.ymax};
-            for (Index i = 0; i < net.size(); ++i) {
-                std::vector<Vec2> nb;
-                for (Index k : r.neighbors[static_cast<std::size_t>(i)]) nb.push_back(net.pos(k));
-                cells.push_back(network::clipped_cell(net.pos(i), nb, r.neighbors[static_cast<std::size_t>(i)], box));
-                areas.push_back(cells.back().area());
-            }
-            j["areas"] = areas;
-        } else {
-            j["bounds"] = nullptr;
-        }
-    } else if (o.algorithm == "bd07") {
-        network::Bd07Options bo;
-        bo.route_discovery = !o.no_route_discovery;
-        const auto r = network::run_bd07(net, box, run, bo);
-        counts = r.counts;
-        j["lost_messages"] = r.lost;
-        j["bounds"] = {box.xmin, box.ymin, box.xmax, box.ymax};
-        csr_json(j, r.neighbors, true);
-        cells = r.cells;
-        for (const auto& c : cells) areas.push_back(c.area());
-        j["areas"] = areas;
-        j["probes"] = r.probes;
-        j["route_discoveries"] = r.discoveries;
-    } else {
-        const double R = o.radius > 0.0 ? o.radius : 0.5 * o.range;
-        Points positions = net.points;
-        std::vector<Index> anchors;
-        if (o.anchor_fraction > 0.0) {
-            const auto k = static_cast<std::size_t>(std::max<double>(1.0, std::round(o.anchor_fraction * static_cast<double>(net.size()))));
-            std::vector<Index> all(static_cast<std::size_t>(net.size()));
-            for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
-            std::mt19937_64 rng(o.seed);
-            std::shuffle(all.begin(), all.end(), rng);
-            anchors.assign(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(std::min(k, all.size())));
-            std::sort(anchors.begin(), anchors.end());
-            network::DvHopOptions dvo;
-            dvo.synchronous = !o.dv_hop_async;
-            dvo.anchors_relay = o.anchors_relay;
-            const auto dv = network::run_dv_hop(net, anchors, run, dvo);
-            positions = dv.estimates;
-            dv_counts = dv.counts;
-        }
-        const auto r = network::run_distributed_bs(net, positions, R, run);
-        counts = r.counts;
-        j["lost_messages"] = 0;
-        j["positions"] = points_json(positions);
-        j["radius"] = R;
-        j["indptr"] = r.partition.indptr;
-        j["indices"] = r.partition.indices;
-        j["areas"] = r.partition.areas;
-        j["anchors"] = anchors.empty() ? nlohmann::json() : nlohmann::json(anchors);
-        j["dv_hop_types"] = dv_counts.types;
-        j["dv_hop_sent"] = rows(dv_counts.sent, dv_counts.types.size());
-        j["dv_hop_received"] = rows(dv_counts.received, dv_counts.types.size());
-        j["dropped_coincident"] = r.dropped_coincident;
-        areas = r.partition.areas;
-    }
     progress.finish();
-    j["message_types"] = counts.types;
-    j["sent"] = rows(counts.sent, counts.types.size());
-    j["received"] = rows(counts.received, counts.types.size());
-    j["total_transmissions"] = counts.total_sent() + dv_counts.total_sent();
-    j["total_deliveries"] = counts.total_received() + dv_counts.total_received();
+    const network::RunBase& r = network::base(result);
 
     std::string text;
     if (ext == ".csv") {
         std::ostringstream cs;
-        // The columns of the other writers (io/csv.hpp): 'agent' and the neighbours space-separated, ascending.
-        const std::vector<Index> indptr = j["indptr"].get<std::vector<Index>>();
-        const std::vector<Index> indices = j["indices"].get<std::vector<Index>>();
-        cs << "agent,x,y,neighbors";
-        if (!areas.empty()) cs << ",area";
-        for (const auto& t : dv_counts.types) cs << ",sent_" << t << ",received_" << t;
-        for (const auto& t : counts.types) cs << ",sent_" << t << ",received_" << t;
-        cs << '\n';
-        cs.precision(17);
-        for (Index i = 0; i < net.size(); ++i) {
-            const auto ii = static_cast<std::size_t>(i);
-            cs << i << ',' << net.pos(i).x() << ',' << net.pos(i).y() << ',';
-            for (Index q = indptr[ii]; q < indptr[ii + 1]; ++q)
-                cs << (q > indptr[ii] ? " " : "") << indices[static_cast<std::size_t>(q)];
-            if (!areas.empty()) cs << ',' << areas[ii];
-            for (std::size_t t = 0; t < dv_counts.types.size(); ++t)
-                cs << ',' << dv_counts.sent[ii * dv_counts.types.size() + t] << ',' << dv_counts.received[ii * dv_counts.types.size() + t];
-            for (std::size_t t = 0; t < counts.types.size(); ++t)
-                cs << ',' << counts.sent[ii * counts.types.size() + t] << ',' << counts.received[ii * counts.types.size() + t];
-            cs << '\n';
-        }
+        io::write_network_csv(cs, result);
         text = cs.str();
     } else {
-        text = j.dump() + "\n";
+        text = io::network_json_text(result) + "\n";
+    }
+    // The picture: the links over the cells that are polygons (CC with bounds, BD07), hull nodes
+    // highlighted for CC, in the run's box (the nodes' bounding box when none was given).
+    network::Network net;
+    net.points = r.points;
+    net.obstacles = r.obstacles;
+    net.adj.assign(static_cast<std::size_t>(r.size()), {});
+    for (const auto& l : r.links) {
+        net.adj[static_cast<std::size_t>(l[0])].push_back(l[1]);
+        net.adj[static_cast<std::size_t>(l[1])].push_back(l[0]);
+    }
+    const network::Box box = opt.bounds ? *opt.bounds : network::detail::default_box(r.points);
+    std::vector<network::Polygon> cells;
+    std::vector<char> highlight;
+    if (const auto* cc = std::get_if<network::CcRun>(&result)) {
+        highlight = cc->on_hull;
+        if (cc->bounds) cells = polygons(r);
+    } else if (std::holds_alternative<network::Bd07Run>(result)) {
+        cells = polygons(r);
     }
     const int code = deliver(
         out, svg, [&](std::ostream& os) { os << text; },
         [&](std::ostream& os) { io::write_network_svg(os, net, cells, box, highlight); });
     if (code != 0) return code;
+    const std::int64_t transmissions = std::visit([](const auto& x) { return x.total_transmissions(); }, result);
+    const std::int64_t deliveries = std::visit([](const auto& x) { return x.total_deliveries(); }, result);
     if (!o.quiet)
-        std::cerr << "network " << o.algorithm << ": " << net.size() << " nodes, " << net.link_count() << " links, "
-                  << (counts.total_sent() + dv_counts.total_sent()) << " transmissions, "
-                  << (counts.total_received() + dv_counts.total_received()) << " link deliveries\n";
+        std::cerr << "network " << o.algorithm << ": " << r.size() << " nodes, " << r.links.size() << " links, "
+                  << transmissions << " transmissions, " << deliveries << " link deliveries\n";
     return 0;
 }
 

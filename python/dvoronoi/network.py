@@ -6,6 +6,11 @@ count what that costs (SPEC "Networks of agents").
 >>> res.neighbors(0), res.on_hull, res.total_transmissions, res.total_deliveries
 >>> res.plot_messages()
 
+One call in C++ runs the whole simulation, ``dvoronoi::network::run`` (``network/run.hpp``): the
+graph, the algorithm, and every node's cell with its area and centroid. The result classes here wrap
+that compiled result (they pickle), and ``to_json()`` is the document ``io/network_json.hpp`` writes,
+the same bytes as ``dvoronoi network ... -o run.json`` for the same run.
+
 Algorithms (the simulator is C++: ``cpp/include/dvoronoi/network/``):
 
 ``"cc"``
@@ -90,27 +95,105 @@ class NetworkCell:
 class _NetworkMixin:
     """Transmission counts and network pictures shared by every network result."""
 
-    _d: Dict[str, Any]
-    points: np.ndarray
+    _core: Any
 
-    def _init_network(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float,
-                      seed: int, obstacles: np.ndarray, algorithm: str) -> None:
-        self._d = d
-        self.points = points
-        self.comm_range = float(comm_range)
-        self.loss = float(loss)
-        self.seed = int(seed)
-        self.obstacles = obstacles
-        self.algorithm = algorithm
-        self.links = np.asarray(d["links"], dtype=np.int64).reshape(-1, 2)
-        self.blocked_links = int(d["blocked_links"])
-        counts = d["counts"]
-        self.message_types = tuple(counts["types"])
-        self.sent = np.asarray(counts["sent"], dtype=np.int64)
-        self.received = np.asarray(counts["received"], dtype=np.int64)
-        self.lost_messages = int(d.get("lost", 0))
-        #: CC and BD07: route discoveries (floods) after GPSR could not deliver (obstacles)
-        self.route_discoveries = int(d.get("discoveries", 0))
+    # -- the compiled result's fields (network::run; copies cached per result)
+    @property
+    def algorithm(self) -> str:
+        return str(self._core.algorithm)
+
+    @cached_property
+    def points(self) -> np.ndarray:
+        return self._core.points
+
+    @property
+    def comm_range(self) -> float:
+        return float(self._core.comm_range)
+
+    @property
+    def loss(self) -> float:
+        return float(self._core.loss)
+
+    @property
+    def seed(self) -> int:
+        return int(self._core.seed)
+
+    @cached_property
+    def obstacles(self) -> np.ndarray:
+        """``(m, 4)`` obstacle segments ``x0, y0, x1, y1``."""
+        return self._core.obstacles
+
+    @cached_property
+    def links(self) -> np.ndarray:
+        """``(E, 2)`` int64 links ``i < j``."""
+        return self._core.links
+
+    @property
+    def blocked_links(self) -> int:
+        return int(self._core.blocked_links)
+
+    @property
+    def message_types(self) -> tuple:
+        return tuple(self._core.message_types)
+
+    @cached_property
+    def sent(self) -> np.ndarray:
+        return self._core.sent
+
+    @cached_property
+    def received(self) -> np.ndarray:
+        return self._core.received
+
+    @property
+    def lost_messages(self) -> int:
+        return int(self._core.lost_messages)
+
+    @property
+    def route_discoveries(self) -> int:
+        """CC and BD07: route discoveries (floods) after GPSR could not deliver (obstacles)."""
+        return int(self._core.route_discoveries)
+
+    @cached_property
+    def indptr(self) -> np.ndarray:
+        return self._core.indptr
+
+    @cached_property
+    def indices(self) -> np.ndarray:
+        return self._core.indices
+
+    @cached_property
+    def piece_ptr(self) -> np.ndarray:
+        return self._core.piece_ptr
+
+    @cached_property
+    def piece_neighbor(self) -> np.ndarray:
+        return self._core.piece_neighbor
+
+    @cached_property
+    def piece_x(self) -> np.ndarray:
+        return self._core.piece_x
+
+    @cached_property
+    def piece_y(self) -> np.ndarray:
+        return self._core.piece_y
+
+    @cached_property
+    def piece_span(self) -> np.ndarray:
+        return self._core.piece_span
+
+    @cached_property
+    def areas(self) -> np.ndarray:
+        """Cell areas (``inf`` for an unbounded CC cell), computed in C++."""
+        return self._core.areas
+
+    @cached_property
+    def centroids(self) -> np.ndarray:
+        """Cell centroids (NaN for an unbounded CC cell), computed in C++."""
+        return self._core.centroids
+
+    def _json_text(self, indent: Optional[int]) -> str:
+        """The document io/network_json.hpp writes (the CLI's ``-o run.json``, byte for byte)."""
+        return str(self._core.to_json(indent))
 
     @property
     def total_transmissions(self) -> int:
@@ -137,16 +220,6 @@ class _NetworkMixin:
     @property
     def received_per_node(self) -> np.ndarray:
         return self.received.sum(axis=1)
-
-    def _counts_json(self) -> Dict[str, Any]:
-        return {
-            "algorithm": self.algorithm, "comm_range": self.comm_range, "loss": self.loss, "seed": self.seed,
-            "links": self.links.tolist(), "blocked_links": self.blocked_links,
-            "obstacles": self.obstacles.tolist(), "message_types": list(self.message_types),
-            "sent": self.sent.tolist(), "received": self.received.tolist(),
-            "total_transmissions": self.total_transmissions, "total_deliveries": self.total_deliveries,
-            "lost_messages": self.lost_messages,
-        }
 
     def plot_network(self, ax: Any = None, **kwargs: Any) -> Any:
         """Draw the nodes, their links and the obstacles; returns the Axes (see
@@ -179,15 +252,6 @@ class _NetworkMixin:
         return ax
 
 
-def _polygon_cells(d: Dict[str, Any], n: int):
-    ptr = np.asarray(d["piece_ptr"], dtype=np.int64)
-    nb = np.asarray(d["piece_neighbor"], dtype=np.int64)
-    return dict(piece_ptr=ptr, piece_neighbor=nb, piece_x=np.asarray(d["piece_x"], dtype=float),
-                piece_y=np.asarray(d["piece_y"], dtype=float), piece_span=np.zeros(len(nb)),
-                areas=np.asarray(d["areas"], dtype=float),
-                centroids=np.asarray(d["centroids"], dtype=float).reshape(n, 2))
-
-
 class _CellsMixin:
     """cell(i), GeoJSON and plots from flat piece arrays (polygons, or limited cells with arcs)."""
 
@@ -199,7 +263,11 @@ class _CellsMixin:
     areas: np.ndarray
     centroids: np.ndarray
     points: np.ndarray
-    radius: float
+
+    @property
+    def radius(self) -> float:
+        """The limiting circle's radius; NaN for polygon cells (CC, BD07)."""
+        return float("nan")
 
     def cell(self, i: int) -> NetworkCell:
         i = self._index(i)  # type: ignore[attr-defined]
@@ -249,13 +317,6 @@ class _CellsMixin:
         return ax
 
 
-def _csr_sorted(indptr: np.ndarray, indices: np.ndarray):
-    out = indices.copy()
-    for i in range(len(indptr) - 1):
-        out[indptr[i]:indptr[i + 1]] = np.sort(out[indptr[i]:indptr[i + 1]])
-    return out
-
-
 class CcResult(_CellsMixin, _NetworkMixin, CellResult):
     """The CC algorithm's answer: every node's Voronoi neighbours, the Delaunay graph, the hull.
 
@@ -280,62 +341,39 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
         cannot deliver (obstacles); ``route_discoveries`` is how many there were.
     """
 
-    indptr: np.ndarray
-    indices: np.ndarray
+    def __init__(self, core: "_core._NetworkCcRun") -> None:
+        if not isinstance(core, _core._NetworkCcRun):
+            raise TypeError("CcResult wraps a CC run; call dvoronoi.network.simulate('cc', ...)")
+        self._core = core
 
-    def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
-                 obstacles: np.ndarray, bounds: Optional[Sequence[float]]) -> None:
-        self._init_network(d, points, comm_range, loss, seed, obstacles, "cc")
-        ip, ix = d["neighbors_ccw"]
-        self.indptr = np.asarray(ip, dtype=np.int64)
-        self._ccw = np.asarray(ix, dtype=np.int64)
-        self.indices = _csr_sorted(self.indptr, self._ccw)
-        self.on_hull = np.asarray(d["on_hull"], dtype=bool)
-        self.condition = bool(d["condition"]) if "condition" in d else None
-        self.dt_components = int(d["dt_components"]) if "dt_components" in d else None
-        self.wrong_nodes = np.asarray(d["wrong_nodes"], dtype=np.int64) if "wrong_nodes" in d else None
-        self.refinements = int(d["refinements"])
-        self.bounds = None if bounds is None else tuple(float(b) for b in bounds)
-        self.radius = float("nan")
-        if "cells" in d:
-            for k, v in _polygon_cells(d["cells"], len(points)).items():
-                setattr(self, k, v)
-        else:
-            self._unbounded_cells()
+    @cached_property
+    def _ccw(self) -> np.ndarray:
+        return self._core.neighbors_ccw
 
-    def _unbounded_cells(self) -> None:
-        """Interior cells as polygons of circumcentres; hull cells have no finite polygon."""
-        n = len(self.points)
-        ptr, nbs, xs, ys = [0], [], [], []
-        areas = np.full(n, np.inf)
-        cents = np.full((n, 2), np.nan)
-        for i in range(n):
-            if not self.on_hull[i]:
-                ccw = self.neighbors_ccw(i)
-                c = self.points[i]
-                verts = []
-                for k in range(len(ccw)):
-                    a, b = self.points[ccw[k]], self.points[ccw[(k + 1) % len(ccw)]]
-                    verts.append(_circumcenter(c, a, b))
-                verts_a = np.array(verts)
-                # Vertex k joins edges with ccw[k-1] and ccw[k]: the edge from vertex k lies on ccw[k+1]'s
-                # bisector... keep CC's pairing: vertex k = (ccw[k], ccw[k+1]), the edge after it is ccw[k+1].
-                labels = np.roll(ccw, -1)
-                xs.extend(verts_a[:, 0])
-                ys.extend(verts_a[:, 1])
-                nbs.extend(labels.tolist())
-                x, y = verts_a[:, 0], verts_a[:, 1]
-                area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-                areas[i] = area
-                cents[i] = _polygon_centroid(verts_a)
-            ptr.append(len(xs))
-        self.piece_ptr = np.asarray(ptr, dtype=np.int64)
-        self.piece_neighbor = np.asarray(nbs, dtype=np.int64)
-        self.piece_x = np.asarray(xs, dtype=float)
-        self.piece_y = np.asarray(ys, dtype=float)
-        self.piece_span = np.zeros(len(nbs))
-        self.areas = areas
-        self.centroids = cents
+    @cached_property
+    def on_hull(self) -> np.ndarray:
+        return self._core.on_hull
+
+    @property
+    def condition(self) -> Optional[bool]:
+        return self._core.condition
+
+    @property
+    def dt_components(self) -> Optional[int]:
+        return self._core.dt_components
+
+    @cached_property
+    def wrong_nodes(self) -> Optional[np.ndarray]:
+        return self._core.wrong_nodes
+
+    @property
+    def refinements(self) -> int:
+        return int(self._core.refinements)
+
+    @property
+    def bounds(self) -> Optional[tuple]:
+        """The box the cells were clipped to (None: not clipped)."""
+        return self._core.bounds
 
     def cell(self, i: int) -> NetworkCell:
         i = self._index(i)
@@ -377,15 +415,6 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
             cur = nxt.get(cur)
         return np.asarray(order, dtype=np.int64)
 
-    def _json_text(self, indent: Optional[int]) -> str:
-        d = {"kind": "network_cc", **self._counts_json(), "points": self.points.tolist(),
-             "indptr": self.indptr.tolist(), "indices": self.indices.tolist(),
-             "neighbors_ccw": self._ccw.tolist(), "on_hull": self.on_hull.tolist(),
-             "condition": self.condition,
-             "wrong_nodes": None if self.wrong_nodes is None else self.wrong_nodes.tolist(),
-             "bounds": self.bounds, "areas": [a if np.isfinite(a) else None for a in self.areas.tolist()]}
-        return json.dumps(d, indent=indent)
-
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Cells (clipped if bounds were given; interior cells otherwise), the Delaunay graph, the
         network and wrong nodes; returns the Axes (see :func:`dvoronoi.plotting.plot_cc`)."""
@@ -398,24 +427,6 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
                 f"hull_nodes={int(self.on_hull.sum())}, condition={self.condition}, exact={self.exact})")
 
 
-def _circumcenter(c: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    ax_, ay = a - c
-    bx, by = b - c
-    d = 2.0 * (ax_ * by - ay * bx)
-    ux = (by * (ax_ * ax_ + ay * ay) - ay * (bx * bx + by * by)) / d
-    uy = (ax_ * (bx * bx + by * by) - bx * (ax_ * ax_ + ay * ay)) / d
-    return c + np.array([ux, uy])
-
-
-def _polygon_centroid(v: np.ndarray) -> np.ndarray:
-    x, y = v[:, 0] - v[0, 0], v[:, 1] - v[0, 1]
-    cr = x * np.roll(y, -1) - np.roll(x, -1) * y
-    a = cr.sum() / 2.0
-    if a == 0:
-        return v[0].copy()
-    return v[0] + np.array([((x + np.roll(x, -1)) * cr).sum(), ((y + np.roll(y, -1)) * cr).sum()]) / (6.0 * a)
-
-
 class Bd07Result(_CellsMixin, _NetworkMixin, CellResult):
     """BD07's answer: the Voronoi cells clipped to the bounded region, found by GPSR probes.
 
@@ -423,28 +434,27 @@ class Bd07Result(_CellsMixin, _NetworkMixin, CellResult):
     ``areas``, ``centroids``; ``probes`` vertices probed; message types location, probe, reply.
     """
 
-    indptr: np.ndarray
-    indices: np.ndarray
+    def __init__(self, core: "_core._NetworkBd07Run") -> None:
+        if not isinstance(core, _core._NetworkBd07Run):
+            raise TypeError("Bd07Result wraps a BD07 run; call dvoronoi.network.simulate('bd07', ...)")
+        self._core = core
 
-    def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
-                 obstacles: np.ndarray, bounds: Optional[Sequence[float]]) -> None:
-        self._init_network(d, points, comm_range, loss, seed, obstacles, "bd07")
-        ip, ix = d["neighbors"]
-        self.indptr = np.asarray(ip, dtype=np.int64)
-        self.indices = np.asarray(ix, dtype=np.int64)
-        #: the region of the run; None for an empty network without bounds
-        self.bounds = None if bounds is None else tuple(float(b) for b in bounds)
-        self.radius = float("nan")
-        self.probes = int(d["probes"])
-        self.condition = bool(d["condition"]) if "condition" in d else None
-        for k, v in _polygon_cells(d["cells"], len(points)).items():
-            setattr(self, k, v)
+    @property
+    def bounds(self) -> Optional[tuple]:
+        """The region of the run; None for an empty network without bounds."""
+        return self._core.bounds
 
-    def _json_text(self, indent: Optional[int]) -> str:
-        d = {"kind": "network_bd07", **self._counts_json(), "points": self.points.tolist(),
-             "bounds": self.bounds, "indptr": self.indptr.tolist(), "indices": self.indices.tolist(),
-             "areas": self.areas.tolist(), "probes": self.probes}
-        return json.dumps(d, indent=indent)
+    @property
+    def probes(self) -> int:
+        return int(self._core.probes)
+
+    @property
+    def condition(self) -> Optional[bool]:
+        return self._core.condition
+
+    @property
+    def dt_components(self) -> Optional[int]:
+        return self._core.dt_components
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         return self.plot_cells(ax=ax, **kwargs)
@@ -462,40 +472,57 @@ class BoundaryScanResult(_CellsMixin, _NetworkMixin, CellResult):
     ``estimates``, ``localized``, ``position_error``, ``anchors`` describe it.
     """
 
-    indptr: np.ndarray
-    indices: np.ndarray
-    radius: float
+    def __init__(self, core: "_core._NetworkBsRun") -> None:
+        if not isinstance(core, _core._NetworkBsRun):
+            raise TypeError("BoundaryScanResult wraps a Boundary Scan run; call dvoronoi.network.simulate('bs', ...)")
+        self._core = core
 
-    def __init__(self, d: Dict[str, Any], points: np.ndarray, comm_range: float, loss: float, seed: int,
-                 obstacles: np.ndarray, anchors: Optional[np.ndarray]) -> None:
-        self._init_network(d, points, comm_range, loss, seed, obstacles, "bs")
-        p = d["partition"]
-        self.radius = float(p["radius"])
-        self.positions = np.asarray(p["points"], dtype=float).reshape(-1, 2)
-        self.indptr = np.asarray(p["indptr"], dtype=np.int64)
-        self.indices = np.asarray(p["indices"], dtype=np.int64)
-        for k in ("piece_ptr", "piece_neighbor"):
-            setattr(self, k, np.asarray(p[k], dtype=np.int64))
-        for k in ("piece_x", "piece_y", "piece_span", "areas", "perimeters"):
-            setattr(self, k, np.asarray(p[k], dtype=float))
-        self.centroids = np.asarray(p["centroids"], dtype=float).reshape(-1, 2)
-        self.dropped_coincident = int(d["dropped_coincident"])
-        self.anchors = anchors
-        if "estimates" in d:
-            self.estimates = np.asarray(d["estimates"], dtype=float).reshape(-1, 2)
-            self.localized = np.asarray(d["localized"], dtype=bool)
-            self.hop_size = np.asarray(d["hop_size"], dtype=float)
-            c = d["dv_hop_counts"]
-            self.dv_hop_types = tuple(c["types"])
-            self.dv_hop_sent = np.asarray(c["sent"], dtype=np.int64)
-            self.dv_hop_received = np.asarray(c["received"], dtype=np.int64)
-        else:
-            self.estimates = None
-            self.localized = np.ones(len(points), dtype=bool)
-            self.hop_size = None
-            self.dv_hop_types = ()
-            self.dv_hop_sent = np.zeros((len(points), 0), dtype=np.int64)
-            self.dv_hop_received = np.zeros((len(points), 0), dtype=np.int64)
+    @property
+    def radius(self) -> float:
+        return float(self._core.radius)
+
+    @cached_property
+    def positions(self) -> np.ndarray:
+        """The positions the nodes used: true ones, or DV-Hop estimates (NaN: not localised)."""
+        return self._core.positions
+
+    @cached_property
+    def perimeters(self) -> np.ndarray:
+        return self._core.perimeters
+
+    @property
+    def dropped_coincident(self) -> int:
+        return int(self._core.dropped_coincident)
+
+    @cached_property
+    def anchors(self) -> Optional[np.ndarray]:
+        """The anchor nodes (given, or picked with ``anchor_fraction``); None without DV-Hop."""
+        return self._core.anchors
+
+    @cached_property
+    def estimates(self) -> Optional[np.ndarray]:
+        """DV-Hop's positions (the ``positions`` used); None without DV-Hop."""
+        return self.positions if self._core.localised else None
+
+    @cached_property
+    def localized(self) -> np.ndarray:
+        return self._core.localized
+
+    @cached_property
+    def hop_size(self) -> Optional[np.ndarray]:
+        return self._core.hop_size
+
+    @property
+    def dv_hop_types(self) -> tuple:
+        return tuple(self._core.dv_hop_types)
+
+    @cached_property
+    def dv_hop_sent(self) -> np.ndarray:
+        return self._core.dv_hop_sent
+
+    @cached_property
+    def dv_hop_received(self) -> np.ndarray:
+        return self._core.dv_hop_received
 
     @property
     def position_error(self) -> np.ndarray:
@@ -529,15 +556,6 @@ class BoundaryScanResult(_CellsMixin, _NetworkMixin, CellResult):
     @property
     def received_per_node(self) -> np.ndarray:
         return self.received.sum(axis=1) + self.dv_hop_received.sum(axis=1)
-
-    def _json_text(self, indent: Optional[int]) -> str:
-        d = {"kind": "network_bs", **self._counts_json(), "points": self.points.tolist(),
-             "positions": [[x if np.isfinite(x) else None for x in r] for r in self.positions.tolist()],
-             "radius": self.radius, "indptr": self.indptr.tolist(), "indices": self.indices.tolist(),
-             "areas": self.areas.tolist(), "anchors": None if self.anchors is None else self.anchors.tolist(),
-             "dv_hop_types": list(self.dv_hop_types), "dv_hop_sent": self.dv_hop_sent.tolist(),
-             "dv_hop_received": self.dv_hop_received.tolist(), "dropped_coincident": self.dropped_coincident}
-        return json.dumps(d, indent=indent)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """The limited cells around the positions used, with the network drawn at the true positions."""
@@ -667,31 +685,30 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
         raise ValueError(f'dv_hop must be "sync" or "async", got {dv_hop!r}')
     obs = _obstacles(obstacles)
     b = _bounds(bounds)
-    anchor_arr = None
+    anchor_list = None
+    fraction = 0.0
     if algorithm == "bs":
         if anchors is not None and anchor_fraction is not None:
             raise ValueError("give anchors or anchor_fraction, not both")
         if anchor_fraction is not None:
-            anchor_fraction = _args.real(anchor_fraction, "anchor_fraction")
-            if not 0.0 < anchor_fraction <= 1.0:
+            fraction = _args.real(anchor_fraction, "anchor_fraction")
+            if not 0.0 < fraction <= 1.0:
                 raise ValueError(f"anchor_fraction must be in (0, 1], got {anchor_fraction!r}")
-            k = max(1, int(round(anchor_fraction * len(pts))))
-            anchor_arr = np.sort(np.random.default_rng(seed).choice(len(pts), size=k, replace=False))
         elif anchors is not None:
-            anchor_arr = np.asarray(anchors, dtype=np.int64).ravel()
+            anchor_list = np.asarray(anchors, dtype=np.int64).ravel().tolist()
         if radius is not None:
             radius = _args.positive(radius, "radius")
     elif anchors is not None or anchor_fraction is not None:
         raise ValueError("anchors / anchor_fraction apply to algorithm='bs' only")
-    d = _core._network_simulate(algorithm, pts, comm_range, loss, obs if len(obs) else None, b, seed,
-                                budget, bool(cap_adjacency), adjacency_cap, bool(forward), routing,
-                                None if anchor_arr is None else anchor_arr.tolist(), radius or 0.0, bool(verify),
-                                bool(route_discovery), dv_hop == "sync", bool(anchors_relay))
+    core = _core._network_run(algorithm, pts, comm_range, loss, obs if len(obs) else None, b, seed, budget,
+                              bool(cap_adjacency), adjacency_cap, bool(forward), routing, anchor_list, fraction,
+                              radius or 0.0, bool(verify), bool(route_discovery), dv_hop == "sync",
+                              bool(anchors_relay))
     if algorithm == "cc":
-        return CcResult(d, pts, comm_range, loss, seed, obs, b)
+        return CcResult(core)
     if algorithm == "bd07":
-        return Bd07Result(d, pts, comm_range, loss, seed, obs, d["bounds"])
-    return BoundaryScanResult(d, pts, comm_range, loss, seed, obs, anchor_arr)
+        return Bd07Result(core)
+    return BoundaryScanResult(core)
 
 
 def links(points: Any, comm_range: float, obstacles: Any = None) -> np.ndarray:

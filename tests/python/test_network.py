@@ -461,3 +461,47 @@ def test_counts_by_hand_and_route_discovery_switch():
     for alg in ("cc", "bd07"):
         off = net.simulate(alg, pts, 18.0, obstacles=bars, route_discovery=False, verify=False)
         assert off.route_discoveries == 0 and off.transmissions_by_type["discovery"] == 0
+
+
+@pytest.mark.parametrize("algorithm", ["cc", "bd07", "bs"])
+def test_results_wrap_one_compiled_run_and_pickle(algorithm):
+    # Every field comes from the compiled result of network::run (no setattr, no Python geometry);
+    # a pickled result is the same result: every array, the JSON, the cells.
+    import pickle
+
+    rng = np.random.default_rng(8)
+    pts = rng.uniform(0, 100, (60, 2))
+    bars = net.random_bars(rng, 8, 5.0, (0, 0, 100, 100))
+    kw = dict(anchor_fraction=0.3) if algorithm == "bs" else {}
+    res = net.simulate(algorithm, pts, 25.0, loss=0.1, seed=3, obstacles=bars, **kw)
+    s = pickle.loads(pickle.dumps(res, protocol=pickle.HIGHEST_PROTOCOL))
+    assert type(s) is type(res) and s.to_json() == res.to_json()
+    for name in ("points", "links", "obstacles", "sent", "received", "indptr", "indices", "areas", "centroids",
+                 "piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span"):
+        assert np.array_equal(getattr(s, name), getattr(res, name), equal_nan=name in ("areas", "centroids")), name
+    assert np.array_equal(res.points, pts) and res.obstacles.shape == (8, 4)
+    assert (s.message_types, s.total_transmissions, s.blocked_links) == (
+        res.message_types, res.total_transmissions, res.blocked_links)
+    if algorithm == "bs":
+        assert np.array_equal(s.anchors, res.anchors) and np.array_equal(s.localized, res.localized)
+        assert np.array_equal(s.dv_hop_sent, res.dv_hop_sent) and s.dv_hop_types == res.dv_hop_types
+        assert np.array_equal(s.positions, res.positions, equal_nan=True)
+    else:
+        assert (s.condition, s.bounds, s.route_discoveries) == (res.condition, res.bounds, res.route_discoveries)
+
+
+def test_cc_unbounded_cells_are_the_exact_cores():
+    # CC without bounds: interior cells are the polygons of their Voronoi vertices, computed in C++;
+    # areas and centroids agree with voronoi_cells (the exact core), hull cells are unbounded.
+    pts = random_points(12, 120, 100.0)
+    res = net.simulate("cc", pts, 25.0)
+    assert res.exact
+    ref = dv.voronoi_cells(pts)
+    inner = ~res.on_hull
+    assert np.array_equal(res.on_hull, ref.on_hull)
+    assert np.allclose(res.areas[inner], ref.areas[inner], rtol=1e-10, atol=0)
+    assert np.allclose(res.centroids[inner], ref.centroids[inner], rtol=1e-10, atol=0)
+    assert np.all(np.isinf(res.areas[res.on_hull])) and np.all(np.isnan(res.centroids[res.on_hull]))
+    for i in np.flatnonzero(inner)[:10]:
+        c = res.cell(int(i))
+        assert sorted(c.neighbors.tolist()) == res.neighbors(int(i)).tolist()

@@ -104,3 +104,33 @@ def test_errors_name_the_argument_and_write_nothing(network_files, tmp_path):
         assert r.returncode == 2 and "--bounds" in r.stderr and not out.exists(), bounds
     r = run("network", "bd07", p, "--range", 20, "--budget", 10, "-o", out)
     assert r.returncode == 1 and "budget" in r.stderr and not out.exists()
+
+
+@pytest.mark.parametrize("cli_args, kwargs", [
+    (["cc", "--range", 25, "--loss", 0.2, "--seed", 4, "--obstacles", "OBS", "--bounds", 0, 0, 100, 100],
+     dict(algorithm="cc", comm_range=25.0, loss=0.2, seed=4, obstacles="OBS", bounds=(0, 0, 100, 100))),
+    (["cc", "--range", 30, "--no-forward", "--routing", "shortest"],
+     dict(algorithm="cc", comm_range=30.0, forward=False, routing="shortest")),
+    (["bd07", "--range", 30, "--seed", 2, "--no-route-discovery", "--obstacles", "OBS"],
+     dict(algorithm="bd07", comm_range=30.0, seed=2, route_discovery=False, obstacles="OBS")),
+    (["bs", "--range", 20, "--anchor-fraction", 0.3, "--seed", 5, "--dv-hop-async"],
+     dict(algorithm="bs", comm_range=20.0, anchor_fraction=0.3, seed=5, dv_hop="async")),
+    (["bs", "--range", 25, "--radius", 9, "--loss", 0.1, "--obstacles", "OBS"],
+     dict(algorithm="bs", comm_range=25.0, radius=9.0, loss=0.1, obstacles="OBS")),
+], ids=["cc-bounds-obstacles", "cc-unbounded", "bd07-default-region", "bs-dv-hop", "bs-radius"])
+def test_cli_and_python_write_the_same_document(network_files, tmp_path, cli_args, kwargs):
+    # One run, one writer (io/network_json.hpp): the CLI's -o file and Python's to_json(path) are the
+    # same bytes for the same run (anchors picked by anchor_fraction included).
+    pts, bars, p, o = network_files
+    out = tmp_path / "cli.json"
+    r = run("network", cli_args[0], p, *[o if a == "OBS" else a for a in cli_args[1:]], "-o", out, "-q")
+    assert r.returncode == 0, r.stderr
+    kwargs = {k: (bars if v == "OBS" else v) for k, v in kwargs.items()}
+    py = dv.network.simulate(points=pts, **kwargs)
+    py.to_json(tmp_path / "py.json")
+    assert (tmp_path / "py.json").read_text() == out.read_text()
+    assert out.read_text() == py.to_json() + "\n"
+    doc = json.loads(out.read_text())
+    assert doc["kind"] == f"network_{cli_args[0]}" and doc["total_transmissions"] == py.total_transmissions
+    loaded = dv.load(out)
+    assert loaded.kind == doc["kind"] and loaded.to_json() == json.dumps(doc)
