@@ -1,0 +1,2 @@
+# Empty dependencies file for dvoronoi_gvd_mpi.
+# This may be replaced when dependencies are built.

@@ -1,0 +1,3 @@
+file(REMOVE_RECURSE
+  "libdvoronoi_bench_cgal.a"
+)

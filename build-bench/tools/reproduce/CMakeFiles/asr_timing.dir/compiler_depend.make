@@ -1,0 +1,2 @@
+# Empty compiler generated dependencies file for asr_timing.
+# This may be replaced when dependencies are built.
