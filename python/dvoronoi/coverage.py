@@ -41,7 +41,7 @@ from __future__ import annotations
 import json
 import math
 import numbers
-from typing import Any, Callable, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Optional, overload, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -135,6 +135,7 @@ class GridDensity:
 
 def _evaluate(density: Callable, x: np.ndarray, y: np.ndarray) -> np.ndarray:
     """φ at the nodes: one vectorised call, or one call per node for scalar-only functions."""
+    phi: Optional[np.ndarray]
     try:
         phi = np.asarray(density(x, y), dtype=float)
         if phi.shape != x.shape:
@@ -210,6 +211,8 @@ class CoverageCells(CellResult):
     environment's boundary (``-2``, span 0). ``areas``/``centroids`` are geometric (uniform density);
     ``masses``/``mass_centroids`` are under the run's density (equal to them for uniform density).
     """
+
+    radius: float  # an attribute here (the base declares a read-only property)
 
     def __init__(self, arrays: dict, bounds: Optional[np.ndarray], masses: Optional[np.ndarray] = None,
                  mass_centroids: Optional[np.ndarray] = None) -> None:
@@ -319,7 +322,7 @@ class LloydStepper:
         self.order = _args.integer(order, "order", 1, 64)
         self.bounds = as_bounds(bounds)
         self._core = _core.LloydStepper(points, radius, self.bounds, self.gain, team)
-        self._total = None  # Φ(Q) under the density, computed once
+        self._total: Optional[float] = None  # Φ(Q) under the density, computed once
 
     @property
     def points(self) -> np.ndarray:
@@ -446,10 +449,25 @@ class LloydResult(CoverageCells):
                 f"cost {self.cost[0]:.6g} -> {self.cost[-1]:.6g})")
 
 
+@overload
 def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gain: float = 1.0,
           bounds: BoundsArg = None, order: int = 8, record_every: int = 1,
           workers: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None, *,
-          threads: Optional[int] = None, environment: Any = None) -> LloydResult:
+          threads: Optional[int] = None, environment: None = None) -> LloydResult: ...
+
+
+@overload
+def lloyd(points: Any, radius: Optional[float], density: Any = None, steps: int = 100, gain: float = 1.0,
+          bounds: None = None, order: int = 8, record_every: int = 1,
+          workers: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None, *,
+          threads: Optional[int] = None,
+          environment: Union[np.ndarray, str, PathLike, OccupancyGrid]) -> GeodesicLloydResult: ...
+
+
+def lloyd(points: Any, radius: Optional[float], density: Any = None, steps: int = 100, gain: float = 1.0,
+          bounds: BoundsArg = None, order: int = 8, record_every: int = 1,
+          workers: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None, *,
+          threads: Optional[int] = None, environment: Any = None) -> Union[LloydResult, GeodesicLloydResult]:
     """Run Lloyd's algorithm on limited cells for `steps` steps.
 
     Parameters
@@ -505,6 +523,8 @@ def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gai
         return geodesic.lloyd(points, radius, environment, density=density, steps=steps, gain=gain,
                               record_every=record_every, workers=_args.workers(workers, threads) or None,
                               progress=progress)
+    if radius is None:
+        raise ValueError("radius must be a positive finite number (None, no range, needs environment=)")
     team = _args.workers(workers, threads)
     steps = _check_count(steps, "steps", 0)
     record_every = _check_count(record_every, "record_every", 1)
@@ -552,6 +572,7 @@ def animate(result: LloydResult, path: Optional[PathLike] = None, fps: int = 10,
 
 
 # Geodesic cells on occupancy grids live in dvoronoi.geodesic; reachable from here as the rest of coverage.
-from .geodesic import GeodesicCells, geodesic_cells  # noqa: E402
+from .geodesic import GeodesicCells, GeodesicLloydResult, geodesic_cells  # noqa: E402
+from .occupancy import OccupancyGrid  # noqa: E402  (the environment= type of lloyd's overloads)
 
 __all__ += ["geodesic_cells", "GeodesicCells"]

@@ -407,7 +407,7 @@ class CcResult(_CellsMixin, _NetworkMixin, CellResult):
         hull = np.flatnonzero(self.on_hull)
         if len(hull) <= 2:
             return hull
-        nxt = {int(i): int(self.neighbors_ccw(i)[0]) for i in hull if len(self.neighbors_ccw(i))}
+        nxt = {int(i): int(self.neighbors_ccw(int(i))[0]) for i in hull if len(self.neighbors_ccw(int(i)))}
         start = int(hull[0])
         order, cur = [start], nxt.get(start)
         while cur is not None and cur != start and len(order) <= len(hull):
@@ -568,7 +568,7 @@ class BoundaryScanResult(_CellsMixin, _NetworkMixin, CellResult):
             from matplotlib.collections import LineCollection
 
             ok = self.localized
-            ax.add_collection(LineCollection(np.stack([self.points[ok], self.positions[ok]], axis=1),
+            ax.add_collection(LineCollection(list(np.stack([self.points[ok], self.positions[ok]], axis=1)),
                                              colors="tab:orange", linewidths=0.8))
             if self.anchors is not None:
                 a = self.points[self.anchors]
@@ -704,9 +704,9 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
                               bool(cap_adjacency), adjacency_cap, bool(forward), routing, anchor_list, fraction,
                               radius or 0.0, bool(verify), bool(route_discovery), dv_hop == "sync",
                               bool(anchors_relay))
-    if algorithm == "cc":
+    if isinstance(core, _core._NetworkCcRun):
         return CcResult(core)
-    if algorithm == "bd07":
+    if isinstance(core, _core._NetworkBd07Run):
         return Bd07Result(core)
     return BoundaryScanResult(core)
 

@@ -345,7 +345,7 @@ def _draw(ax, ptr, xs, ys, spans, nbs, centers, radius, points, *, single: bool,
         k = k[g["owner"][k] < nbs[k]]
     segments = np.stack([np.column_stack([xs[k], ys[k]]),
                          np.column_stack([xs[g["nxt"][k]], ys[g["nxt"][k]]])], axis=1)
-    edges = LineCollection(segments, colors=edgecolor, linewidths=lw)
+    edges = LineCollection(list(segments), colors=edgecolor, linewidths=lw)
     edges.set_gid("dvoronoi-edges")
     edges.set_visible(show_lines)
     ax.add_collection(edges, autolim=True)
@@ -463,14 +463,14 @@ def plot_network(result: Any, ax: Any = None, *, link_color: Any = "0.7", linewi
     pts = np.asarray(result.points, dtype=float).reshape(-1, 2)
     box = _result_box(result)
     size = _sizes(ax, len(pts), box)
-    links = LineCollection(pts[np.asarray(result.links, dtype=np.int64).reshape(-1, 2)], colors=link_color,
+    links = LineCollection(list(pts[np.asarray(result.links, dtype=np.int64).reshape(-1, 2)]), colors=link_color,
                            linewidths=0.75 * size["linewidth"] if linewidth is None else linewidth, zorder=1)
     links.set_gid("dvoronoi-links")
     ax.add_collection(links)
     artists = [links]
     obstacles = np.asarray(getattr(result, "obstacles", np.zeros((0, 4))), dtype=float)
     if len(obstacles):
-        walls = LineCollection(obstacles.reshape(-1, 2, 2), colors="tab:red", zorder=2, label="obstacles",
+        walls = LineCollection(list(obstacles.reshape(-1, 2, 2)), colors="tab:red", zorder=2, label="obstacles",
                                linewidths=max(1.0, 2.5 * size["linewidth"]))
         walls.set_gid("dvoronoi-obstacles")
         ax.add_collection(walls)
@@ -789,7 +789,7 @@ def animate(result: Any, path: Any = None, fps: int = 10, cells: bool = True, dp
     from .coverage import CoverageCells
 
     fps = _args.integer(fps, "fps", 1, _args.MAX_COUNT)
-    writer = None
+    writer: Any = None
     suffix = None
     if path is not None:
         suffix = os.path.splitext(os.fspath(path))[1].lower()
@@ -822,8 +822,8 @@ def animate(result: Any, path: Any = None, fps: int = 10, cells: bool = True, dp
             _density_artist(ax, image, box, "Greys")
         if cells:
             arrays = _core.coverage_cells(traj[k], result.radius, result.bounds)
-            plot_coverage(CoverageCells(arrays, result.bounds), ax=ax, clip=tuple(box),
-                          **({"alpha": 0.25} if image is not None else {}))
+            extra: Dict[str, Any] = {"alpha": 0.25} if image is not None else {}
+            plot_coverage(CoverageCells(arrays, result.bounds), ax=ax, clip=tuple(box), **extra)
         else:
             ax.scatter(traj[k, :, 0], traj[k, :, 1], s=size["point_size"], c="k")
         if trails and k > 0:
