@@ -104,3 +104,27 @@ def test_missing_optional_package_says_what_to_install(monkeypatch):
     with pytest.raises(ImportError, match=r"to_geopandas\(\) needs geopandas.*pip install geopandas"):
         part.to_geopandas()
     assert part.__geo_interface__["type"] == "FeatureCollection"  # needs nothing
+
+
+def test_single_cells_have_the_gis_bridge():
+    # dv.limited_cell and dv.voronoi_cell results are compiled classes; they get __geo_interface__ and
+    # to_shapely() like every result with cells. Arcs are densified, so the polygon's area is the
+    # exact area minus at most tolerance x arc length (tolerance radius / 1000).
+    shapely = pytest.importorskip("shapely.geometry")
+    rng = np.random.default_rng(3)
+    others = rng.uniform(-1, 1, (12, 2))
+    cell = dv.limited_cell([0.0, 0.0], others, 0.6)
+    geo = cell.__geo_interface__
+    assert geo["type"] == "Feature" and geo["geometry"]["type"] == "Polygon"
+    poly = shapely.shape(geo["geometry"])
+    arcs = float(np.sum(cell.piece_span[cell.piece_neighbor < 0])) * 0.6
+    assert cell.area - 0.6e-3 * arcs - 1e-12 <= poly.area <= cell.area + 1e-12
+    assert cell.to_shapely().equals(poly)
+    # An exact cell: a polygon when bounded (or clipped to bounds), None when unbounded.
+    ring = dv.voronoi_cell([0.0, 0.0], np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]))
+    assert ring.to_shapely().area == pytest.approx(ring.area, rel=1e-12)
+    open_cell = dv.voronoi_cell([0.0, 0.0], np.array([[1.0, 0.0], [0.0, 1.0]]))
+    assert open_cell.__geo_interface__["geometry"] is None and open_cell.to_shapely() is None
+    boxed = dv.voronoi_cell([0.0, 0.0], np.array([[1.0, 0.0], [0.0, 1.0]]), bounds=(-2, -2, 2, 2))
+    assert boxed.to_shapely().area == pytest.approx(boxed.area, rel=1e-12)
+    assert boxed.to_shapely().exterior.is_ccw
