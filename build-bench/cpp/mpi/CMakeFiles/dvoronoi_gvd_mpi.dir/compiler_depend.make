@@ -1,2 +1,0 @@
-# Empty compiler generated dependencies file for dvoronoi_gvd_mpi.
-# This may be replaced when dependencies are built.

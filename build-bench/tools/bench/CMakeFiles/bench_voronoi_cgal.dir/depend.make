@@ -1,2 +1,0 @@
-# Empty dependencies file for bench_voronoi_cgal.
-# This may be replaced when dependencies are built.

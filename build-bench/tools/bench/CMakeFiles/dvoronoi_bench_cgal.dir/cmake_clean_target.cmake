@@ -1,3 +1,0 @@
-file(REMOVE_RECURSE
-  "libdvoronoi_bench_cgal.a"
-)
