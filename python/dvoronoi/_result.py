@@ -208,13 +208,15 @@ class CellResult(GeoMixin, Result):
         return self._geojson_text(tolerance)
 
 
-def _single_cell_feature(self: Any) -> Dict[str, Any]:
-    """One cell (``dv.limited_cell`` / ``dv.voronoi_cell``) as a GeoJSON Feature: a limited cell's own
-    export (arcs densified to ``radius / 1000``), an exact cell's polygon (None for an unbounded
-    cell without ``bounds``)."""
-    if hasattr(self, "to_geojson"):
-        feature: Dict[str, Any] = json.loads(self.to_geojson())
-        return feature
+def _limited_cell_feature(self: Any) -> Dict[str, Any]:
+    """A limited cell as a GeoJSON Feature: its own export, arcs densified to ``radius / 1000``."""
+    feature: Dict[str, Any] = json.loads(self.to_geojson())
+    return feature
+
+
+def _exact_cell_feature(self: Any) -> Dict[str, Any]:
+    """An exact cell as a GeoJSON Feature: its polygon (clipped to ``bounds`` if given), no geometry
+    for an unbounded cell."""
     shape = self.clipped if self.clipped is not None else (None if self.on_hull else self)
     ring = [] if shape is None else np.asarray(shape.vertices, dtype=float).tolist()
     geometry = {"type": "Polygon", "coordinates": [ring + ring[:1]]} if len(ring) >= 3 else None
@@ -225,12 +227,12 @@ def _single_cell_feature(self: Any) -> Dict[str, Any]:
 def _cell_to_shapely(self: Any) -> "Optional[shapely.Polygon]":
     """The cell as a ``shapely.Polygon`` (None for an unbounded cell); needs shapely."""
     geometry = _import_optional("shapely.geometry", "to_shapely()")
-    g = _single_cell_feature(self)["geometry"]
+    g = self.__geo_interface__["geometry"]
     return None if g is None else geometry.shape(g)
 
 
 # The single cells are compiled classes: they get the GIS bridge here, as every result with cells has.
 # (setattr: the stub declares both members on the compiled classes.)
-for _cls in (_core.LimitedCell, _core.VoronoiCell):
-    setattr(_cls, "__geo_interface__", property(_single_cell_feature, doc="The cell as a GeoJSON Feature mapping."))
+for _cls, _feature in ((_core.LimitedCell, _limited_cell_feature), (_core.VoronoiCell, _exact_cell_feature)):
+    setattr(_cls, "__geo_interface__", property(_feature, doc="The cell as a GeoJSON Feature mapping."))
     setattr(_cls, "to_shapely", _cell_to_shapely)

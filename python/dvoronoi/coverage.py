@@ -41,7 +41,7 @@ from __future__ import annotations
 import json
 import math
 import numbers
-from typing import Any, Callable, Optional, overload, Sequence, Tuple, Union
+from typing import Any, Callable, cast, Optional, overload, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -523,12 +523,11 @@ def lloyd(points: Any, radius: Optional[float], density: Any = None, steps: int 
         return geodesic.lloyd(points, radius, environment, density=density, steps=steps, gain=gain,
                               record_every=record_every, workers=_args.workers(workers, threads) or None,
                               progress=progress)
-    if radius is None:
-        raise ValueError("radius must be a positive finite number (None, no range, needs environment=)")
     team = _args.workers(workers, threads)
     steps = _check_count(steps, "steps", 0)
     record_every = _check_count(record_every, "record_every", 1)
-    stepper = LloydStepper(points, radius, density=density, gain=gain, bounds=bounds, order=order,
+    # None (no range) is for environment= only: LloydStepper refuses it, naming `radius`.
+    stepper = LloydStepper(points, cast(float, radius), density=density, gain=gain, bounds=bounds, order=order,
                            workers=team or None)
     n = len(stepper)
     frame_steps = np.unique(np.concatenate([np.arange(0, steps + 1, record_every), [steps]])).astype(np.int64)
