@@ -311,6 +311,7 @@ int run_map(const Args& a, int rank, int size) {
     m.features = gvd::feature_map_for(m.grid);  // this rank writes (and reads) only its band's rows
     gvd::FeatureMap& f = m.features;
     m.mask = gvd::PixelMask(H, W);
+    m.boxed = gvd::PixelMask(H, W);
     gvd::detail::column_pass(m.grid, f, 0, W);
     // Bands as medial_diagram splits rows over threads; with more ranks than rows some are empty.
     auto band = [&](int k) { return static_cast<std::int32_t>(static_cast<std::int64_t>(H) * k / size); };

@@ -15,6 +15,7 @@ void require_same_as_full_build(const MedialDiagram& m) {
     REQUIRE(m.features.fx == full.features.fx);
     REQUIRE(m.features.fy == full.features.fy);
     REQUIRE(m.mask == full.mask);
+    REQUIRE(m.boxed == full.boxed);  // the pixels an update rechecks near a change
     REQUIRE((m.max_sq < 0 || m.max_sq >= detail::largest_sq(full.features, 0, full.features.rows)));
 }
 

@@ -108,30 +108,18 @@ public:
         cb_ = cb;
         // edges ca .. cb+1; edge e lies between columns e-1 and e
         const std::size_t m = static_cast<std::size_t>(cb - ca + 2);
-        if (hA_.size() < m) { hA_.resize(m); he_.resize(m); hy_.resize(m); }
+        if (hA_.size() < m) { hA_.resize(m); he_.resize(m); hy_.resize(m); cv_.resize(m); }
+        std::int32_t* cv = cv_.data();  // V of columns ca .. cb at index c - ca, computed once
+        for (std::int32_t c = ca; c <= cb; ++c) cv[c - ca] = static_cast<std::int32_t>(V(c));
         std::size_t top = 0;
-        std::int64_t vprev = 0;
-        std::int32_t yprev = 0;
-        bool has_prev = false;
-        for (std::int32_t e = ca; e <= cb + 1; ++e) {
-            std::int64_t off;
-            std::int32_t y;
-            const bool has_cur = e <= cb;
-            std::int64_t vcur = 0;
-            std::int32_t ycur = 0;
-            if (has_cur) { vcur = V(e); ycur = yv(e); }
-            if (has_prev && has_cur && vprev == vcur) {  // never the nearest: see flat_edge
-                yprev = ycur;
-                continue;
-            }
-            // the nearer column's square; equal: the lower nearest point
-            if (has_prev && (!has_cur || vprev < vcur || (vprev == vcur && yprev <= ycur))) { off = vprev; y = yprev; }
-            else { off = vcur; y = ycur; }
-            vprev = vcur;
-            yprev = ycur;
-            has_prev = has_cur;
-            push_edge(top, e, off, y);
+        push_edge(top, ca, cv[0], yv(ca));  // the first edge sees column ca only
+        for (std::int32_t e = ca + 1; e <= cb; ++e) {
+            const std::int32_t a = cv[e - 1 - ca], b = cv[e - ca];
+            if (a == b) continue;  // never the nearest: see flat_edge
+            const bool left = a < b;  // the nearer column's square
+            push_edge(top, e, left ? a : b, yv(left ? e - 1 : e));
         }
+        push_edge(top, cb + 1, cv[cb - ca], yv(cb));  // the last edge sees column cb only
         top_ = top;
         k_ = 0;
     }
@@ -249,7 +237,7 @@ private:
     const std::int16_t* vg_ = nullptr;
     std::vector<std::int64_t> hA_;  // envelope: A = offset + 4e^2, edge e, nearest point's y
     std::vector<std::int32_t> he_, hy_;
-    std::vector<std::int32_t> cv_;  // build_run: the run's columns' V
+    std::vector<std::int32_t> cv_;  // the columns' V (build: from ca, build_run: from s)
     std::size_t top_ = 0, k_ = 0;
     std::int32_t run_s_ = 0;
 };

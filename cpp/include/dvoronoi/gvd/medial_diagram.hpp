@@ -247,6 +247,10 @@ struct MedialDiagram {
     OccupancyGrid grid;
     FeatureMap features;
     PixelMask mask;                  ///< the diagram's pixels (bits)
+    /// Pixels with a pair that the box rule judges (separated, nearest points at most prune_length
+    /// apart): the only pixels whose membership a change of occupancy can alter without changing
+    /// their nearest points or their neighbours' (an update rechecks these near the change).
+    PixelMask boxed;
     MedialOptions options;
     std::int64_t max_sq = -1;        ///< an upper bound of every pixel's squared clearance (doubled units); -1: not known yet
     OccupancyBits bits;              ///< the occupancy as bits, for the box rule
@@ -289,36 +293,47 @@ public:
     void mark(std::int32_t r0, std::int32_t r1) {
         const std::int32_t W = m_.grid.cols;
         m_.mask.clear_rows(r0, r1);
+        m_.boxed.clear_rows(r0, r1);
         for (std::int32_t r = std::max(0, r0 - 1); r < r1; ++r) {
             if (r + 1 < m_.grid.rows)  // vertical pairs (r, c), (r + 1, c)
                 judge_flagged(r, r + 1, 0, W, [&](std::int32_t c, int v) {
-                    if ((v & 1) && r >= r0) m_.mask.set(r, c, true);
-                    if ((v & 2) && r + 1 < r1) m_.mask.set(r + 1, c, true);
+                    if (r >= r0) put(r, c, v & (kMarkP | kBoxed));
+                    if (r + 1 < r1) put(r + 1, c, (v & kMarkQ ? kMarkP : 0) | (v & kBoxed));
                 });
             if (r < r0) continue;
             judge_flagged(r, r, 0, W - 1, [&](std::int32_t c, int v) {  // horizontal pairs (r, c), (r, c + 1)
-                if (v & 1) m_.mask.set(r, c, true);
-                if (v & 2) m_.mask.set(r, c + 1, true);
+                put(r, c, v & (kMarkP | kBoxed));
+                put(r, c + 1, (v & kMarkQ ? kMarkP : 0) | (v & kBoxed));
             });
         }
     }
 
-    /// Recomputes the pixels (r, a .. b) of `m.mask` from every pair they belong to.
+    /// Recomputes the pixels (r, a .. b) of `m.mask` (and `m.boxed`) from every pair they belong to.
     void mark_segment(std::int32_t r, std::int32_t a, std::int32_t b) {
         const std::int32_t H = m_.grid.rows, W = m_.grid.cols;
         m_.mask.clear(r, a, b);
+        m_.boxed.clear(r, a, b);
         auto in = [&](std::int32_t c) { return c >= a && c <= b; };
         if (r > 0)
-            judge_flagged(r - 1, r, a, b + 1, [&](std::int32_t c, int v) { if (v & 2) m_.mask.set(r, c, true); });
+            judge_flagged(r - 1, r, a, b + 1, [&](std::int32_t c, int v) { put(r, c, (v & kMarkQ ? kMarkP : 0) | (v & kBoxed)); });
         if (r + 1 < H)
-            judge_flagged(r, r + 1, a, b + 1, [&](std::int32_t c, int v) { if (v & 1) m_.mask.set(r, c, true); });
+            judge_flagged(r, r + 1, a, b + 1, [&](std::int32_t c, int v) { put(r, c, v & (kMarkP | kBoxed)); });
         judge_flagged(r, r, std::max(0, a - 1), std::min(W - 1, b + 1), [&](std::int32_t c, int v) {
-            if ((v & 1) && in(c)) m_.mask.set(r, c, true);
-            if ((v & 2) && in(c + 1)) m_.mask.set(r, c + 1, true);
+            if (in(c)) put(r, c, v & (kMarkP | kBoxed));
+            if (in(c + 1)) put(r, c + 1, (v & kMarkQ ? kMarkP : 0) | (v & kBoxed));
         });
     }
 
 private:
+    // judge's answer: bits of the pair (p, q)
+    static constexpr int kMarkP = 1, kMarkQ = 2, kBoxed = 4;
+
+    /// Sets pixel (r, c)'s bits from a pair's answer seen from the pixel (kMarkP: on the diagram).
+    void put(std::int32_t r, std::int32_t c, int v) {
+        if (v & kMarkP) m_.mask.set(r, c, true);
+        if (v & kBoxed) m_.boxed.set(r, c, true);
+    }
+
     /// Runs the separation test over the pairs (r, c), (q, c + (q == r)) for c in [c0, c1) and calls
     /// fn(c, judge(...)) for the separated ones.
     template <class Fn>
@@ -336,8 +351,8 @@ private:
             }
     }
 
-    /// The pair (p, q) of 4-adjacent pixels: 1 marks p, 2 marks q (3: both, on a tie), 0: the pair
-    /// does not separate. p marks when it is no farther from the bisector of the nearest points a, b
+    /// The pair (p, q) of 4-adjacent pixels: kMarkP marks p, kMarkQ marks q (both on a tie), 0: the
+    /// pair does not separate; kBoxed is added when the box rule judged it (whatever its answer). p marks when it is no farther from the bisector of the nearest points a, b
     /// than q (|p-b|^2 - |p-a|^2 <= |q-a|^2 - |q-b|^2). `sep2` is floor(4 s^2): for integers,
     /// |a-b|^2 > 4 s^2 <=> |a-b|^2 > floor(4 s^2).
     int judge(std::int32_t pr, std::int32_t pc, std::int32_t qr, std::int32_t qc) {
@@ -351,8 +366,9 @@ private:
         const std::int64_t px = 2 * pc + 1, py = 2 * (g.rows - 1 - pr) + 1, qx = 2 * qc + 1, qy = 2 * (g.rows - 1 - qr) + 1;
         auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
         const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay), sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
-        if (d2 <= rule_.prune2 && join_(g, ax, ay, bx, by)) return 0;
-        return (sp <= sq_ ? 1 : 0) | (sq_ <= sp ? 2 : 0);
+        const int boxed = d2 <= rule_.prune2 ? kBoxed : 0;
+        if (boxed && join_(g, ax, ay, bx, by)) return boxed;
+        return boxed | (sp <= sq_ ? kMarkP : 0) | (sq_ <= sp ? kMarkQ : 0);
     }
 
     MedialDiagram& m_;
@@ -376,6 +392,7 @@ inline MedialDiagram medial_diagram(OccupancyGrid grid, const MedialOptions& opt
     m.options = options;
     m.bits = OccupancyBits(m.grid, options.workers);
     m.mask = PixelMask(m.grid.rows, m.grid.cols);
+    m.boxed = PixelMask(m.grid.rows, m.grid.cols);
     // (Marking each row while pass 2 still has its neighbours in cache was measured: no faster, as
     // the bands' vertical pairs are then judged twice.)
     // Chunks of 64 rows: each chunk judges the vertical pairs above its first row again.

@@ -119,13 +119,18 @@ public:
             const std::int32_t xlo = 2 * (c0 - margin), xhi = 2 * (c1 + 1 + margin);
             const std::int32_t ylo = 2 * (H - 1 - r1 - margin), yhi = 2 * (H - r0 + margin);
             if (!unchanged_walls_meet(changed, xlo, xhi, ylo, yhi)) continue;
+            // Only pixels of box-judged pairs (m.boxed) can change without a touched neighbour, and
+            // a pixel is within the largest clearance of its nearest point.
             const auto ra = static_cast<std::int32_t>(std::max<std::int64_t>(0, r0 - reach));
             const auto rb = static_cast<std::int32_t>(std::min<std::int64_t>(H - 1, r1 + reach));
+            const auto ca = static_cast<std::int32_t>(std::max<std::int64_t>(0, c0 - reach));
+            const auto cb = static_cast<std::int32_t>(std::min<std::int64_t>(W - 1, c1 + reach));
             for (std::int32_t r = ra; r <= rb; ++r) {
                 const std::size_t base = f_.at(r, 0);
-                for (std::int32_t x = first_at_least(f_, r, xlo); x < W && f_.fx[base + static_cast<std::size_t>(x)] <= xhi; ++x) {
-                    const std::int32_t y = f_.fy[base + static_cast<std::size_t>(x)];
-                    if (y >= ylo && y <= yhi && !g_.occupied[base + static_cast<std::size_t>(x)]) redo.set(r, x, true);
+                for (std::int32_t x = m_.boxed.find(r, ca, true, cb + 1); x <= cb; x = m_.boxed.find(r, x + 1, true, cb + 1)) {
+                    const std::size_t i = base + static_cast<std::size_t>(x);
+                    const std::int32_t fx = f_.fx[i], fy = f_.fy[i];
+                    if (fx >= xlo && fx <= xhi && fy >= ylo && fy <= yhi && !g_.occupied[i]) redo.set(r, x, true);
                 }
             }
         }

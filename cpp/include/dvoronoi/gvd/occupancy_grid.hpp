@@ -181,15 +181,17 @@ public:
     void set(std::size_t i, bool v) {
         set(static_cast<std::int32_t>(i / static_cast<std::size_t>(cols_)), static_cast<std::int32_t>(i % static_cast<std::size_t>(cols_)), v);
     }
-    /// The first column >= c of row r whose bit is v (cols when there is none).
-    std::int32_t find(std::int32_t r, std::int32_t c, bool v) const {
+    /// The first column >= c of row r whose bit is v (cols when there is none); the search stops
+    /// at column `end` (default: the row's end) and then returns a column >= end.
+    std::int32_t find(std::int32_t r, std::int32_t c, bool v, std::int32_t end = -1) const {
         const std::uint64_t* w = row_words(r);
-        while (c < cols_) {
+        const std::int32_t stop = end < 0 ? cols_ : std::min(end, cols_);
+        while (c < stop) {
             const std::uint64_t word = (v ? w[c / 64] : ~w[c / 64]) >> (c % 64);
             if (word != 0) return std::min(cols_, c + lowest_bit(word));
             c = (c / 64 + 1) * 64;
         }
-        return cols_;
+        return std::max(c, stop);
     }
     /// Pixels (r, a .. b) emptied.
     void clear(std::int32_t r, std::int32_t a, std::int32_t b) {
