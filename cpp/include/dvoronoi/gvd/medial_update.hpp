@@ -84,16 +84,9 @@ public:
     void refresh_mask() {
         if (changed_.empty()) return;
         const std::int32_t H = g_.rows, W = g_.cols;
-        PixelMask redo(H, W);
-        for (std::size_t i : touched_) {
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
-            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
-            redo.set(r, c, true);
-            if (c > 0) redo.set(r, c - 1, true);
-            if (c + 1 < W) redo.set(r, c + 1, true);
-            if (r > 0) redo.set(r - 1, c, true);
-            if (r + 1 < H) redo.set(r + 1, c, true);
-        }
+        PixelMask redo(H, W);  // touched pixels and their 4-neighbours (they share a pair)
+        for (std::size_t i : touched_) redo.set(i, true);
+        redo = redo.dilated4();
         // Pixels whose nearest point lies near a change (the box rule): changed pixels grouped in
         // tiles, each tile's box grown by that margin, searched in the rows within the map's
         // largest clearance of it.
