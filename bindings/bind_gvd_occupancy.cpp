@@ -24,6 +24,7 @@ namespace gvd = dvoronoi::gvd;
 namespace {
 
 using OccArray = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>;
+using IndexArray = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
 
 gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, double oy) {
     if (occ.ndim() != 2) throw py::value_error("occupancy must be a 2-d array, got " + std::to_string(occ.ndim()) + " dimensions");
@@ -114,9 +115,23 @@ void bind_gvd_occupancy(py::module_& m) {
             std::vector<std::uint8_t> v(occ.data(), occ.data() + occ.size());
             return stats_dict(without_gil([&] { return gvd::update_occupancy(d, v); }));
         }, py::arg("new_occupancy"))
-        .def("set_pixels", [](gvd::MedialDiagram& d, const std::vector<std::size_t>& idx, bool occupied) {
-            return stats_dict(without_gil([&] { return gvd::set_pixels(d, idx, occupied); }));
+        .def("set_pixels", [](gvd::MedialDiagram& d, const IndexArray& idx, bool occupied) {
+            // a numpy array, not a list: converting a list of Python ints costs more than the update
+            if (idx.ndim() != 1) throw py::value_error("indices must be a 1-d array, got " + shape_str(idx));
+            std::vector<std::size_t> v(static_cast<std::size_t>(idx.size()));
+            const std::int64_t* in = idx.data();
+            for (std::size_t k = 0; k < v.size(); ++k) {
+                if (in[k] < 0) throw py::value_error("pixel index " + std::to_string(in[k]) + " is negative");
+                v[k] = static_cast<std::size_t>(in[k]);
+            }
+            return stats_dict(without_gil([&] { return gvd::set_pixels(d, v, occupied); }));
         }, py::arg("indices"), py::arg("occupied"))
+        .def("set_mask", [](gvd::MedialDiagram& d, const OccArray& mask, bool occupied) {
+            if (mask.ndim() != 2 || mask.shape(0) != d.grid.rows || mask.shape(1) != d.grid.cols)
+                throw py::value_error("the mask must have the map's shape (" + std::to_string(d.grid.rows) + ", " +
+                                      std::to_string(d.grid.cols) + "), got " + shape_str(mask));
+            return stats_dict(without_gil([&] { return gvd::set_pixels_where(d, mask.data(), occupied); }));
+        }, py::arg("mask"), py::arg("occupied"))
         .def("path", [](const gvd::MedialDiagram& d, py::handle start, py::handle goal, double robot_radius, double off_cost) {
             const Vec2 s = point_arg(start, "start"), g = point_arg(goal, "goal");
             const gvd::GridPath p = without_gil([&] { return gvd::find_grid_path(d, s, g, robot_radius, off_cost); });

@@ -273,7 +273,7 @@ def updates(rows, a, routes) -> None:
         print(f"| {map_name} | {1e3 * build:.1f} ms | {1e3 * ma:.2f} ms | {1e3 * mr:.2f} ms | {ma / build:.2f} | "
               f"{mr / build:.2f} | {touched} |")
     print("\nMemory: a map's diagram keeps the occupancy (1 byte a pixel), the column pass (2), the nearest "
-          "points (4), the diagram and the occupancy as bits (1/8 each): 7.25 bytes a pixel, 122 MB for "
+          "points (4), the diagram, the box-judged pixels and the occupancy as bits (1/8 each): 7.375 bytes a pixel, 124 MB for "
           "4096 x 4096 (a float64 distance map alone is 8 bytes a pixel, 134 MB; OpenCV's float32 distances "
           "+ int32 labels 8). A path search adds 5 bytes a pixel while it runs.")
 

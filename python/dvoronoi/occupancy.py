@@ -202,16 +202,17 @@ def as_occupancy_grid(source: Any, resolution: Optional[float], origin: Optional
                          occupied_thresh=occupied_thresh, unknown=unknown)
 
 
-def _pixel_indices(pixels: Any, shape: Tuple[int, int], name: str) -> list:
-    """Linear indices of (row, col) pairs (or an H x W bool mask), checked against the map."""
+def _pixel_indices(pixels: Any, shape: Tuple[int, int], name: str) -> np.ndarray:
+    """Linear indices (int64) of (row, col) pairs, checked against the map; an H x W bool mask is
+    returned as its bytes (uint8 view), for the C++ side to scan."""
     H, W = shape
     a = np.asarray(pixels)
     if a.dtype == bool:
         if a.shape != shape:
             raise ValueError(f"{name}: a mask must have the map's shape {shape}, got {a.shape}")
-        return np.flatnonzero(a).tolist()
+        return np.ascontiguousarray(a).view(np.uint8)
     if a.size == 0:
-        return []
+        return np.empty(0, dtype=np.int64)
     if a.dtype.kind not in "iu" and not (a.dtype.kind == "f" and np.all(a == np.round(a))):
         raise TypeError(f"{name} must be (row, col) integer pairs or an H x W bool mask, got dtype {a.dtype}")
     a = a.astype(np.int64).reshape(-1, 2) if a.ndim != 2 or a.shape[1] != 2 else a.astype(np.int64)
@@ -219,7 +220,7 @@ def _pixel_indices(pixels: Any, shape: Tuple[int, int], name: str) -> list:
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         raise ValueError(f"{name}[{k}] = ({a[k, 0]}, {a[k, 1]}) is outside the {H} x {W} map")
-    return (a[:, 0] * W + a[:, 1]).tolist()
+    return a[:, 0] * W + a[:, 1]
 
 
 class OccupancyVoronoi:
@@ -330,13 +331,19 @@ class OccupancyVoronoi:
             raise ValueError(f"new_occupancy must have the map's shape {self.shape}, got {occ.shape}")
         return self._after_update(self._core.update(_as_bytes(occ)))
 
+    def _set(self, pixels: Any, occupied: bool) -> Dict[str, Any]:
+        idx = _pixel_indices(pixels, self.shape, "pixels")
+        if idx.ndim == 2:  # a mask's bytes
+            return self._after_update(self._core.set_mask(idx, occupied))
+        return self._after_update(self._core.set_pixels(idx, occupied))
+
     def set_occupied(self, pixels: Any) -> Dict[str, Any]:
         """Mark pixels occupied: ``(row, col)`` pairs or an H x W bool mask."""
-        return self._after_update(self._core.set_pixels(_pixel_indices(pixels, self.shape, "pixels"), True))
+        return self._set(pixels, True)
 
     def set_free(self, pixels: Any) -> Dict[str, Any]:
         """Mark pixels free: ``(row, col)`` pairs or an H x W bool mask."""
-        return self._after_update(self._core.set_pixels(_pixel_indices(pixels, self.shape, "pixels"), False))
+        return self._set(pixels, False)
 
     # -- planning ------------------------------------------------------------------------------
     def path(self, start: Sequence[float], goal: Sequence[float], *, robot_radius: Optional[float] = None,

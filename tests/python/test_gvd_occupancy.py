@@ -307,12 +307,15 @@ def test_updates_give_the_full_build_after_random_sequences():
             r, c = rng.integers(0, cur.shape[0]), rng.integers(0, cur.shape[1])
             h, w = rng.integers(1, 6, size=2)
             block = [(i, j) for i in range(r, min(cur.shape[0], r + h)) for j in range(c, min(cur.shape[1], c + w))]
+            as_mask = np.zeros(cur.shape, bool)
+            as_mask[tuple(np.array(block).T)] = True
+            pixels = as_mask if step % 2 else block  # both forms: a mask is scanned in C++
             if kind == 0:
-                gv.set_occupied(block)
-                cur[tuple(np.array(block).T)] = True
+                gv.set_occupied(pixels)
+                cur[as_mask] = True
             elif kind == 1:
-                gv.set_free(block)
-                cur[tuple(np.array(block).T)] = False
+                gv.set_free(pixels)
+                cur[as_mask] = False
             else:
                 cur = cur ^ (rng.random(cur.shape) < 0.01)
                 gv.update(cur)

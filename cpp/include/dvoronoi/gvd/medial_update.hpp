@@ -18,10 +18,10 @@
 //       differ by a linear function, so beyond that pixel the run never wins again.
 //  3. Diagram: the pair rule reads a pixel's and its neighbours' nearest points and the occupancy in
 //     a box spanned by two nearest points at most prune_length apart (grown by one pixel). Rechecked:
-//     pixels whose nearest point or occupancy changed, their neighbours, and pixels whose nearest
-//     point lies within prune_length + 3 pixels of a changed pixel (found per row by the same binary
-//     search, over the rows within the largest clearance of the map; skipped where no unchanged wall
-//     is that near). They are re-marked in row segments, vectorised as a build marks rows.
+//     pixels whose nearest point or occupancy changed, their neighbours, and pixels of box-judged
+//     pairs (MedialDiagram::boxed) whose nearest point lies within prune_length + 3 pixels of a
+//     changed pixel (searched within the largest clearance of the map; skipped where no unchanged
+//     wall is that near). They are re-marked in row segments, vectorised as a build marks rows.
 #pragma once
 
 #include "dvoronoi/gvd/medial_diagram.hpp"
@@ -358,6 +358,35 @@ inline UpdateStats set_pixels(MedialDiagram& m, const std::vector<std::size_t>& 
     return u.stats;
 }
 
+namespace detail {
+
+/// Calls fn(i), in ascending order, for every i < n where a[i] and b[i] differ as occupancy (zero or
+/// nonzero; b == nullptr: all zero). Eight bytes are compared at a time: a change touches few pixels.
+template <class Fn>
+void for_each_difference(const std::uint8_t* a, const std::uint8_t* b, std::size_t n, Fn&& fn) {
+    auto at = [b](std::size_t k) { return b != nullptr && b[k] != 0; };
+    std::size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        std::uint64_t x, y = 0;
+        std::memcpy(&x, a + i, 8);
+        if (b != nullptr) std::memcpy(&y, b + i, 8);
+        if (x == y) continue;
+        for (std::size_t k = i; k < i + 8; ++k)
+            if ((a[k] != 0) != at(k)) fn(k);
+    }
+    for (; i < n; ++i)
+        if ((a[i] != 0) != at(i)) fn(i);
+}
+
+}  // namespace detail
+
+/// set_pixels for the pixels whose byte in `mask` (rows x cols, row-major) is nonzero.
+inline UpdateStats set_pixels_where(MedialDiagram& m, const std::uint8_t* mask, bool occupied) {
+    std::vector<std::size_t> pixels;
+    detail::for_each_difference(mask, nullptr, m.grid.size(), [&](std::size_t i) { pixels.push_back(i); });
+    return set_pixels(m, pixels, occupied);
+}
+
 /// Replaces the whole occupancy (same size) and updates only what changed: removals, then additions.
 /// \throws InputError when the size differs.
 inline UpdateStats update_occupancy(MedialDiagram& m, const std::vector<std::uint8_t>& occupied) {
@@ -366,11 +395,8 @@ inline UpdateStats update_occupancy(MedialDiagram& m, const std::vector<std::uin
                          std::to_string(m.grid.size()) + " (" + std::to_string(m.grid.rows) + " x " +
                          std::to_string(m.grid.cols) + ")");
     std::vector<std::size_t> freed, filled;
-    for (std::size_t i = 0; i < occupied.size(); ++i) {
-        const bool now = occupied[i] != 0, was = m.grid.occupied[i] != 0;
-        if (now && !was) filled.push_back(i);
-        if (!now && was) freed.push_back(i);
-    }
+    detail::for_each_difference(occupied.data(), m.grid.occupied.data(), occupied.size(),
+                                [&](std::size_t i) { (occupied[i] != 0 ? filled : freed).push_back(i); });
     detail::Updater u(m);
     u.apply(freed, false);
     u.apply(filled, true);
