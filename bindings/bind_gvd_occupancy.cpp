@@ -33,9 +33,13 @@ gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, 
     g.cols = static_cast<std::int32_t>(occ.shape(1));
     g.resolution = resolution;
     g.origin = Vec2(ox, oy);
-    g.occupied.resize(static_cast<std::size_t>(occ.size()));
-    const std::uint8_t* in = occ.data();
-    for (std::size_t i = 0; i < g.occupied.size(); ++i) g.occupied[i] = in[i] != 0;  // any nonzero byte is occupied
+    // A copy, not a zero-fill and a loop: the build of a large map is a few milliseconds. Any nonzero
+    // byte is occupied; bool arrays (the Python side's) hold 0 and 1 already.
+    g.occupied.assign(occ.data(), occ.data() + occ.size());
+    std::uint8_t bits = 0;  // an OR over the bytes (vectorised): above 1 when a byte is neither 0 nor 1
+    for (std::uint8_t v : g.occupied) bits |= v;
+    if (bits > 1)
+        for (std::uint8_t& v : g.occupied) v = v != 0;
     return g;
 }
 
