@@ -154,23 +154,27 @@ public:
         run_s_ = s;
     }
 
-    /// Queries after build_run, for ascending x of the run.
-    Candidate2 query_run(std::int32_t x) {
-        const std::int64_t X = 2 * x + 1, X4 = 4 * X;
-        std::size_t k = k_;
-        std::int64_t best = hA_[k] - X4 * he_[k];
-        while (k + 1 < top_) {
-            const std::int64_t nxt = hA_[k + 1] - X4 * he_[k + 1];
-            if (nxt >= best) break;
-            best = nxt;
-            ++k;
+    /// After build_run: the nearest points of the run's pixels s .. t into fx[x], fy[x], segment by
+    /// segment of the envelope. Edge k+1 beats edge k from the first pixel where its value is strictly
+    /// smaller (ties stay with the smaller edge); the values differ by a linear function of X, so that
+    /// pixel is found by one division, and the pixels between two such starts take edge k without a
+    /// comparison along the envelope. Each pixel's own column (dx = 0) wins ties against edges to its
+    /// right only, as in query(). The same answers as walking the envelope pixel by pixel.
+    void fill_run(std::int32_t s, std::int32_t t, std::int16_t* fx, std::int16_t* fy) const {
+        std::int32_t x = s;
+        for (std::size_t k = 0; k < top_ && x <= t; ++k) {
+            std::int32_t end = t + 1;  // the first pixel that edge k + 1 takes
+            if (k + 1 < top_) end = std::min<std::int64_t>(end, first_beaten(k));
+            const std::int64_t e2 = 2 * std::int64_t{he_[k]}, off = hA_[k] - e2 * e2;
+            const std::int32_t ey = hy_[k];
+            for (; x < end; ++x) {
+                const std::int64_t X = 2 * x + 1, sq = (X - e2) * (X - e2) + off;
+                const std::int64_t own = cv_[static_cast<std::size_t>(x - run_s_)];
+                const bool mine = own < sq || (own == sq && e2 > X);
+                fx[x] = static_cast<std::int16_t>(mine ? X : e2);
+                fy[x] = static_cast<std::int16_t>(mine ? feature_y(Y_, vg_[x]) : ey);
+            }
         }
-        k_ = k;
-        const std::int64_t e = he_[k], sq = best + X * X;
-        const std::int64_t own = cv_[static_cast<std::size_t>(x - run_s_)];
-        // the pixel's own column (dx = 0) wins ties against edges to its right only
-        if (own < sq || (own == sq && 2 * e > X)) return {own, static_cast<std::int32_t>(X), feature_y(Y_, vg_[x])};
-        return {sq, static_cast<std::int32_t>(2 * e), hy_[k]};
     }
 
     /// The nearest candidate of pixel x among the envelope's squares. Fastest when queries come in
@@ -201,6 +205,16 @@ public:
         return c;
     }
 private:
+    /// The first pixel x where edge k + 1 is strictly nearer than edge k: with A = off + 4e^2 the
+    /// values at X = 2x + 1 are A - 4Xe (+ X^2 for both), so X (e_{k+1} - e_k) 4 > A_{k+1} - A_k;
+    /// X is the smallest odd integer above that quotient.
+    std::int64_t first_beaten(std::size_t k) const {
+        const std::int64_t num = hA_[k + 1] - hA_[k], den = 4 * (std::int64_t{he_[k + 1]} - he_[k]);  // den > 0
+        const std::int64_t q = num / den - ((num % den != 0 && num < 0) ? 1 : 0);  // floor(num / den)
+        const std::int64_t X = (q + 1) % 2 != 0 ? q + 1 : q + 2;  // the smallest odd integer > num / den
+        return (X - 1) / 2;
+    }
+
     // flat_edge: an edge between two columns with the same V is never the nearest candidate, so it is
     // left out of the envelope (in a room with a flat floor, most edges). With V(e-1) = V(e) = C its
     // offset is C; at pixels e-1 and e the own columns give C < C + 1; left of e-1 edge e-1 is nearer
@@ -239,7 +253,7 @@ private:
     std::vector<std::int32_t> he_, hy_;
     std::vector<std::int32_t> cv_;  // the columns' V (build: from ca, build_run: from s)
     std::size_t top_ = 0, k_ = 0;
-    std::int32_t run_s_ = 0;
+    std::int32_t run_s_ = 0;  // build_run: the run's first column
 };
 
 /// Pass 2 over row r: each free run [s, t] against the squares of columns s-1 .. t+1 (the
@@ -262,11 +276,7 @@ inline void row_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t r, RowE
         const void* next = std::memchr(o + c, 1, static_cast<std::size_t>(W - c));
         const std::int32_t t = next ? static_cast<std::int32_t>(static_cast<const std::uint8_t*>(next) - o) - 1 : W - 1;
         env.build_run(g, f, r, c, t);
-        for (std::int32_t x = c; x <= t; ++x) {
-            const Candidate2 n = env.query_run(x);
-            fx[x] = static_cast<std::int16_t>(n.x);
-            fy[x] = static_cast<std::int16_t>(n.y);
-        }
+        env.fill_run(c, t, fx, fy);
         c = t + 1;
     }
 }
