@@ -63,6 +63,7 @@ public:
         todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
         if (todo.empty()) return;
         stats.changed_pixels += todo.size();
+        touched_.reserve(touched_.size() + 16 * todo.size());  // a blob's nearest points change around it
         for (std::size_t i : todo) {
             g_.occupied[i] = occupied ? 1 : 0;
             const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(g_.cols));
@@ -259,7 +260,8 @@ private:
     void remove_row(std::int32_t r, const std::vector<std::int32_t>& cols) {
         const std::int32_t W = g_.cols;
         const std::size_t base = f_.at(r, 0);
-        std::vector<std::int32_t> redo;
+        std::vector<std::int32_t>& redo = redo_;  // kept between rows: no allocation a row
+        redo.clear();
         // One interval of nearest x per run of adjacent changed columns: the runs of a row are often
         // far apart (blobs whose columns' changes reach the same row), and the pixels between their
         // intervals have nearest points on columns that did not change.
@@ -338,6 +340,7 @@ private:
     OccupancyGrid& g_;
     FeatureMap& f_;
     RowEnvelope env_;
+    std::vector<std::int32_t> redo_;    // remove_row: the row's pixels to recompute
     std::vector<std::size_t> changed_;  // pixels whose occupancy flipped
     std::vector<std::size_t> touched_;  // pixels whose occupancy or nearest point changed
 };
