@@ -62,7 +62,7 @@ def main(out):
     cells = dm.cells(pts if comm.rank == 0 else None, 0.08, workers=1)
     if comm.rank == 0:
         for k in ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "indptr",
-                  "indices", "areas", "centroids"):
+                  "indices", "areas", "centroids", "radii"):
             saved["cells/" + k] = getattr(cells, k)
     team_radii = np.random.default_rng(6).uniform(0.03, 0.15, len(pts))
     team_cells = dm.cells(pts if comm.rank == 0 else None, team_radii if comm.rank == 0 else None, workers=1)
