@@ -302,7 +302,8 @@ class GeodesicLloydStepper:
     the current one is taken (else nobody moves), so the cost never increases.
     """
 
-    def __init__(self, points: Any, radius: Optional[float], density: Any = None, gain: float = 1.0, bounds: Any = None,
+    def __init__(self, points: Any, radius: Union[None, float, Sequence[float], np.ndarray], density: Any = None,
+                 gain: float = 1.0, bounds: Any = None,
                  order: int = 8, workers: Optional[int] = None, *, threads: Optional[int] = None,
                  environment: Any = None) -> None:
         from .coverage import _check_gain
