@@ -121,6 +121,19 @@ inline bool fan_is_star(const std::vector<Piece>& local) {
 /// Sectors of at most kSectorMax that an arc of span phi is cut into.
 inline int arc_parts(double phi) { return std::max(1, static_cast<int>(std::ceil(phi / kSectorMax - 1e-12))); }
 
+/// Calls f(theta, cos theta, sin theta, dphi, a) at the Gauss angles of an arc from angle a0 sweeping
+/// phi, cut into arc_parts sectors of span dphi (node a of the rule in each).
+template <class F>
+void arc_angles(double a0, double phi, const GaussRule& g, F&& f) {
+    const int parts = arc_parts(phi);
+    const double dphi = phi / parts;
+    for (int s = 0; s < parts; ++s)
+        for (std::size_t a = 0; a < g.size(); ++a) {
+            const double th = a0 + dphi * (s + g.x[a]);
+            f(th, std::cos(th), std::sin(th), dphi, a);
+        }
+}
+
 }  // namespace detail
 
 /// Calls emit(q, weight) for every quadrature node q (relative to the agent) of the cell: the
@@ -149,18 +162,13 @@ void quadrature_nodes(const std::vector<Piece>& local, double R, const GaussRule
             const double phi = local[p].arc_span;
             const double a0 = std::atan2(u.y(), u.x()), tn = a0 + 0.5 * phi;
             const double d = R * std::cos(0.5 * phi);
-            const int parts = detail::arc_parts(phi);
-            const double dphi = phi / parts;
-            for (int s = 0; s < parts; ++s)
-                for (std::size_t a = 0; a < k; ++a) {
-                    const double th = a0 + dphi * (s + g.x[a]);
-                    const double c = std::cos(th), sn = std::sin(th);
-                    const double r0 = std::min(R, d / std::cos(th - tn)), len = R - r0;
-                    for (std::size_t b = 0; b < k; ++b) {
-                        const double r = r0 + len * g.x[b];
-                        emit(Vec2(r * c, r * sn), r * len * g.w[b] * dphi * g.w[a]);
-                    }
+            detail::arc_angles(a0, phi, g, [&](double th, double c, double sn, double dphi, std::size_t a) {
+                const double r0 = std::min(R, d / std::cos(th - tn)), len = R - r0;
+                for (std::size_t b = 0; b < k; ++b) {
+                    const double r = r0 + len * g.x[b];
+                    emit(Vec2(r * c, r * sn), r * len * g.w[b] * dphi * g.w[a]);
                 }
+            });
         }
         return;
     }
@@ -170,17 +178,12 @@ void quadrature_nodes(const std::vector<Piece>& local, double R, const GaussRule
         if (local[p].neighbor == kArc) {
             const double phi = local[p].arc_span;
             const double a0 = std::atan2(u.y(), u.x());
-            const int parts = detail::arc_parts(phi);
-            const double dphi = phi / parts;
-            for (int s = 0; s < parts; ++s)
-                for (std::size_t a = 0; a < k; ++a) {
-                    const double th = a0 + dphi * (s + g.x[a]);
-                    const double c = std::cos(th), sn = std::sin(th);
-                    for (std::size_t b = 0; b < k; ++b) {
-                        const double r = R * g.x[b];
-                        emit(Vec2(r * c, r * sn), R * r * g.w[b] * dphi * g.w[a]);
-                    }
+            detail::arc_angles(a0, phi, g, [&](double, double c, double sn, double dphi, std::size_t a) {
+                for (std::size_t b = 0; b < k; ++b) {
+                    const double r = R * g.x[b];
+                    emit(Vec2(r * c, r * sn), R * r * g.w[b] * dphi * g.w[a]);
                 }
+            });
         } else {
             // Duffy map (s, t) -> s (u + t (v - u)), Jacobian 2 A s: collapsed at the agent.
             const double twice_a = u.x() * v.y() - u.y() * v.x();
