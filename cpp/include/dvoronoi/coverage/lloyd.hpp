@@ -153,12 +153,36 @@ inline void clipped_local_cell(const Swarm& swarm, const AgentRadii& radii, Inde
         w.radius = swarm.radius();
         boundary_scan(c, w.cand, w.radius, w.cell, w.ws);
     } else {
-        // The power cell: agents at p_i join the candidates (the exact classification decides them).
-        for (const Index j : w.same) w.cand.push_back({c, j});
-        std::sort(w.cand.begin(), w.cand.end(), [](const Candidate& a, const Candidate& b) { return a.id < b.id; });
-        w.cand_r.clear();
-        for (const Candidate& q : w.cand) w.cand_r.push_back(radii.of_id(swarm, q.id));
+        // The power cell from the agents closer than R_i + R_j (the grid returns those within 2 R̄;
+        // the margin keeps every one that can matter, and the exact classification in power_cell
+        // drops the extras). Agents at p_i join them; the candidates stay sorted by id.
         w.radius = radii.of_row(swarm, i);
+        std::size_t kept = 0;
+        w.cand_r.clear();
+        for (const Candidate& q : w.cand) {
+            const double Rj = radii.of_id(swarm, q.id), reach = (w.radius + Rj) * (1.0 + 0x1p-40);
+            if ((q.p - c).squaredNorm() >= reach * reach) continue;
+            w.cand[kept++] = q;
+            w.cand_r.push_back(Rj);
+        }
+        w.cand.resize(kept);
+        for (const Index j : w.same) {
+            w.cand.push_back({c, j});
+            w.cand_r.push_back(radii.of_id(swarm, j));
+        }
+        if (!w.same.empty()) {  // restore the order by id
+            std::vector<std::size_t> order(w.cand.size());
+            for (std::size_t t = 0; t < order.size(); ++t) order[t] = t;
+            std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return w.cand[a].id < w.cand[b].id; });
+            std::vector<Candidate> cand;
+            std::vector<double> rs;
+            for (const std::size_t t : order) {
+                cand.push_back(w.cand[t]);
+                rs.push_back(w.cand_r[t]);
+            }
+            w.cand.swap(cand);
+            w.cand_r.swap(rs);
+        }
         power_cell(c, w.radius, w.cand, w.cand_r, w.cell, w.power, id);
     }
     const double R = w.radius;
