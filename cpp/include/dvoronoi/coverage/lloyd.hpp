@@ -155,7 +155,8 @@ inline void clipped_local_cell(const Swarm& swarm, const AgentRadii& radii, Inde
     } else {
         // The power cell from the agents closer than R_i + R_j (the grid returns those within 2 R̄;
         // the margin keeps every one that can matter, and the exact classification in power_cell
-        // drops the extras). Agents at p_i join them; the candidates stay sorted by id.
+        // drops the extras). Agents at p_i join them (the larger disk holds a shared position); the
+        // candidates stay sorted by id.
         w.radius = radii.of_row(swarm, i);
         std::size_t kept = 0;
         w.cand_r.clear();
@@ -166,22 +167,11 @@ inline void clipped_local_cell(const Swarm& swarm, const AgentRadii& radii, Inde
             w.cand_r.push_back(Rj);
         }
         w.cand.resize(kept);
-        for (const Index j : w.same) {
-            w.cand.push_back({c, j});
-            w.cand_r.push_back(radii.of_id(swarm, j));
-        }
-        if (!w.same.empty()) {  // restore the order by id
-            std::vector<std::size_t> order(w.cand.size());
-            for (std::size_t t = 0; t < order.size(); ++t) order[t] = t;
-            std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return w.cand[a].id < w.cand[b].id; });
-            std::vector<Candidate> cand;
-            std::vector<double> rs;
-            for (const std::size_t t : order) {
-                cand.push_back(w.cand[t]);
-                rs.push_back(w.cand_r[t]);
-            }
-            w.cand.swap(cand);
-            w.cand_r.swap(rs);
+        for (const Index j : w.same) {  // in id order, as the rest
+            const auto at = std::lower_bound(w.cand.begin(), w.cand.end(), j,
+                                             [](const Candidate& a, Index want) { return a.id < want; });
+            w.cand_r.insert(w.cand_r.begin() + (at - w.cand.begin()), radii.of_id(swarm, j));
+            w.cand.insert(at, {c, j});
         }
         power_cell(c, w.radius, w.cand, w.cand_r, w.cell, w.power, id);
     }
