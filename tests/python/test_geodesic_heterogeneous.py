@@ -11,7 +11,7 @@ import pytest
 
 import dvoronoi as dv
 from dvoronoi import occupancy_maps as om
-from test_geodesic import MAPS, pixel_of, random_agents, two_rooms
+from test_geodesic import MAPS, cli_floor, pixel_of, random_agents, two_rooms
 
 
 def ranges(n, seed, lo=2.0, hi=9.0):
@@ -133,14 +133,7 @@ def test_bad_ranges_are_named():
 
 
 def test_cli_lloyd_map_with_a_radius_column_equals_python(tmp_path):
-    from test_cli import CLI, run
-
-    if CLI is None:
-        pytest.skip("no dvoronoi executable")
-    occ = MAPS["building"](5)
-    path = tmp_path / "floor.map"
-    om.write_movingai_map(path, occ)
-    xy = random_agents(occ, 5, 5)
+    run, occ, path, xy = cli_floor(tmp_path)
     radii = ranges(5, 5)
     pts = tmp_path / "team.txt"
     pts.write_text("".join(f"{x!r} {y!r} {r!r}\n" for (x, y), r in zip(xy.tolist(), radii.tolist())))
