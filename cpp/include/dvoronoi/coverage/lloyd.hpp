@@ -91,8 +91,8 @@ public:
     AgentRadii(const Swarm& swarm, std::vector<double> radii) {
         const Index n = swarm.size();
         if (static_cast<Index>(radii.size()) != n)
-            throw InputError("radius must be a number or one radius per agent: " + std::to_string(radii.size()) +
-                             " radii for " + std::to_string(n) + " points");
+            throw InputError("radius must have one radius per agent: got " + std::to_string(radii.size()) +
+                             " radii for " + std::to_string(n) + " agents");
         bool equal = true;
         for (std::size_t k = 0; k < radii.size(); ++k) {
             const double R = radii[k];
@@ -484,8 +484,8 @@ public:
                  double gain = 1.0, int threads = 0)
         : env_(std::move(env)), gain_(gain), threads_(threads) {
         if (static_cast<Index>(radii.size()) != points.rows())
-            throw InputError("radius must be a number or one radius per agent: " + std::to_string(radii.size()) +
-                             " radii for " + std::to_string(points.rows()) + " points");
+            throw InputError("radius must have one radius per agent: got " + std::to_string(radii.size()) +
+                             " radii for " + std::to_string(points.rows()) + " agents");
         for (const double R : radii) detail::require_finite_radius(R, "radius");
         const double rmax = radii.empty() ? 1.0 : *std::max_element(radii.begin(), radii.end());
         check(points, rmax);
