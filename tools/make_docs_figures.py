@@ -285,8 +285,9 @@ def heterogeneous_lloyd(out: Path) -> Path:
     rng = np.random.default_rng(1)
     points = rng.uniform(0, 0.3, (12, 2))
     radii = np.array([0.3, 0.3] + [0.12] * 10)
-    run = dv.coverage.lloyd(points, radii, steps=40, bounds=(0, 0, 1, 1), workers=1, progress=False)
-    run.animate(out / "heterogeneous_lloyd.gif", fps=8)
+    run = dv.coverage.lloyd(points, radii, steps=40, bounds=(0, 0, 1, 1), record_every=2, workers=1,
+                            progress=False)
+    run.animate(out / "heterogeneous_lloyd.gif", fps=5, dpi=70, figsize=(5.0, 5.0), progress=False)
     plt.close("all")
     return out / "heterogeneous_lloyd.gif"
 
