@@ -82,6 +82,7 @@ py::dict cells_dict(const LimitedPartition& p) {
     py::dict d;
     d["points"] = copy_of(p.points);
     d["radius"] = p.radius;
+    if (!p.radii.empty()) d["radii"] = copy_of(p.radii);
     d["piece_ptr"] = copy_of(p.piece_ptr);
     d["piece_neighbor"] = copy_of(p.piece_neighbor);
     d["piece_x"] = copy_of(p.piece_x);
@@ -95,15 +96,26 @@ py::dict cells_dict(const LimitedPartition& p) {
     return d;
 }
 
-/// f(swarm, environment) on a Swarm of `points` with `ids`, the GIL released while it runs.
+/// A 1-D array of radii (the core checks the length and each value, naming `radius`).
+std::vector<double> radii_of(const py::handle& radii) {
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(radii);
+    if (!a || a.ndim() != 1) throw py::value_error("radius must be a positive number or a 1-D array of one radius per agent");
+    return std::vector<double>(a.data(), a.data() + a.shape(0));
+}
+
+/// f(swarm, radii, environment) on a Swarm of `points` with `ids` and cell radius `radius` (the
+/// largest when `radii` gives one radius per agent), the GIL released while it runs.
 template <class F>
-auto on_swarm(py::handle points, double radius, const py::object& bounds, const py::object& ids, F&& f) {
+auto on_swarm(py::handle points, double radius, const py::object& radii, const py::object& bounds, const py::object& ids,
+              F&& f) {
     const PointsArg p = points_arg(points, "points");
     const auto env = bounds_arg(bounds);
     std::vector<Index> id = ids_arg(ids, p.rows);
+    std::vector<double> r = radii.is_none() ? std::vector<double>{} : radii_of(radii);
     py::gil_scoped_release release;
     const Swarm swarm(p.ref(), radius, std::move(id));
-    return f(swarm, env ? &*env : nullptr);
+    const dvoronoi::AgentRadii team = radii.is_none() ? dvoronoi::AgentRadii{} : dvoronoi::AgentRadii(swarm, std::move(r));
+    return f(swarm, team, env ? &*env : nullptr);
 }
 
 int threads_arg(int threads) {
@@ -117,15 +129,23 @@ void bind_coverage(py::module_& m) {
     py::class_<LloydStepper>(m, "LloydStepper",
                              "Lloyd's algorithm on limited cells, stepped in place (compiled core; use "
                              "dvoronoi.coverage).")
-        .def(py::init([](py::handle points, double radius, const py::object& bounds, double gain, int threads) {
+        .def(py::init([](py::handle points, py::handle radius, const py::object& bounds, double gain, int threads) {
                  const PointsArg p = points_arg(points, "points");
                  auto env = bounds_arg(bounds);
-                 return std::make_unique<LloydStepper>(p.ref(), radius, std::move(env), gain, threads_arg(threads));
+                 if (py::isinstance<py::float_>(radius) || py::isinstance<py::int_>(radius))
+                     return std::make_unique<LloydStepper>(p.ref(), radius.cast<double>(), std::move(env), gain,
+                                                           threads_arg(threads));
+                 return std::make_unique<LloydStepper>(p.ref(), radii_of(radius), std::move(env), gain, threads_arg(threads));
              }),
              py::arg("points"), py::arg("radius"), py::arg("bounds") = py::none(), py::arg("gain") = 1.0,
              py::arg("threads") = 0)
         .def_property_readonly("points", [](const LloydStepper& s) { return copy_of(s.points()); })
-        .def_property_readonly("radius", &LloydStepper::radius)
+        .def_property_readonly("radius", &LloydStepper::radius, "The radius (the largest of a heterogeneous team).")
+        .def_property_readonly("radii", [](const LloydStepper& s) {
+            std::vector<double> r = s.radii().by_row();
+            if (r.empty()) r.assign(static_cast<std::size_t>(s.swarm().size()), s.radius());
+            return copy_of(r);
+        }, "Each agent's radius, (n,).")
         .def_property_readonly("gain", &LloydStepper::gain)
         .def_property_readonly("bounds", [](const LloydStepper& s) -> py::object {
             if (!s.environment()) return py::none();
@@ -191,7 +211,7 @@ void bind_coverage(py::module_& m) {
             CoverageMoments mo;
             {
                 py::gil_scoped_release release;
-                mo = dvoronoi::coverage_moments(s.swarm(), s.environment());
+                mo = dvoronoi::coverage_moments(s.swarm(), s.radii(), s.environment());
             }
             return moments_tuple(mo);
         }, "(mass, centroid, polar, open) of every clipped cell, uniform density; open: the cell "
@@ -200,7 +220,7 @@ void bind_coverage(py::module_& m) {
             CoverageQuadrature q;
             {
                 py::gil_scoped_release release;
-                q = dvoronoi::coverage_quadrature(s.swarm(), s.environment(), order);
+                q = dvoronoi::coverage_quadrature(s.swarm(), s.radii(), s.environment(), order);
             }
             return cell_quadrature_tuple(q);
         }, py::arg("order") = 8,
@@ -209,7 +229,7 @@ void bind_coverage(py::module_& m) {
             LimitedPartition p;
             {
                 py::gil_scoped_release release;
-                p = dvoronoi::coverage_cells(s.swarm(), s.environment());
+                p = dvoronoi::coverage_cells(s.swarm(), s.radii(), s.environment());
             }
             return cells_dict(p);
         }, "The clipped cells as flat arrays (walls: neighbor -2, span 0).")
@@ -226,36 +246,42 @@ void bind_coverage(py::module_& m) {
 
     // Building blocks of one step on an arbitrary set of agents (an MPI rank's owned + halo agents).
     m.def("coverage_moments",
-          [](py::handle points, double radius, const py::object& bounds, const py::object& ids, Index owned, int threads) {
+          [](py::handle points, double radius, const py::object& bounds, const py::object& ids, Index owned, int threads,
+             const py::object& radii) {
               const int t = threads_arg(threads);
-              return moments_tuple(on_swarm(points, radius, bounds, ids, [&](const Swarm& s, const ConvexPolygon* env) {
-                  return dvoronoi::coverage_moments(s, env, owned, t);
-              }));
+              return moments_tuple(on_swarm(points, radius, radii, bounds, ids,
+                                            [&](const Swarm& s, const dvoronoi::AgentRadii& r, const ConvexPolygon* env) {
+                                                return dvoronoi::coverage_moments(s, r, env, owned, t);
+                                            }));
           },
           py::arg("points"), py::arg("radius"), py::arg("bounds") = py::none(), py::arg("ids") = py::none(),
-          py::arg("owned") = -1, py::arg("threads") = 0,
+          py::arg("owned") = -1, py::arg("threads") = 0, py::arg("radii") = py::none(),
           "(mass, centroid, polar, open) of the clipped cells of the first `owned` agents (-1: all; "
           "open: the cell reaches its circle); the others only shape them. Candidates are ordered by "
-          "`ids`, so the cells do not depend on how the agents are stored.");
+          "`ids`, so the cells do not depend on how the agents are stored. `radii`: one radius per agent "
+          "(a heterogeneous team; `radius` is then the largest of the whole team).");
     m.def("coverage_quadrature",
           [](py::handle points, double radius, int order, const py::object& bounds, const py::object& ids, Index owned,
-             int threads) {
+             int threads, const py::object& radii) {
               const int t = threads_arg(threads);
-              return cell_quadrature_tuple(on_swarm(points, radius, bounds, ids, [&](const Swarm& s, const ConvexPolygon* env) {
-                  return dvoronoi::coverage_quadrature(s, env, order, owned, t);
-              }));
+              return cell_quadrature_tuple(on_swarm(points, radius, radii, bounds, ids,
+                                                    [&](const Swarm& s, const dvoronoi::AgentRadii& r, const ConvexPolygon* env) {
+                                                        return dvoronoi::coverage_quadrature(s, r, env, order, owned, t);
+                                                    }));
           },
           py::arg("points"), py::arg("radius"), py::arg("order") = 8, py::arg("bounds") = py::none(),
-          py::arg("ids") = py::none(), py::arg("owned") = -1, py::arg("threads") = 0);
+          py::arg("ids") = py::none(), py::arg("owned") = -1, py::arg("threads") = 0, py::arg("radii") = py::none());
     m.def("coverage_cells",
-          [](py::handle points, double radius, const py::object& bounds, const py::object& ids, Index owned, int threads) {
+          [](py::handle points, double radius, const py::object& bounds, const py::object& ids, Index owned, int threads,
+             const py::object& radii) {
               const int t = threads_arg(threads);
-              return cells_dict(on_swarm(points, radius, bounds, ids, [&](const Swarm& s, const ConvexPolygon* env) {
-                  return dvoronoi::coverage_cells(s, env, owned, t);
-              }));
+              return cells_dict(on_swarm(points, radius, radii, bounds, ids,
+                                         [&](const Swarm& s, const dvoronoi::AgentRadii& r, const ConvexPolygon* env) {
+                                             return dvoronoi::coverage_cells(s, r, env, owned, t);
+                                         }));
           },
           py::arg("points"), py::arg("radius"), py::arg("bounds") = py::none(), py::arg("ids") = py::none(),
-          py::arg("owned") = -1, py::arg("threads") = 0);
+          py::arg("owned") = -1, py::arg("threads") = 0, py::arg("radii") = py::none());
     m.def("environment_quadrature",
           [](const py::object& bounds, int order) {
               const auto env = bounds_arg(bounds);

@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -31,10 +32,29 @@ std::vector<cov::PixelPoint> agents_of(const OccArray& occ, const cov::MapFrame&
     return cov::agents_on_map(occ.data(), fr, pts.data(), pts.shape(0));
 }
 
-// The range in pixel units (None: unlimited).
+// The range in pixel units (None: unlimited; the largest of per-agent ranges).
 double limit_of(const py::object& radius, double resolution) {
     if (radius.is_none()) return std::numeric_limits<double>::infinity();
+    if (py::isinstance<py::array>(radius)) {
+        const F64Array r = radius.cast<F64Array>();
+        double m = 0.0;
+        for (py::ssize_t i = 0; i < r.size(); ++i) m = std::max(m, r.data()[i]);
+        return m / resolution;
+    }
     return radius.cast<double>() / resolution;
+}
+
+// Per-agent ranges in pixel units when `radius` is an array (a heterogeneous team; the Python layer
+// checks each is positive and finite), else empty.
+std::vector<double> ranges_of(const py::object& radius, double resolution, std::size_t n) {
+    if (radius.is_none() || !py::isinstance<py::array>(radius)) return {};
+    const F64Array r = radius.cast<F64Array>();
+    if (r.ndim() != 1 || static_cast<std::size_t>(r.shape(0)) != n)
+        throw py::value_error("radius must have one range per agent: got " + std::to_string(r.size()) + " for " +
+                              std::to_string(n) + " agents");
+    std::vector<double> out(r.data(), r.data() + n);
+    for (double& v : out) v /= resolution;
+    return out;
 }
 
 py::array_t<std::int64_t> image_labels(const cov::GeodesicField& f) {
@@ -102,14 +122,22 @@ void bind_geodesic(py::module_& m) {
             const cov::MapFrame fr = frame_of(occ, resolution, ox, oy);
             const auto agents = agents_of(occ, fr, points);
             const double limit = limit_of(radius, resolution);
+            std::vector<double> ranges = ranges_of(radius, resolution, agents.size());
+            if (std::all_of(ranges.begin(), ranges.end(), [&](double R) { return R == limit; })) ranges.clear();
             const std::vector<double> w = weights_of(weight, fr);
             cov::GeodesicField f;
             cov::GeodesicMoments mom;
             {
                 py::gil_scoped_release release;
-                f = cov::geodesic_field(occ.data(), fr.rows, fr.cols, agents, limit);
                 const auto reach = cov::reachable_pixels(occ.data(), fr.rows, fr.cols, agents);
-                mom = cov::geodesic_moments(f, w.empty() ? nullptr : w.data(), reach.data(), limit, workers);
+                if (ranges.empty()) {
+                    f = cov::geodesic_field(occ.data(), fr.rows, fr.cols, agents, limit);
+                    mom = cov::geodesic_moments(f, w.empty() ? nullptr : w.data(), reach.data(), limit, workers);
+                } else {  // a heterogeneous team: one wavefront per agent (no anchors in the merged field)
+                    std::vector<cov::AgentWave> waves;
+                    cov::geodesic_team_field(occ.data(), fr.rows, fr.cols, agents, ranges, workers, f, waves);
+                    mom = cov::geodesic_moments(f, w.empty() ? nullptr : w.data(), reach.data(), limit, workers, &ranges);
+                }
             }
             py::dict d = moments_dict(mom, agents, fr);
             d["labels"] = image_labels(f);
@@ -145,9 +173,10 @@ void bind_geodesic(py::module_& m) {
                  std::vector<std::uint8_t> o(occ.data(), occ.data() + occ.size());
                  std::vector<double> w = weights_of(weight, fr);
                  const double limit = limit_of(radius, resolution);
+                 std::vector<double> ranges = ranges_of(radius, resolution, agents.size());
                  py::gil_scoped_release release;
                  return new Lloyd{fr, cov::GeodesicLloyd(std::move(o), fr.rows, fr.cols, std::move(agents), limit,
-                                                         std::move(w), gain, workers)};
+                                                         std::move(w), gain, workers, 12, std::move(ranges))};
              }),
              py::arg("occupied"), py::arg("resolution"), py::arg("ox"), py::arg("oy"), py::arg("points"),
              py::arg("radius"), py::arg("weight"), py::arg("gain"), py::arg("workers"))

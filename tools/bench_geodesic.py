@@ -105,8 +105,18 @@ def speed(args) -> None:
     stepper2 = dv.geodesic.GeodesicLloydStepper(xy, R, workers=2, environment=grid)
     stepper2.step()
     t_step2 = best_of(stepper2.step, args.repeat)
+    # A heterogeneous team (ranges uniform in [0.5R, 1.5R]): one range-limited wavefront per agent.
+    radii = np.random.default_rng(2).uniform(0.5 * R, 1.5 * R, args.agents)
+    team = dv.geodesic.GeodesicLloydStepper(xy, radii, workers=1, environment=grid)
+    team.step()
+    t_team = best_of(team.step, args.repeat)
+    team2 = dv.geodesic.GeodesicLloydStepper(xy, radii, workers=2, environment=grid)
+    team2.step()
+    t_team2 = best_of(team2.step, args.repeat)
     rows = [("dvoronoi geodesic Lloyd step (1 worker)", t_step),
             ("dvoronoi geodesic Lloyd step (2 workers)", t_step2),
+            ("the same, ranges uniform in [0.5R, 1.5R] (1 worker)", t_team),
+            ("the same, ranges uniform in [0.5R, 1.5R] (2 workers)", t_team2),
             ("dvoronoi geodesic_cells (labels, distances, moments)", t_cells)]
     graph = pixel_graph(occ)
     t_scipy = best_of(lambda: scipy_cells(graph, occ, pix, R), args.repeat)

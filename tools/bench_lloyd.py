@@ -13,7 +13,9 @@ scaling, in one run. Prints a markdown report (machine, date, load).
    per step. The first steps of both sides are checked to agree (centroids within the polygonal
    disk's error).
 2. One ``dv.limited_cells`` call on the same swarm, to compare a Lloyd step with it.
-3. MPI weak scaling (``mpirun -n 1`` and ``-n 2``, one thread per rank): ``python -m dvoronoi.mpi``
+3. A heterogeneous team on the same swarm (radii uniform in [0.5R, 1.5R], power cells clipped to the
+   disks): seconds per Lloyd step against the equal-radius run, one thread, both in this process.
+4. MPI weak scaling (``mpirun -n 1`` and ``-n 2``, one thread per rank): ``python -m dvoronoi.mpi``
    with N agents per rank in a box widened with the rank count (same density), seconds per step and
    the bytes each step sends (halo + migration, summed over ranks).
 
@@ -106,6 +108,31 @@ def mpi_run(ranks: int, per_rank: int, R: float, steps: int):
     return float(m.group(1)), float(m.group(2)), float(m.group(3)), shown
 
 
+# ---------------------------------------------------------------------------------- heterogeneous team
+def hetero_section(dv, pts, R, args, out) -> None:
+    """Section 3: Lloyd steps of a heterogeneous team against equal radii, one thread, best of 3."""
+    radii = np.random.default_rng(args.seed + 1).uniform(0.5 * R, 1.5 * R, len(pts))
+    steps = max(1, min(args.steps, 20))
+
+    def run(radius):
+        return dv.coverage.lloyd(pts, radius, steps=steps, bounds=(0, 0, 1, 1), record_every=steps, workers=1,
+                                 progress=False)
+
+    eq_t, _ = best_of(3, lambda: run(R))
+    het_t, het = best_of(3, lambda: run(radii))
+    assert np.all(np.diff(het.cost) <= 1e-12 * abs(het.cost[0])), "cost increased"
+    empty = int(np.count_nonzero(dv.coverage.LloydStepper(pts, radii, bounds=(0, 0, 1, 1)).moments()[0] == 0))
+    out(f"### A heterogeneous team, n = {len(pts):,} (radii uniform in [0.5R, 1.5R]), 1 thread, {steps} steps")
+    out()
+    out("| radii | s / step | ratio |")
+    out("|---|---:|---:|")
+    out(f"| all R (Boundary Scan cells) | {eq_t / steps:.4f} | 1 |")
+    out(f"| one per agent (power cells clipped to the disks) | {het_t / steps:.4f} | {het_t / eq_t:.2f} |")
+    out()
+    out(f"- {empty} of {len(pts):,} cells empty at the start (small disks covered by larger ones)")
+    out()
+
+
 # ---------------------------------------------------------------------------------------------- main
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -119,6 +146,7 @@ def main(argv=None) -> int:
     ap.add_argument("--mpi-per-rank", type=int, default=10_000, help="agents per rank, weak scaling")
     ap.add_argument("--mpi-steps", type=int, default=50)
     ap.add_argument("--no-mpi", action="store_true")
+    ap.add_argument("--hetero-only", action="store_true", help="only section 3 (a heterogeneous team)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", type=Path, help="also write the report to this file")
     ap.add_argument("--quick", action="store_true", help="smoke run: n 2000, 50 steps, MPI 2000/rank")
@@ -151,6 +179,12 @@ def main(argv=None) -> int:
     out(f"- swarm: n = {n:,} uniform in the unit square (also the environment), R = {R:.5g} "
         f"(about {args.k:g} agents within 2R), uniform density, gain 1, seed {args.seed}")
     out()
+
+    if args.hetero_only:
+        hetero_section(dv, pts, R, args, out)
+        if args.out:
+            args.out.write_text("\n".join(lines) + "\n")
+        return 0
 
     # ---- 1. dvoronoi, the full run
     t0, c0 = time.perf_counter(), time.process_time()
@@ -199,7 +233,9 @@ def main(argv=None) -> int:
         "disk's area error, not a disagreement)")
     out()
 
-    # ---- 3. MPI weak scaling
+    hetero_section(dv, pts, R, args, out)
+
+    # ---- 4. MPI weak scaling
     out(f"### MPI weak scaling ({args.mpi_per_rank:,} agents per rank, {args.mpi_steps} steps, 1 thread "
         "per rank)")
     out()

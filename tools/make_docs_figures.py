@@ -8,7 +8,7 @@
 Guides (docs/limited_cells.md, heterogeneous.md, exact_cells.md, distances.md, networks.md, grid_diagram_obstacles.md,
 coverage.md, mpi.md): ``limited_cells.png``, ``heterogeneous.png``, ``exact_cells.png``, ``distances.png``,
 ``networks.png``, ``gvd_obstacles.png``, ``coverage.png``, ``mpi_slabs.png`` (seeded random
-swarms, a few seconds each).
+swarms, a few seconds each); ``heterogeneous_lloyd.gif``: a mixed team's Lloyd run.
 
 - ``gvd_paris.png``: the medial diagram of the real MovingAI city map ``tests/data/maps/Paris_1_256.map``
   for a robot of radius 1 pixel, with a path between two far-apart free points.
@@ -279,6 +279,19 @@ def coverage(out: Path) -> Path:
     return _save(fig, out / "coverage.png")
 
 
+def heterogeneous_lloyd(out: Path) -> Path:
+    # Coverage control of a mixed team (docs/heterogeneous.md): two drones (R = 0.3) and ten ground
+    # robots (R = 0.12) start in a corner of the unit square and spread; the cost never increases.
+    rng = np.random.default_rng(1)
+    points = rng.uniform(0, 0.3, (12, 2))
+    radii = np.array([0.3, 0.3] + [0.12] * 10)
+    run = dv.coverage.lloyd(points, radii, steps=40, bounds=(0, 0, 1, 1), record_every=2, workers=1,
+                            progress=False)
+    run.animate(out / "heterogeneous_lloyd.gif", fps=5, dpi=70, figsize=(5.0, 5.0), progress=False)
+    plt.close("all")
+    return out / "heterogeneous_lloyd.gif"
+
+
 def mpi_slabs(out: Path) -> Path:
     rng = np.random.default_rng(4)
     points = rng.uniform(0, 1, (300, 2))
@@ -307,7 +320,8 @@ def _save(fig, target: Path) -> Path:
     return target
 
 
-FIGURES = (paris, pruning, limited_cells, heterogeneous, exact_cells, distances, networks, gvd_obstacles, coverage, mpi_slabs)
+FIGURES = (paris, pruning, limited_cells, heterogeneous, heterogeneous_lloyd, exact_cells, distances, networks,
+           gvd_obstacles, coverage, mpi_slabs)
 
 
 def main() -> None:

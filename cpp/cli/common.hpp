@@ -119,7 +119,7 @@ inline void add_points_options(CLI::App* sub, std::string& points, std::string& 
         ->required();
     sub->add_option("--columns", columns,
                     "X,Y: the fields holding x and y, as 0-based indices (e.g. 1,2 for 'id x y') or "
-                    "header names (e.g. lon,lat); `cells` also takes X,Y,R, a radius per agent (e.g. x,y,r)");
+                    "header names (e.g. lon,lat); `cells` and `lloyd` also take X,Y,R, a radius per agent (e.g. x,y,r)");
     sub->add_option("-t,--threads", threads, "worker threads (0 = all cores)")
         ->check(threads_check())
         ->capture_default_str();

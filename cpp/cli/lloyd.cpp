@@ -23,6 +23,7 @@ namespace {
 struct LloydOptions {
     std::string points;
     double radius = 0.0;
+    bool radius_given = false;
     int steps = 100;
     double gain = 1.0;
     std::vector<double> bounds;
@@ -66,16 +67,23 @@ nlohmann::json points_json(const Points& p) {
 }
 
 int run_lloyd(const LloydOptions& o) {
+    // --columns X,Y,R reads one sensing radius per agent (a heterogeneous team); otherwise --radius.
+    const bool radius_column = !o.columns.empty() && io::parse_columns(o.columns, "--columns", true).has_radius();
+    if (radius_column && o.radius_given)
+        throw UsageError("--radius: not with a radius column (--columns X,Y,R); give one or the other");
+    if (!radius_column && !o.radius_given)
+        throw UsageError("--radius: required (or one radius per agent with --columns X,Y,R)");
     if (!o.map.map.empty()) {
         if (!o.bounds.empty() || !o.polygon.empty()) throw UsageError("--map: give the environment as --map or --bounds/--polygon, not both");
         if (!o.svg_dir.empty()) throw UsageError("--svg-dir: not drawn for --map runs (Python's run.animate draws them)");
         LloydMapRequest r = o.map;
         r.points = o.points, r.columns = o.columns, r.output = o.output, r.radius = o.radius, r.steps = o.steps;
+        r.radius_column = radius_column;
         r.threads = o.threads, r.record_every = o.svg_every, r.gain = o.gain, r.trajectory = o.trajectory, r.quiet = o.quiet;
         return run_lloyd_map(r);
     }
     if (!o.map.origin.empty() || o.map.resolution > 0) throw UsageError("--resolution/--origin: only with --map");
-    if (!std::isfinite(o.radius) || !(o.radius > 0.0))
+    if (o.radius_given && (!std::isfinite(o.radius) || !(o.radius > 0.0)))
         throw UsageError("--radius: must be a positive finite number, got " + show(o.radius));
     if (!(o.gain > 0.0 && o.gain <= 1.0))
         throw UsageError("--gain: must be in (0, 1], got " + show(o.gain));
@@ -87,7 +95,7 @@ int run_lloyd(const LloydOptions& o) {
                          o.output + "'");
     std::optional<ConvexPolygon> env = environment(o);
 
-    const io::PointFile file = read_points_argument(o.points, o.columns);
+    const io::PointFile file = read_points_argument(o.points, o.columns, true);
     if (env)
         for (Index i = 0; i < file.points.rows(); ++i)
             if (!env->contains(file.points.row(i).transpose()))
@@ -103,7 +111,9 @@ int run_lloyd(const LloydOptions& o) {
     if (!to_stdout) out = open_output(o.output, "-o/--output");
 
     // The whole run first (positions kept for the pictures), outputs only once it succeeded.
-    LloydStepper stepper(file.points, o.radius, env, o.gain, o.threads);
+    LloydStepper stepper = radius_column ? LloydStepper(file.points, file.radii, env, o.gain, o.threads)
+                                         : LloydStepper(file.points, o.radius, env, o.gain, o.threads);
+    const std::vector<double>& radii = stepper.radii().by_row();  // empty unless the radii differ
     std::vector<Points> frames{stepper.points()};
     std::vector<int> frame_steps{0};
     std::vector<double> cost;
@@ -131,8 +141,9 @@ int run_lloyd(const LloydOptions& o) {
     if (!o.svg_dir.empty()) {
         Progress pictures("svg frames", static_cast<Index>(frames.size()), o.quiet, 1);
         for (std::size_t k = 0; k < frames.size(); ++k) {
-            const Swarm swarm(frames[k], o.radius);
-            const LimitedPartition cells = coverage_cells(swarm, stepper.environment(), -1, o.threads);
+            const Swarm swarm(frames[k], stepper.radius());
+            const AgentRadii team = radii.empty() ? AgentRadii{} : AgentRadii(swarm, radii);
+            const LimitedPartition cells = coverage_cells(swarm, team, stepper.environment(), -1, o.threads);
             char name[32];
             std::snprintf(name, sizeof name, "step_%06d.svg", frame_steps[k]);
             io::AtomicFile f((std::filesystem::path(o.svg_dir) / name).string());
@@ -145,7 +156,8 @@ int run_lloyd(const LloydOptions& o) {
 
     nlohmann::json doc;
     doc["kind"] = "lloyd";  // the result type, as in every result JSON (dv.load reads it back)
-    doc["radius"] = o.radius;
+    doc["radius"] = stepper.radius();  // the largest of a heterogeneous team, whose "radii" follow
+    if (!radii.empty()) doc["radii"] = radii;
     doc["gain"] = o.gain;
     doc["steps"] = o.steps;
     doc["bounds"] = nullptr;
@@ -175,9 +187,16 @@ Command add_lloyd(CLI::App& parent) {
         "lloyd",
         "Lloyd coverage control on limited cells (Cortes, Martinez & Bullo 2005): each agent moves "
         "--gain of the way to the centroid of its cell (uniform density), optionally clipped to a "
-        "convex environment; writes the cost per step and the final positions as JSON");
+        "convex environment; writes the cost per step and the final positions as JSON. With --columns X,Y,R "
+        "each agent has its own sensing radius (Pimenta et al. 2008: power cells clipped to the disks)");
     add_points_options(sub, o->points, o->columns, o->threads);
-    sub->add_option("-r,--radius", o->radius, "cell radius R > 0")->required();
+    sub->add_option_function<double>(
+        "-r,--radius",
+        [o](const double& r) {
+            o->radius = r;
+            o->radius_given = true;
+        },
+        "cell radius R > 0; or one radius per agent from the file with --columns X,Y,R");
     sub->add_option("--steps", o->steps, "number of Lloyd steps")->capture_default_str();
     sub->add_option("--gain", o->gain, "fraction of the way to the centroid per step, in (0, 1]")
         ->capture_default_str();

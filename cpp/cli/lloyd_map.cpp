@@ -18,7 +18,7 @@
 namespace dvoronoi::cli {
 
 int run_lloyd_map(const LloydMapRequest& r) {
-    if (std::isnan(r.radius) || !(r.radius > 0.0))
+    if (!r.radius_column && (std::isnan(r.radius) || !(r.radius > 0.0)))
         throw UsageError("--radius: with --map, the geodesic range: a positive number or inf, got " + show(r.radius));
     if (!(r.gain > 0.0 && r.gain <= 1.0)) throw UsageError("--gain: must be in (0, 1], got " + show(r.gain));
     if (r.steps < 0) throw UsageError("--steps: must be >= 0, got " + std::to_string(r.steps));
@@ -38,7 +38,7 @@ int run_lloyd_map(const LloydMapRequest& r) {
     const gvd::OccupancyGrid& g = map.grid;
     const coverage::MapFrame frame{g.rows, g.cols, g.resolution, g.origin.x(), g.origin.y()};
 
-    const io::PointFile file = read_points_argument(r.points, r.columns);
+    const io::PointFile file = read_points_argument(r.points, r.columns, true);
     std::vector<double> xy;
     for (Index i = 0; i < file.points.rows(); ++i) {
         xy.push_back(file.points(i, 0));
@@ -54,8 +54,13 @@ int run_lloyd_map(const LloydMapRequest& r) {
     if (!to_stdout) out = open_output(r.output, "-o/--output");
 
     const int workers = r.threads == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : r.threads;
-    const double limit = std::isinf(r.radius) ? std::numeric_limits<double>::infinity() : r.radius / g.resolution;
-    coverage::GeodesicLloyd lloyd(g.occupied, g.rows, g.cols, std::move(agents), limit, {}, r.gain, workers);
+    double limit = std::isinf(r.radius) ? std::numeric_limits<double>::infinity() : r.radius / g.resolution;
+    std::vector<double> ranges;  // a heterogeneous team's ranges, pixel units
+    if (r.radius_column) {
+        for (const double R : file.radii) ranges.push_back(R / g.resolution);
+        limit = ranges.empty() ? 1.0 : *std::max_element(ranges.begin(), ranges.end());
+    }
+    coverage::GeodesicLloyd lloyd(g.occupied, g.rows, g.cols, std::move(agents), limit, {}, r.gain, workers, 12, ranges);
     const double area2 = std::pow(g.resolution, 4);  // cost: pixel units -> map units
     auto map_points = [&](const std::vector<coverage::PixelPoint>& pts) {
         nlohmann::json a = nlohmann::json::array();
@@ -96,7 +101,13 @@ int run_lloyd_map(const LloydMapRequest& r) {
     doc["shape"] = {g.rows, g.cols};
     doc["resolution"] = g.resolution;
     doc["origin"] = {g.origin.x(), g.origin.y()};
-    doc["radius"] = std::isinf(r.radius) ? nlohmann::json(nullptr) : nlohmann::json(r.radius);
+    if (r.radius_column) {
+        doc["radius"] = file.radii.empty() ? nlohmann::json(nullptr)
+                                           : nlohmann::json(*std::max_element(file.radii.begin(), file.radii.end()));
+        doc["radii"] = file.radii;
+    } else {
+        doc["radius"] = std::isinf(r.radius) ? nlohmann::json(nullptr) : nlohmann::json(r.radius);
+    }
     doc["gain"] = r.gain;
     doc["steps"] = r.steps;
     doc["cost"] = cost;

@@ -22,6 +22,19 @@ and ``H = Σ J_i`` exactly, when no cell reaches its circle inside Q (always onc
 diameter); else ``Φ(U) = Φ(Q) - Σ M_i``, whose rounding is small against H because some point of Q
 is then R away from every agent.
 
+Heterogeneous teams: ``radius`` may give one sensing radius ``R_i`` per agent (Pimenta, Kumar,
+Mesquita & Pereira, "Sensing and coverage for a network of heterogeneous robots", CDC 2008). The
+cells are then the power cells (weights ``R_i^2``) clipped to the disks and to Q, as
+:func:`dvoronoi.limited_cells` with radii, and the cost is Pimenta et al.'s power cost limited to
+the disks, with ``R̄ = max R_i``::
+
+    H(P) = ∫_Q min(min_i (|q - p_i|^2 - R_i^2), 0) φ(q) dq + R̄^2 Φ(Q)
+         = Σ_i (J_i + (R̄^2 - R_i^2) M_i) + R̄^2 Φ(U)      (the plane: Σ_i (J_i - R_i^2 M_i)),
+
+equal to the cost above when all radii are equal (so are the cells and the runs, bit for bit). Its
+gradient is again ``2 M_i (p_i - C_i)`` and the same step never increases it (docs/heterogeneous.md);
+an agent's cell need not contain the agent, and an empty cell (zero mass) leaves its agent in place.
+
 Uniform density (``density=None``) is exact: areas, centroids and polar moments in closed form
 (circular sectors included). Any other density is integrated by Gauss quadrature over the cell's
 exact pieces (a fan of triangles from the agent and circular sectors of at most π/4), ``order``
@@ -48,6 +61,7 @@ import numpy as np
 from . import _args, _core
 from ._optional import tqdm_class
 from ._io import PathLike
+from ._partition import _radius_arg
 from ._result import CellResult
 
 __all__ = ["lloyd", "step", "LloydStepper", "LloydResult", "CoverageCells", "GridDensity",
@@ -193,32 +207,40 @@ def density_moments(points: np.ndarray, quadrature: Tuple[np.ndarray, ...], dens
 
 
 def _cost(mass: np.ndarray, polar: np.ndarray, open_cells: np.ndarray, radius: float,
-          total: Optional[float]) -> float:
+          total: Optional[float], radii: Optional[np.ndarray] = None) -> float:
     """H from per-cell moments (module docstring), summed without cancellation. ``open_cells``: which
-    cells reach their circle; ``total``: Φ(Q), or None for the plane."""
+    cells reach their circle; ``total``: Φ(Q), or None for the plane; ``radius``: R̄, and ``radii``
+    each agent's R_i (None: all equal to R̄)."""
     r2 = radius * radius
+    ri2 = r2 if radii is None else radii * radii
     if total is None:
-        return float(np.sum(polar - r2 * mass))
+        return float(np.sum(polar - ri2 * mass))
     # No agent: nothing is covered. Else U is empty exactly when no cell reaches its circle.
     uncovered = max(total - math.fsum(mass), 0.0) if len(mass) == 0 or np.any(open_cells) else 0.0
-    return math.fsum(polar) + r2 * uncovered
+    covered = polar if radii is None else polar + (r2 - ri2) * mass
+    return math.fsum(covered) + r2 * uncovered
 
 
 class CoverageCells(CellResult):
-    """Limited cells clipped to the environment, ``W_i = V_i ∩ B(p_i, R) ∩ Q``.
+    """Limited cells clipped to the environment, ``W_i = V_i ∩ B(p_i, R) ∩ Q`` (a heterogeneous team:
+    the power cell ∩ ``B(p_i, R_i)`` ∩ Q, which may be empty or miss its agent).
 
     Pieces are edges (``piece_neighbor >= 0``), arcs (``-1``, ``piece_span > 0``) and walls on the
     environment's boundary (``-2``, span 0). ``areas``/``centroids`` are geometric (uniform density);
     ``masses``/``mass_centroids`` are under the run's density (equal to them for uniform density).
+    ``radius`` is the radius (the largest of a heterogeneous team), ``radii`` each agent's.
     """
 
     radius: float  # an attribute here (the base declares a read-only property)
+    radii: np.ndarray
 
     def __init__(self, arrays: dict, bounds: Optional[np.ndarray], masses: Optional[np.ndarray] = None,
                  mass_centroids: Optional[np.ndarray] = None) -> None:
         for key, value in arrays.items():
             setattr(self, key, value)
         self.radius = float(arrays["radius"])
+        radii = arrays.get("radii")
+        self.radii = np.full(len(self.points), self.radius) if radii is None else np.asarray(radii, dtype=np.float64)
         self.bounds = bounds
         self.masses = self.areas if masses is None else masses
         self.mass_centroids = self.centroids if mass_centroids is None else mass_centroids
@@ -242,13 +264,18 @@ class CoverageCells(CellResult):
                            "span": float(self.piece_span[k])})
         full = hi - lo == 1 and self.piece_neighbor[lo] == -1
         verts = np.column_stack([self.piece_x[lo:hi], self.piece_y[lo:hi]]) if not full else np.empty((0, 2))
-        return {"center": tuple(map(float, self.points[i])), "radius": self.radius, "pieces": pieces,
+        return {"center": tuple(map(float, self.points[i])), "radius": float(self.radii[i]), "pieces": pieces,
                 "vertices": verts, "neighbors": self.neighbors(i), "area": float(self.areas[i]),
                 "centroid": tuple(map(float, self.centroids[i]))}
 
+    def _heterogeneous(self) -> bool:
+        return bool(np.any(self.radii != self.radius))
+
     def _json_doc(self) -> dict:
-        return {"kind": "coverage_cells", "radius": self.radius,  # "kind": what dv.load reads back
-                "bounds": None if self.bounds is None else self.bounds.tolist(),
+        doc = {"kind": "coverage_cells", "radius": self.radius}  # "kind": what dv.load reads back
+        if self._heterogeneous():
+            doc["radii"] = self.radii.tolist()
+        return {**doc, "bounds": None if self.bounds is None else self.bounds.tolist(),
                 "points": self.points.tolist(),  # the agents, as the CLI's lloyd JSON has them
                 "cells": [{"agent": i, **{k: v for k, v in self.cell(i).items() if k != "vertices"},
                            "neighbors": self.neighbors(i).tolist()} for i in range(len(self))]}
@@ -260,13 +287,14 @@ class CoverageCells(CellResult):
         tol = self.radius / 1000 if tolerance is None else float(tolerance)
         if not (tol > 0 and math.isfinite(tol)):
             raise ValueError(f"tolerance must be a positive finite number, got {tolerance!r}")
-        # Chords of angle d stay within R (1 - cos(d/2)) of the arc.
-        dmax = 2 * math.acos(max(-1.0, 1 - tol / self.radius))
         features = []
         for i in range(len(self)):
             ring = []
             lo, hi = int(self.piece_ptr[i]), int(self.piece_ptr[i + 1])
             cx, cy = self.points[i]
+            r = float(self.radii[i])
+            # Chords of angle d stay within r (1 - cos(d/2)) of the arc.
+            dmax = 2 * math.acos(max(-1.0, 1 - tol / r))
             for k in range(lo, hi):
                 ring.append([float(self.piece_x[k]), float(self.piece_y[k])])
                 if self.piece_neighbor[k] == -1:
@@ -274,7 +302,7 @@ class CoverageCells(CellResult):
                     m = max(1, math.ceil(self.piece_span[k] / dmax))
                     for j in range(1, m):
                         a = a0 + self.piece_span[k] * j / m
-                        ring.append([float(cx + self.radius * math.cos(a)), float(cy + self.radius * math.sin(a))])
+                        ring.append([float(cx + r * math.cos(a)), float(cy + r * math.sin(a))])
             if ring:
                 ring.append(ring[0])
             features.append({"type": "Feature", "geometry": {"type": "Polygon", "coordinates": [ring]},
@@ -290,7 +318,15 @@ class CoverageCells(CellResult):
         return plotting.plot_coverage(self, ax=ax, **kwargs)
 
     def __repr__(self) -> str:
-        return f"CoverageCells(n={len(self)}, radius={self.radius:g}, total_area={float(np.sum(self.areas)):.6g})"
+        return f"CoverageCells(n={len(self)}, {_radius_text(self)}, total_area={float(np.sum(self.areas)):.6g})"
+
+
+def _radius_text(result: Any) -> str:
+    """``radius=R`` or, for a heterogeneous team, ``radii=lo..hi`` (reprs)."""
+    radii = np.asarray(result.radii)
+    if len(radii) and np.any(radii != result.radius):
+        return f"radii={float(radii.min()):g}..{float(radii.max()):g}"
+    return f"radius={result.radius:g}"
 
 
 # ----------------------------------------------------------------------------------------- stepping
@@ -312,11 +348,11 @@ class LloydStepper:
             return GeodesicLloydStepper(*args, environment=environment, **kwargs)
         return super().__new__(cls)
 
-    def __init__(self, points: Any, radius: float, density: Any = None, gain: float = 1.0,
-                 bounds: BoundsArg = None, order: int = 8, workers: Optional[int] = None, *,
+    def __init__(self, points: Any, radius: Union[float, Sequence[float], np.ndarray], density: Any = None,
+                 gain: float = 1.0, bounds: BoundsArg = None, order: int = 8, workers: Optional[int] = None, *,
                  threads: Optional[int] = None, environment: Any = None) -> None:
         team = _args.workers(workers, threads)
-        radius = _args.real(radius, "radius")
+        radius = _radius_arg(radius)
         self.density = _check_density(density)
         self.gain = _check_gain(gain)
         self.order = _args.integer(order, "order", 1, 64)
@@ -331,7 +367,18 @@ class LloydStepper:
 
     @property
     def radius(self) -> float:
+        """The radius R (the largest, R̄, of a heterogeneous team)."""
         return self._core.radius
+
+    @property
+    def radii(self) -> np.ndarray:
+        """Each agent's radius, (n,)."""
+        return self._core.radii
+
+    def _radii(self) -> Optional[np.ndarray]:
+        """The radii when they are not all R̄ (the cost's per-agent terms), else None."""
+        radii = self._core.radii
+        return radii if np.any(radii != self._core.radius) else None
 
     def __len__(self) -> int:
         return len(self._core.points)
@@ -362,7 +409,7 @@ class LloydStepper:
         if self.density is None:
             return self._core.cost()
         mass, _, polar, open_cells = self._moments()
-        return _cost(mass, polar, open_cells, self.radius, self._phi_total())
+        return _cost(mass, polar, open_cells, self.radius, self._phi_total(), self._radii())
 
     def step(self) -> float:
         """One Lloyd step: cells at the current positions, every agent moves ``gain`` of the way to
@@ -371,7 +418,7 @@ class LloydStepper:
             return self._core.step()
         mass, centroid, polar, open_cells = self._moments()
         self._core.move_to_targets(centroid)
-        return _cost(mass, polar, open_cells, self.radius, self._phi_total())
+        return _cost(mass, polar, open_cells, self.radius, self._phi_total(), self._radii())
 
     def set_points(self, points: Any) -> None:
         """Put the agents somewhere else (same number); the grid is updated, not rebuilt."""
@@ -391,12 +438,13 @@ class LloydStepper:
         return self._core.rebucketed
 
     def __repr__(self) -> str:
-        return (f"LloydStepper(n={len(self)}, radius={self.radius:g}, gain={self.gain:g}, "
+        return (f"LloydStepper(n={len(self)}, {_radius_text(self)}, gain={self.gain:g}, "
                 f"bounds={'None' if self.bounds is None else len(self.bounds)}, "
                 f"density={'uniform' if self.density is None else 'callable'})")
 
 
-def step(points: Any, radius: float, density: Any = None, gain: float = 1.0, bounds: BoundsArg = None,
+def step(points: Any, radius: Union[float, Sequence[float], np.ndarray], density: Any = None, gain: float = 1.0,
+         bounds: BoundsArg = None,
          order: int = 8, workers: Optional[int] = None, *, threads: Optional[int] = None) -> Tuple[np.ndarray, float]:
     """One Lloyd step from `points`: returns ``(new_points, cost)``, the cost H at `points`.
 
@@ -445,26 +493,27 @@ class LloydResult(CoverageCells):
         return animate(self, path, fps=fps, **kwargs)
 
     def __repr__(self) -> str:
-        return (f"LloydResult(n={len(self)}, radius={self.radius:g}, steps={self.steps}, "
+        return (f"LloydResult(n={len(self)}, {_radius_text(self)}, steps={self.steps}, "
                 f"cost {self.cost[0]:.6g} -> {self.cost[-1]:.6g})")
 
 
 @overload
-def lloyd(points: Any, radius: float, density: Any = None, steps: int = 100, gain: float = 1.0,
+def lloyd(points: Any, radius: Union[float, Sequence[float], np.ndarray], density: Any = None, steps: int = 100, gain: float = 1.0,
           bounds: BoundsArg = None, order: int = 8, record_every: int = 1,
           workers: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None, *,
           threads: Optional[int] = None, environment: None = None) -> LloydResult: ...
 
 
 @overload
-def lloyd(points: Any, radius: Optional[float], density: Any = None, steps: int = 100, gain: float = 1.0,
+def lloyd(points: Any, radius: Union[None, float, Sequence[float], np.ndarray], density: Any = None, steps: int = 100, gain: float = 1.0,
           bounds: None = None, order: int = 8, record_every: int = 1,
           workers: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None, *,
           threads: Optional[int] = None,
           environment: Union[np.ndarray, str, PathLike, OccupancyGrid]) -> GeodesicLloydResult: ...
 
 
-def lloyd(points: Any, radius: Optional[float], density: Any = None, steps: int = 100, gain: float = 1.0,
+def lloyd(points: Any, radius: Union[None, float, Sequence[float], np.ndarray], density: Any = None, steps: int = 100,
+          gain: float = 1.0,
           bounds: BoundsArg = None, order: int = 8, record_every: int = 1,
           workers: Optional[int] = None, progress: Union[None, bool, Callable[[int, int], Any]] = None, *,
           threads: Optional[int] = None, environment: Any = None) -> Union[LloydResult, GeodesicLloydResult]:
@@ -474,8 +523,9 @@ def lloyd(points: Any, radius: Optional[float], density: Any = None, steps: int 
     ----------
     points : (n, 2) array-like
         Initial positions; with `bounds` every agent must lie in the environment.
-    radius : float
-        The cell radius R > 0.
+    radius : float or (n,) array-like
+        The cell radius R > 0, or one sensing radius per agent (a heterogeneous team: power cells
+        clipped to the disks and the power cost, module docstring; all equal gives the scalar run).
     density : None, callable or GridDensity
         None: uniform (exact, and the whole run stays in the compiled core). A callable ``f(x, y)``
         taking and returning arrays (a scalar-only function is called per node), or a
@@ -527,7 +577,7 @@ def lloyd(points: Any, radius: Optional[float], density: Any = None, steps: int 
     steps = _check_count(steps, "steps", 0)
     record_every = _check_count(record_every, "record_every", 1)
     # None (no range) is for environment= only: LloydStepper refuses it, naming `radius`.
-    stepper = LloydStepper(points, cast(float, radius), density=density, gain=gain, bounds=bounds, order=order,
+    stepper = LloydStepper(points, cast(Any, radius), density=density, gain=gain, bounds=bounds, order=order,
                            workers=team or None)
     n = len(stepper)
     frame_steps = np.unique(np.concatenate([np.arange(0, steps + 1, record_every), [steps]])).astype(np.int64)

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union, cast
 
 import numpy as np
 
@@ -51,8 +51,30 @@ def _team(workers: Any) -> int:
     return t if t > 0 else (os.cpu_count() or 1)
 
 
-def _radius(radius: Any) -> Optional[float]:
-    return None if radius is None else _args.positive(radius, "radius")
+def _radius(radius: Any) -> Union[None, float, np.ndarray]:
+    """None (no range), a positive range, or one positive finite range per agent (an array)."""
+    if radius is None:
+        return None
+    from ._partition import _radius_arg
+
+    r = _radius_arg(radius)
+    if np.ndim(r) == 0:
+        return _args.positive(r, "radius")
+    bad = np.flatnonzero(~(np.isfinite(r) & (r > 0)))
+    if len(bad):
+        raise ValueError(f"radius[{bad[0]}] must be a positive finite number, got {r[bad[0]]!r}")
+    return np.ascontiguousarray(r)
+
+
+def _split_radius(radius: Union[None, float, np.ndarray], n: int) -> Tuple[Optional[float], Optional[np.ndarray]]:
+    """(radius, radii): the range (the largest of a team) and the per-agent ranges (None unless an
+    array was given); checks the array's length."""
+    if radius is None or np.ndim(radius) == 0:
+        return cast(Optional[float], radius), None
+    radii = cast(np.ndarray, radius)
+    if len(radii) != n:
+        raise ValueError(f"radius must have one range per agent: got {len(radii)} for {n} agents")
+    return (float(radii.max()) if n else None), radii
 
 
 def _points(points: Any) -> np.ndarray:
@@ -123,19 +145,21 @@ class GeodesicCells(Result):
         centres times the pixel area; an empty cell has area 0 and its agent as centroid).
     masses, mass_centroids : the same under the density (equal to areas/centroids without one).
     cost : the coverage cost ``H = Σ_i ∫_{W_i} d_g(q, p_i)^2 φ(q) dq`` (with the range, reachable pixels
-        that no agent covers count ``radius^2 φ``).
+        that no agent covers count ``radius^2 φ``; a heterogeneous team's pixels of ``W_i`` count
+        ``(d_g^2 + R̄^2 - R_i^2) φ``, docs/geodesic_coverage.md).
     indptr, indices : cells sharing a pixel edge, CSR; ``neighbors(i)``.
-    grid : the :class:`~dvoronoi.OccupancyGrid`; radius : the range or None.
+    grid : the :class:`~dvoronoi.OccupancyGrid`; radius : the range (the largest of a heterogeneous
+        team) or None; radii : each agent's range (a heterogeneous team) or None.
     """
 
     # A float here; a Lloyd run's per-step array (GeodesicLloydResult), as for the convex LloydResult.
     cost: Any
 
-    def __init__(self, points: np.ndarray, grid: OccupancyGrid, radius: Optional[float], arrays: Dict[str, Any],
-                 geometric: Optional[Dict[str, Any]] = None) -> None:
+    def __init__(self, points: np.ndarray, grid: OccupancyGrid, radius: Union[None, float, np.ndarray],
+                 arrays: Dict[str, Any], geometric: Optional[Dict[str, Any]] = None) -> None:
         self.points = points
         self.grid = grid
-        self.radius = radius
+        self.radius, self.radii = _split_radius(radius, len(points))
         self.labels = arrays["labels"]
         self.distances = arrays["distances"]
         self.cost = float(arrays["cost"])
@@ -165,8 +189,13 @@ class GeodesicCells(Result):
         return {"center": tuple(map(float, self.points[i])), "mask": self.labels == i, "area": float(self.areas[i]),
                 "centroid": tuple(map(float, self.centroids[i])), "neighbors": self.neighbors(i)}
 
+    def _range(self) -> Union[None, float, np.ndarray]:
+        """What `radius=` was: the per-agent ranges of a team, else the range or None."""
+        return self.radius if self.radii is None else self.radii
+
     def _json_doc(self) -> dict:
-        return {"radius": self.radius, "resolution": self.grid.resolution, "origin": list(self.grid.origin),
+        team = {} if self.radii is None else {"radii": self.radii.tolist()}
+        return {"radius": self.radius, **team, "resolution": self.grid.resolution, "origin": list(self.grid.origin),
                 "shape": list(self.grid.shape), "cost": self.cost,
                 "cells": [{"agent": i, "center": self.points[i].tolist(), "area": float(self.areas[i]),
                            "centroid": self.centroids[i].tolist(), "neighbors": self.neighbors(i).tolist()}
@@ -206,11 +235,18 @@ class GeodesicCells(Result):
 
     def __repr__(self) -> str:
         reached = int(np.count_nonzero(self.labels >= 0))
-        return (f"GeodesicCells(n={len(self)}, radius={self.radius}, {reached} pixels covered, "
+        return (f"GeodesicCells(n={len(self)}, {_range_text(self)}, {reached} pixels covered, "
                 f"cost={self.cost:.6g})")
 
 
-def geodesic_cells(points: Any, environment: Any, radius: Optional[float] = None, workers: Optional[int] = None, *,
+def _range_text(obj: Any) -> str:
+    radii = getattr(obj, "radii", None)
+    if radii is not None and len(radii):
+        return f"radii={float(np.min(radii)):g}..{float(np.max(radii)):g}"
+    return f"radius={obj.radius}"
+
+
+def geodesic_cells(points: Any, environment: Any, radius: Union[None, float, Sequence[float], np.ndarray] = None, workers: Optional[int] = None, *,
                    density: Any = None, resolution: Optional[float] = None, origin: Optional[Sequence[float]] = None,
                    unknown: str = "occupied", occupied_thresh: float = 0.65) -> GeodesicCells:
     """Geodesic Voronoi cells of `points` on an occupancy grid.
@@ -220,8 +256,11 @@ def geodesic_cells(points: Any, environment: Any, radius: Optional[float] = None
     points : (n, 2) array-like, map units; every agent in a free pixel of the map.
     environment : :class:`~dvoronoi.OccupancyGrid`, map file (ROS YAML, PGM, PNG, MovingAI ``.map``) or
         H x W array (row 0 at the top; bool, probabilities, ROS int8 or 0/1), as :func:`dvoronoi.grid_voronoi`.
-    radius : float, optional
-        The geodesic range (map units): pixels farther from every agent stay unassigned.
+    radius : float or (n,) array-like, optional
+        The geodesic range (map units): pixels farther from every agent stay unassigned. One range per
+        agent makes a heterogeneous team: pixel q goes to the agent with the smallest
+        ``d_g(q, p_i)^2 - R_i^2`` among those within range (the geodesic power cells; all ranges equal
+        gives the scalar call's cells), each agent's distances from its own range-limited wavefront.
     workers : int, optional
         None or -1 every core, k >= 1 k threads (for the cells' sums; the distances are one sequential
         wavefront). The result does not depend on it.
@@ -238,6 +277,7 @@ def geodesic_cells(points: Any, environment: Any, radius: Optional[float] = None
     grid = as_environment(environment, resolution, origin, unknown, occupied_thresh)
     pts = _points(points)
     r = _radius(radius)
+    _split_radius(r, len(pts))
     team = _team(workers)
     weights = density_weights(density, grid)
     arrays = _core._geodesic_cells(_occupied(grid), grid.resolution, grid.origin[0], grid.origin[1], pts, r,
@@ -262,7 +302,8 @@ class GeodesicLloydStepper:
     the current one is taken (else nobody moves), so the cost never increases.
     """
 
-    def __init__(self, points: Any, radius: Optional[float], density: Any = None, gain: float = 1.0, bounds: Any = None,
+    def __init__(self, points: Any, radius: Union[None, float, Sequence[float], np.ndarray], density: Any = None,
+                 gain: float = 1.0, bounds: Any = None,
                  order: int = 8, workers: Optional[int] = None, *, threads: Optional[int] = None,
                  environment: Any = None) -> None:
         from .coverage import _check_gain
@@ -272,14 +313,15 @@ class GeodesicLloydStepper:
         if threads is not None:
             workers = _args.workers(None, threads) or None
         self.grid = as_environment(environment)
-        self.radius = _radius(radius)
+        pts = _points(points)
+        self._range = _radius(radius)
+        self.radius, self.radii = _split_radius(self._range, len(pts))
         self.gain = _check_gain(gain)
         self.density = density
         self._weights = density_weights(density, self.grid)
         self._team = _team(workers)
-        pts = _points(points)
         self._core = _core._GeodesicLloyd(_occupied(self.grid), self.grid.resolution, self.grid.origin[0],
-                                          self.grid.origin[1], pts, self.radius, self._weights, self.gain, self._team)
+                                          self.grid.origin[1], pts, self._range, self._weights, self.gain, self._team)
 
     @property
     def points(self) -> np.ndarray:
@@ -314,12 +356,12 @@ class GeodesicLloydStepper:
         geometric = None
         if self._weights is not None:
             geometric = _core._geodesic_cells(_occupied(self.grid), self.grid.resolution, self.grid.origin[0],
-                                              self.grid.origin[1], self.points, self.radius, None, self._team)
-        return GeodesicCells(self.points, self.grid, self.radius, arrays, geometric)
+                                              self.grid.origin[1], self.points, self._range, None, self._team)
+        return GeodesicCells(self.points, self.grid, self._range, arrays, geometric)
 
     def __repr__(self) -> str:
         H, W = self.grid.shape
-        return f"GeodesicLloydStepper(n={len(self)}, radius={self.radius}, gain={self.gain:g}, map {H} x {W})"
+        return f"GeodesicLloydStepper(n={len(self)}, {_range_text(self)}, gain={self.gain:g}, map {H} x {W})"
 
 
 class GeodesicLloydResult(GeodesicCells):
@@ -360,7 +402,7 @@ class GeodesicLloydResult(GeodesicCells):
 
         def draw(k: int):
             ax.clear()
-            geodesic_cells(self.trajectory[k], self.grid, self.radius, workers=1).plot(ax=ax, centroids=False,
+            geodesic_cells(self.trajectory[k], self.grid, self._range(), workers=1).plot(ax=ax, centroids=False,
                                                                                       point_size=6)
             ax.set_axis_off()
             s = int(self.frame_steps[k])
@@ -393,11 +435,11 @@ class GeodesicLloydResult(GeodesicCells):
         return anim
 
     def __repr__(self) -> str:
-        return (f"GeodesicLloydResult(n={len(self)}, radius={self.radius}, steps={self.steps}, "
+        return (f"GeodesicLloydResult(n={len(self)}, {_range_text(self)}, steps={self.steps}, "
                 f"cost {self.cost[0]:.6g} -> {self.cost[-1]:.6g})")
 
 
-def lloyd(points: Any, radius: Optional[float], environment: Any, density: Any = None, steps: int = 100,
+def lloyd(points: Any, radius: Union[None, float, Sequence[float], np.ndarray], environment: Any, density: Any = None, steps: int = 100,
           gain: float = 1.0, record_every: int = 1, workers: Optional[int] = None,
           progress: Union[None, bool, Callable[[int, int], Any]] = None) -> GeodesicLloydResult:
     """Lloyd's algorithm on geodesic cells for `steps` steps (``dv.coverage.lloyd(...,

@@ -10,6 +10,11 @@ cut into equal slabs). Every step a rank
 3. moves its agents (the Lloyd step), sums the cost (Allreduce), and
 4. hands agents that left its slab to their new owner (migration, Alltoallv).
 
+Heterogeneous teams (``radius`` one sensing radius per agent, :mod:`dvoronoi.coverage`): agent j
+with radius ``R_j`` is sent to every rank whose slab lies within ``R_j + R̄`` of it (``R̄`` the largest
+radius), since it shapes only cells of agents closer than ``R_i + R_j <= R̄ + R_j``; rows carry
+``(id, x, y, R)``.
+
 Each agent's cell depends only on the positions within 2R, and candidates are ordered by global id,
 so cells and trajectories on K ranks are bit-for-bit those of one process
 (:class:`dvoronoi.coverage.LloydStepper`); the cost, a sum over ranks, agrees to rounding (1e-12
@@ -37,6 +42,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from . import _args, _core
+from ._partition import _radius_arg
 from .coverage import (BoundsArg, CoverageCells, _check_count, _check_density, _check_gain, _evaluate,
                        as_bounds, density_moments)
 
@@ -52,16 +58,19 @@ def _mpi():
     return MPI
 
 
-def _pack(ids: np.ndarray, pts: np.ndarray) -> np.ndarray:
-    """(k, 3) float64 rows (id bits, x, y): one buffer per message."""
-    out = np.empty((len(ids), 3))
+def _pack(ids: np.ndarray, pts: np.ndarray, radii: Optional[np.ndarray] = None) -> np.ndarray:
+    """(k, 3) float64 rows (id bits, x, y), or (k, 4) with each agent's radius: one buffer per message."""
+    out = np.empty((len(ids), 3 if radii is None else 4))
     out[:, 0] = np.ascontiguousarray(ids, dtype=np.int64).view(np.float64)
-    out[:, 1:] = pts
+    out[:, 1:3] = pts
+    if radii is not None:
+        out[:, 3] = radii
     return out
 
 
-def _unpack(buf: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
-    return np.ascontiguousarray(buf[:, 0]).view(np.int64).copy(), np.ascontiguousarray(buf[:, 1:])
+def _unpack(buf: np.ndarray) -> Tuple[np.ndarray, np.ndarray, Optional[np.ndarray]]:
+    radii = np.ascontiguousarray(buf[:, 3]) if buf.shape[1] == 4 else None
+    return np.ascontiguousarray(buf[:, 0]).view(np.int64).copy(), np.ascontiguousarray(buf[:, 1:3]), radii
 
 
 class DistributedLloyd:
@@ -72,18 +81,27 @@ class DistributedLloyd:
     comm : mpi4py communicator
     ids, points : this rank's agents (global ids, positions); any rank may start with any agents:
         they are sent to their owners at construction.
-    radius, gain, bounds, density, order : as :func:`dvoronoi.coverage.lloyd`.
+    radius : float, or one radius per agent of this rank (a heterogeneous team; every rank must then
+        pass an array, possibly empty).
+    gain, bounds, density, order : as :func:`dvoronoi.coverage.lloyd`.
     x_range : (x0, x1) cut into ``comm.size`` equal slabs; default: the bounds' x-extent, or the
         agents' initial x-extent (agents outside it belong to the first or last slab).
     """
 
-    def __init__(self, comm: Any, ids: Any, points: Any, radius: float, gain: float = 1.0,
+    def __init__(self, comm: Any, ids: Any, points: Any, radius: Any, gain: float = 1.0,
                  bounds: BoundsArg = None, density: Any = None, order: int = 8,
                  x_range: Optional[Tuple[float, float]] = None, workers: Optional[int] = None, *,
                  threads: Optional[int] = None) -> None:
         MPI = _mpi()
         self.comm = comm
         self.size, self.rank = comm.Get_size(), comm.Get_rank()
+        radii: Optional[np.ndarray] = None
+        if np.ndim(radius) > 0:  # a heterogeneous team: R̄ over every rank
+            radii = np.asarray(radius, dtype=float).reshape(-1)
+            if len(radii) != len(np.asarray(points).reshape(-1, 2)):
+                raise ValueError(f"radius must have one radius per point, got {len(radii)} for "
+                                 f"{len(np.asarray(points).reshape(-1, 2))}")
+            radius = comm.allreduce(float(radii.max()) if len(radii) else 0.0, op=MPI.MAX)
         self.radius = _args.positive(radius, "radius")
         self.gain = _check_gain(gain)
         self.bounds = as_bounds(bounds)
@@ -102,13 +120,15 @@ class DistributedLloyd:
                 hi = comm.allreduce(float(points[:, 0].max()) if len(points) else -np.inf, op=MPI.MAX)
                 x_range = (lo, hi) if lo < hi else (lo - 1.0, lo + 1.0)
         self.edges = np.linspace(float(x_range[0]), float(x_range[1]), self.size + 1)
-        # Slab r: [edges[r], edges[r+1]), the outer slabs open-ended. A halo reaches 2R beyond it;
-        # the margin covers rounding (extra agents are harmless: the exact test drops them).
+        # Slab r: [edges[r], edges[r+1]), the outer slabs open-ended. A halo reaches 2R beyond it
+        # (R_j + R̄ for agent j of a heterogeneous team); the margin covers rounding (extra agents are
+        # harmless: the exact test drops them).
         self.reach = 2.0 * self.radius * (1.0 + 1e-6)
         self.lo = np.concatenate([[-np.inf], self.edges[1:-1]])
         self.hi = np.concatenate([self.edges[1:-1], [np.inf]])
         self.ids = np.empty(0, dtype=np.int64)
         self.points = np.empty((0, 2))
+        self.radii: Optional[np.ndarray] = None  # this rank's agents' radii (a heterogeneous team)
         self.bytes_halo = 0        # sent by this rank in the last step
         self.bytes_migration = 0
         self._phi_total: Optional[float] = None
@@ -123,7 +143,7 @@ class DistributedLloyd:
                     raise ValueError(f"points[{ids[out[0]]}] lies outside bounds")
 
         self._collective(check)
-        self._migrate(ids, points)
+        self._migrate(ids, points, radii)
 
     # -- communication
     def owner(self, x: np.ndarray) -> np.ndarray:
@@ -131,14 +151,15 @@ class DistributedLloyd:
         return np.searchsorted(self.edges[1:-1], x, side="right").astype(np.int64)
 
     def _alltoallv(self, parts: List[np.ndarray]) -> Tuple[np.ndarray, int]:
-        """Send parts[q] (k_q x 3 float64) to rank q; returns what this rank received and the bytes
-        it sent to other ranks."""
+        """Send parts[q] (k_q x w float64, w = 3, or 4 with radii) to rank q; returns what this rank
+        received and the bytes it sent to other ranks."""
         MPI = _mpi()
-        send_counts = np.array([3 * len(p) for p in parts], dtype=np.int64)
+        width = parts[0].shape[1]
+        send_counts = np.array([width * len(p) for p in parts], dtype=np.int64)
         recv_counts = np.empty(self.size, dtype=np.int64)
         self.comm.Alltoall(send_counts, recv_counts)
-        send = np.concatenate(parts) if parts else np.empty((0, 3))
-        recv = np.empty((int(recv_counts.sum()) // 3, 3))
+        send = np.concatenate(parts) if parts else np.empty((0, width))
+        recv = np.empty((int(recv_counts.sum()) // width, width))
         sdispl = np.concatenate([[0], np.cumsum(send_counts)[:-1]])
         rdispl = np.concatenate([[0], np.cumsum(recv_counts)[:-1]])
         self.comm.Alltoallv([np.ascontiguousarray(send), (send_counts, sdispl), MPI.DOUBLE],
@@ -146,29 +167,33 @@ class DistributedLloyd:
         sent = int(send_counts.sum() - send_counts[self.rank]) * 8 + 8 * (self.size - 1)
         return recv, sent
 
-    def _migrate(self, ids: np.ndarray, points: np.ndarray) -> None:
+    def _migrate(self, ids: np.ndarray, points: np.ndarray, radii: Optional[np.ndarray]) -> None:
         dest = self.owner(points[:, 0])
-        parts = [_pack(ids[dest == q], points[dest == q]) for q in range(self.size)]
+        parts = [_pack(ids[dest == q], points[dest == q], None if radii is None else radii[dest == q])
+                 for q in range(self.size)]
         recv, self.bytes_migration = self._alltoallv(parts)
-        self.ids, self.points = _unpack(recv)
+        self.ids, self.points, self.radii = _unpack(recv)
 
-    def halo(self) -> Tuple[np.ndarray, np.ndarray]:
-        """(ids, points) of other ranks' agents within 2R (in x) of this rank's slab."""
+    def halo(self) -> Tuple[np.ndarray, np.ndarray, Optional[np.ndarray]]:
+        """(ids, points, radii) of other ranks' agents within 2R (in x) of this rank's slab (within
+        R_j + R̄ for agent j of a heterogeneous team; radii None otherwise)."""
         x = self.points[:, 0]
+        reach = self.reach if self.radii is None else (self.radii + self.radius) * (1.0 + 1e-6)
         parts = []
         for q in range(self.size):
             if q == self.rank:
-                parts.append(np.empty((0, 3)))
+                parts.append(np.empty((0, 3 if self.radii is None else 4)))
                 continue
-            near = (x >= self.lo[q] - self.reach) & (x <= self.hi[q] + self.reach)
-            parts.append(_pack(self.ids[near], self.points[near]))
+            near = (x >= self.lo[q] - reach) & (x <= self.hi[q] + reach)
+            parts.append(_pack(self.ids[near], self.points[near], None if self.radii is None else self.radii[near]))
         recv, self.bytes_halo = self._alltoallv(parts)
         return _unpack(recv)
 
     # -- one step
-    def _local(self) -> Tuple[np.ndarray, np.ndarray]:
-        hid, hpts = self.halo()
-        return np.concatenate([self.ids, hid]), np.vstack([self.points, hpts])
+    def _local(self) -> Tuple[np.ndarray, np.ndarray, Optional[np.ndarray]]:
+        hid, hpts, hradii = self.halo()
+        radii = None if self.radii is None else np.concatenate([self.radii, hradii])
+        return np.concatenate([self.ids, hid]), np.vstack([self.points, hpts]), radii
 
     def _collective(self, fn):
         """fn() on every rank; if it fails on any rank, every rank raises (no rank is left waiting in
@@ -187,13 +212,14 @@ class DistributedLloyd:
 
     def _moments(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(mass, centroid, polar, open) of the owned cells; open: the cell reaches its circle."""
-        ids, pts = self._local()
+        ids, pts, radii = self._local()
         owned = len(self.ids)
 
         def compute():
             if self.density is None:
-                return _core.coverage_moments(pts, self.radius, self.bounds, ids, owned, self.threads)
-            q = _core.coverage_quadrature(pts, self.radius, self.order, self.bounds, ids, owned, self.threads)
+                return _core.coverage_moments(pts, self.radius, self.bounds, ids, owned, self.threads, radii)
+            q = _core.coverage_quadrature(pts, self.radius, self.order, self.bounds, ids, owned, self.threads,
+                                          radii)
             return density_moments(self.points, q, self.density) + (q[4],)
 
         return self._collective(compute)
@@ -215,9 +241,12 @@ class DistributedLloyd:
         """H over every rank's cells, summed as in :func:`dvoronoi.coverage` (no R² Φ(Q) to cancel)."""
         MPI = _mpi()
         total = self._total()
+        r2 = self.radius ** 2
+        ri2 = r2 if self.radii is None else self.radii ** 2
         if total is None:
-            return self.comm.allreduce(float(np.sum(polar - self.radius ** 2 * mass)), op=MPI.SUM)
-        polar_sum = self.comm.allreduce(math.fsum(polar), op=MPI.SUM)
+            return self.comm.allreduce(float(np.sum(polar - ri2 * mass)), op=MPI.SUM)
+        covered = polar if self.radii is None else polar + (r2 - ri2) * mass
+        polar_sum = self.comm.allreduce(math.fsum(covered), op=MPI.SUM)
         mass_sum = self.comm.allreduce(math.fsum(mass), op=MPI.SUM)
         # No agent: nothing is covered. Else U is empty exactly when no cell reaches its circle.
         count = self.comm.allreduce(len(mass), op=MPI.SUM)
@@ -236,30 +265,31 @@ class DistributedLloyd:
         cost = self._global_cost(mass, polar, open_cells)
         moved = _core.lloyd_move(self.points, centroid, self.gain, self.bounds)
         halo_bytes = self.bytes_halo
-        self._migrate(self.ids, moved)
+        self._migrate(self.ids, moved, self.radii)
         self.bytes_halo = halo_bytes
         return cost
 
     def cells(self) -> Dict[str, np.ndarray]:
         """The owned agents' clipped cells (flat arrays, neighbours as global ids)."""
-        ids, pts = self._local()
+        ids, pts, radii = self._local()
         return self._collective(lambda: _core.coverage_cells(pts, self.radius, self.bounds, ids,
-                                                             len(self.ids), self.threads))
+                                                             len(self.ids), self.threads, radii))
 
     def gather(self, root: int = 0) -> Optional[np.ndarray]:
         """All positions in global-id order on `root` (None elsewhere); ids must be 0..n-1."""
         got = self.comm.gather(_pack(self.ids, self.points), root=root)
         if self.rank != root:
             return None
-        ids, pts = _unpack(np.concatenate(got))
+        ids, pts, _ = _unpack(np.concatenate(got))
         out = np.empty((len(ids), 2))
         out[ids] = pts
         return out
 
 
-def _scatter_input(comm: Any, points: Any, root: int) -> Tuple[np.ndarray, np.ndarray]:
-    """Rank `root` holds all points; every rank starts with a contiguous block of them (the
-    constructor then sends each agent to its slab's owner)."""
+def _scatter_input(comm: Any, points: Any, root: int, radius: Any = None) -> Tuple[np.ndarray, np.ndarray, Any]:
+    """Rank `root` holds all points (and, for a heterogeneous team, the radii); every rank starts
+    with a contiguous block of them (the constructor then sends each agent to its slab's owner).
+    Returns (ids, points, radius): the scalar radius, or this block's radii."""
     size, rank = comm.Get_size(), comm.Get_rank()
     if rank == root:
         pts = np.asarray(points, dtype=float)
@@ -269,11 +299,12 @@ def _scatter_input(comm: Any, points: Any, root: int) -> Tuple[np.ndarray, np.nd
         if len(bad):
             raise ValueError(f"points[{bad[0]}] is not finite (NaN or inf)")
         blocks = np.array_split(np.arange(len(pts)), size)
-        chunks = [(b, pts[b]) for b in blocks]
+        radii = np.asarray(radius, dtype=float) if np.ndim(radius) > 0 else None
+        chunks = [(b, pts[b], radius if radii is None else radii[b]) for b in blocks]
     else:
         chunks = None
-    ids, pts = comm.scatter(chunks, root=root)
-    return ids.astype(np.int64), pts
+    ids, pts, r = comm.scatter(chunks, root=root)
+    return ids.astype(np.int64), pts, r
 
 
 def _check_on_root(comm: Any, root: int, check) -> None:
@@ -289,7 +320,7 @@ def _check_on_root(comm: Any, root: int, check) -> None:
         raise err
 
 
-def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bounds: BoundsArg = None,
+def lloyd(points: Any, radius: Any, steps: int = 100, gain: float = 1.0, bounds: BoundsArg = None,
           density: Any = None, order: int = 8, record_every: int = 1, comm: Any = None, root: int = 0,
           workers: Optional[int] = None, *, threads: Optional[int] = None) -> Optional[Dict[str, Any]]:
     """Lloyd's algorithm on limited cells across the ranks of `comm` (collective).
@@ -298,12 +329,13 @@ def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bound
     (the positions every `record_every` steps and after the last, gathered to root),
     ``frame_steps``, ``cost`` (steps + 1), ``cells`` (the final :class:`CoverageCells`) and
     ``stats`` (seconds per step, halo and migration bytes sent per step, summed over ranks);
-    None on other ranks.
+    None on other ranks. `radius` (read on root) may give one radius per agent (a heterogeneous team,
+    :mod:`dvoronoi.coverage`).
     """
     MPI = _mpi()
     comm = MPI.COMM_WORLD if comm is None else comm
     team = _args.workers(workers, threads)
-    radius = _args.real(radius, "radius")
+    radius = _radius_on_root(comm, root, radius)
     steps = _check_count(steps, "steps", 0)
     record_every = _check_count(record_every, "record_every", 1)
 
@@ -312,8 +344,8 @@ def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bound
         _core.LloydStepper(points, radius, as_bounds(bounds), _check_gain(gain), 1)
 
     _check_on_root(comm, root, validate)
-    ids, pts = _scatter_input(comm, points, root)
-    run = DistributedLloyd(comm, ids, pts, radius, gain=gain, bounds=bounds, density=density,
+    ids, pts, r = _scatter_input(comm, points, root, radius)
+    run = DistributedLloyd(comm, ids, pts, r, gain=gain, bounds=bounds, density=density,
                            order=order, workers=team or None)
     frames: List[Optional[np.ndarray]] = [run.gather(root)]
     cost = np.empty(steps + 1)
@@ -331,13 +363,29 @@ def lloyd(points: Any, radius: float, steps: int = 100, gain: float = 1.0, bound
     parts = comm.gather((run.ids, run.cells()), root=root)
     if comm.Get_rank() != root:
         return None
-    cells = _assemble_cells(parts, radius, run.bounds)
+    cells = _assemble_cells(parts, run.radius, run.bounds)
     frame_steps = np.unique(np.concatenate([np.arange(0, steps + 1, record_every), [steps]])).astype(np.int64)
     return {"trajectory": np.stack([f for f in frames if f is not None]), "frame_steps": frame_steps, "cost": cost, "cells": cells,
             "stats": {"ranks": comm.Get_size(), "agents": len(cells), "steps": steps,
                       "seconds_per_step": elapsed / max(steps, 1),
                       "halo_bytes_per_step": float(np.mean(halo_bytes)) if halo_bytes else 0.0,
                       "migration_bytes_per_step": float(np.mean(migration_bytes)) if migration_bytes else 0.0}}
+
+
+def _radius_on_root(comm: Any, root: int, radius: Any) -> Any:
+    """The radius argument as root has it (a float, or an array of radii on root only), on every rank:
+    a float, or the marker "radii" (the scattered blocks carry them)."""
+    kind = err = None
+    if comm.Get_rank() == root:
+        try:
+            radius = _radius_arg(radius)
+            kind = "radii" if np.ndim(radius) > 0 else radius
+        except (ValueError, TypeError) as e:
+            err = e
+    kind, err = comm.bcast((kind, err), root=root)
+    if err is not None:
+        raise err
+    return radius if comm.Get_rank() == root else kind
 
 
 def _assemble_cells(parts: List[Tuple[np.ndarray, Dict[str, np.ndarray]]], radius: float,
@@ -361,10 +409,12 @@ def _assemble_cells(parts: List[Tuple[np.ndarray, Dict[str, np.ndarray]]], radiu
               "indices": cat["indices"][ntake].astype(np.int64)}
     for k in ("piece_neighbor", "piece_x", "piece_y", "piece_span"):
         arrays[k] = cat[k][take]
+    if "radii" in cat:
+        arrays["radii"] = cat["radii"][order]
     return CoverageCells(arrays, bounds)
 
 
-def cells(points: Any, radius: float, bounds: BoundsArg = None, comm: Any = None, root: int = 0,
+def cells(points: Any, radius: Any, bounds: BoundsArg = None, comm: Any = None, root: int = 0,
           workers: Optional[int] = None, *, threads: Optional[int] = None) -> Optional[CoverageCells]:
     """The clipped limited cells of `points` (read on root) computed across ranks (collective);
     the assembled :class:`CoverageCells` on root, None elsewhere. ``workers``: threads per rank, None
@@ -372,12 +422,12 @@ def cells(points: Any, radius: float, bounds: BoundsArg = None, comm: Any = None
     MPI = _mpi()
     comm = MPI.COMM_WORLD if comm is None else comm
     team = _args.workers(workers, threads)
-    radius = _args.real(radius, "radius")
+    radius = _radius_on_root(comm, root, radius)
     _check_on_root(comm, root, lambda: _core.LloydStepper(points, radius, as_bounds(bounds), 1.0, 1))
-    ids, pts = _scatter_input(comm, points, root)
-    run = DistributedLloyd(comm, ids, pts, radius, bounds=bounds, workers=team or None)
+    ids, pts, r = _scatter_input(comm, points, root, radius)
+    run = DistributedLloyd(comm, ids, pts, r, bounds=bounds, workers=team or None)
     parts = comm.gather((run.ids, run.cells()), root=root)
-    return _assemble_cells(parts, radius, run.bounds) if comm.Get_rank() == root else None
+    return _assemble_cells(parts, run.radius, run.bounds) if comm.Get_rank() == root else None
 
 
 # ------------------------------------------------------------------------------------------ entry

@@ -18,6 +18,9 @@ CASES = {
                     bounds=[(0.0, 0.0), (1.0, 0.1), (0.9, 1.0), (0.1, 0.8)]),
     "plane": dict(seed=3, n=600, radius=0.06, steps=8, gain=0.8, bounds=None),
     "density": dict(seed=4, n=500, radius=0.05, steps=6, gain=1.0, bounds=(0, 0, 1, 1), density=gaussian),
+    # Heterogeneous teams: one radius per agent (halo R_j + R̄).
+    "team": dict(seed=6, n=700, radii=(0.02, 0.09), steps=8, gain=0.9, bounds=(0, 0, 1, 1)),
+    "team_plane": dict(seed=7, n=500, radii=(0.03, 0.12), steps=6, gain=1.0, bounds=None),
 }
 
 
@@ -32,18 +35,26 @@ def points_of(case):
     return pts
 
 
+def radius_of(case, n):
+    """The case's radius, or one radius per agent drawn from its range."""
+    if "radii" not in case:
+        return case["radius"]
+    lo, hi = case["radii"]
+    return np.random.default_rng(case["seed"] + 100).uniform(lo, hi, n)
+
+
 def main(out):
     comm = MPI.COMM_WORLD
     saved = {}
     for name, case in CASES.items():
         pts = points_of(case)
-        res = dm.lloyd(pts if comm.rank == 0 else None, case["radius"], steps=case["steps"],
+        res = dm.lloyd(pts if comm.rank == 0 else None, radius_of(case, len(pts)), steps=case["steps"],
                        gain=case["gain"], bounds=case["bounds"], density=case.get("density"), workers=1)
         if comm.rank == 0:
             saved[name + "/trajectory"] = res["trajectory"]
             saved[name + "/cost"] = res["cost"]
             for k in ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "indptr",
-                      "indices", "areas", "centroids"):
+                      "indices", "areas", "centroids", "radii"):
                 saved[name + "/" + k] = getattr(res["cells"], k)
             saved[name + "/halo_bytes"] = np.array(res["stats"]["halo_bytes_per_step"])
     # One partition (no steps) across ranks: dv.mpi.cells.
@@ -51,8 +62,14 @@ def main(out):
     cells = dm.cells(pts if comm.rank == 0 else None, 0.08, workers=1)
     if comm.rank == 0:
         for k in ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "indptr",
-                  "indices", "areas", "centroids"):
+                  "indices", "areas", "centroids", "radii"):
             saved["cells/" + k] = getattr(cells, k)
+    team_radii = np.random.default_rng(6).uniform(0.03, 0.15, len(pts))
+    team_cells = dm.cells(pts if comm.rank == 0 else None, team_radii if comm.rank == 0 else None, workers=1)
+    if comm.rank == 0:
+        for k in ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "indptr",
+                  "indices", "areas", "centroids", "radii"):
+            saved["team_cells/" + k] = getattr(team_cells, k)
     # Bad input on root is raised on every rank (no rank hangs).
     try:
         dm.lloyd(np.array([[0.5, 0.5], [2.0, 0.5]]) if comm.rank == 0 else None, 0.1, steps=1,

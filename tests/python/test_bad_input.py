@@ -144,10 +144,14 @@ def LIMITED_CELLS(v):
     return dv.limited_cells(GOOD, v)
 
 
+def COVERAGE_LLOYD(v):
+    return dv.coverage.lloyd(GOOD, v, steps=1)
+
+
 @pytest.mark.parametrize("call,name", [
     (LIMITED_CELLS, "radius"),
     (lambda v: dv.limited_cell((0.5, 0.5), GOOD, v), "radius"),
-    (lambda v: dv.coverage.lloyd(GOOD, v, steps=1), "radius"),
+    (COVERAGE_LLOYD, "radius"),
     (lambda v: dv.network.simulate("cc", GOOD, v), "comm_range"),
     (lambda v: dv.network.simulate("bs", GOOD, 2.0, radius=v), "radius"),
     (lambda v: dv.network.simulate("cc", GOOD, 2.0, loss=v), "loss"),
@@ -156,8 +160,9 @@ def LIMITED_CELLS(v):
 def test_reals_are_numbers_not_strings(call, name, value):
     # Before: radius="0.2" dumped the whole call (arrays included) in a pybind11 TypeError, or was
     # converted silently (network).
-    if isinstance(value, list) and call is LIMITED_CELLS:
-        # limited_cells takes one radius per agent too (heterogeneous teams): here the wrong count.
+    if isinstance(value, list) and call in (LIMITED_CELLS, COVERAGE_LLOYD):
+        # limited_cells and coverage take one radius per agent too (heterogeneous teams): here the
+        # wrong count.
         with pytest.raises(ValueError, match=r"^radius must have one radius per agent: got 1 radii for"):
             call(value)
         return

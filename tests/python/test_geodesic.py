@@ -354,15 +354,23 @@ def test_bad_input_is_named():
 
 
 # ----------------------------------------------------------------------------------------- CLI
-def test_cli_lloyd_on_a_map_equals_python(tmp_path):
-    from test_cli import CLI, run, write_points
+def cli_floor(tmp_path):
+    """(the CLI runner, building map 5, its MovingAI file, 5 agents in it); skips without the CLI."""
+    from test_cli import CLI, run
 
     if CLI is None:
         pytest.skip("no dvoronoi executable")
     occ = MAPS["building"](5)
     path = tmp_path / "floor.map"
     om.write_movingai_map(path, occ)
-    xy = random_agents(occ, 5, 5) * 0.25 + (2.0, -1.0)
+    return run, occ, path, random_agents(occ, 5, 5)
+
+
+def test_cli_lloyd_on_a_map_equals_python(tmp_path):
+    from test_cli import write_points
+
+    run, occ, path, xy = cli_floor(tmp_path)
+    xy = xy * 0.25 + (2.0, -1.0)
     pts = write_points(tmp_path / "agents.txt", xy.tolist())
     res = run("lloyd", pts, "-r", 3.0, "--steps", 6, "--map", path, "--resolution", 0.25, "--origin", 2.0, -1.0,
               "--trajectory", "-q", "-t", 1)

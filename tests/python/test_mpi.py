@@ -26,7 +26,7 @@ sys.path.insert(0, str(HERE))
 import mpi_lloyd_case as case  # noqa: E402
 
 FIELDS = ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "indptr", "indices",
-          "areas", "centroids")
+          "areas", "centroids", "radii")
 
 
 def mpirun(k: int, *args: str, timeout: float = 240, program: str = sys.executable) -> subprocess.CompletedProcess:
@@ -46,7 +46,8 @@ def mpirun(k: int, *args: str, timeout: float = 240, program: str = sys.executab
 def reference():
     out = {}
     for name, c in case.CASES.items():
-        run = dv.coverage.lloyd(case.points_of(c), c["radius"], steps=c["steps"], gain=c["gain"],
+        pts = case.points_of(c)
+        run = dv.coverage.lloyd(pts, case.radius_of(c, len(pts)), steps=c["steps"], gain=c["gain"],
                                 bounds=c["bounds"], density=c.get("density"), progress=False)
         out[name] = run
     return out
@@ -77,6 +78,9 @@ def test_mpi_equals_single_process(ranks, reference, tmp_path):
     single = dv.coverage.LloydStepper(pts, 0.08).cells()
     for k in FIELDS:
         assert np.array_equal(got["cells/" + k], getattr(single, k)), k
+    team = dv.coverage.LloydStepper(pts, np.random.default_rng(6).uniform(0.03, 0.15, len(pts))).cells()
+    for k in FIELDS:  # a heterogeneous team's cells across ranks (halo R_j + R̄)
+        assert np.array_equal(got["team_cells/" + k], getattr(team, k)), k
     part = dv.limited_cells(pts, 0.08)  # unclipped: the limited partition itself
     assert np.array_equal(got["cells/indptr"], part.indptr)
     assert np.array_equal(got["cells/indices"], part.indices)

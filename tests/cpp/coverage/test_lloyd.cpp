@@ -1,9 +1,12 @@
 // coverage/lloyd.hpp and partition/swarm.hpp: the moving swarm's cells equal limited_cells, the grid
 // survives small moves, Lloyd's cost never increases, agents stay in the environment, results do not
 // depend on the thread count or on the order agents are stored in; the cost keeps its digits at any
-// radius.
+// radius. Heterogeneous teams (a radius per agent): equal radii are the scalar stepper, the cells are
+// limited_cells(points, radii), the cost never increases, and permuted ids (an MPI rank's storage)
+// give the same cells.
 #include "dvoronoi/cells/clip.hpp"
 #include "dvoronoi/coverage/lloyd.hpp"
+#include "dvoronoi/partition/power_partition.hpp"
 
 #include <doctest/doctest.h>
 
@@ -159,6 +162,85 @@ TEST_CASE("cells depend on positions only: ids fix the order, a permuted swarm g
         CHECK(a.polar[i] == b.polar[static_cast<std::size_t>(k)]);
         CHECK(a.centroid.row(static_cast<Index>(i)) == b.centroid.row(k));
     }
+}
+
+namespace {
+std::vector<double> random_radii(Index n, unsigned seed, double lo, double hi) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(lo, hi);
+    std::vector<double> r(static_cast<std::size_t>(n));
+    for (double& v : r) v = u(rng);
+    return r;
+}
+}  // namespace
+
+TEST_CASE("heterogeneous team: equal radii are the scalar stepper, bit for bit") {
+    const ConvexPolygon box = ConvexPolygon::box(0, 0, 10, 10);
+    const Points P = random_points(400, 31, 10.0);
+    LloydStepper a(P, 0.7, box, 0.8, 1), b(P, std::vector<double>(400, 0.7), box, 0.8, 2);
+    CHECK(b.radii().equal());
+    for (int t = 0; t < 10; ++t) CHECK(a.step() == b.step());
+    CHECK(a.points() == b.points());
+}
+
+TEST_CASE("heterogeneous team: cells are limited_cells(points, radii); cost never increases") {
+    for (unsigned seed : {41u, 42u}) {
+        const Points P = random_points(1500, seed, 20.0);
+        const std::vector<double> radii = random_radii(1500, seed, 0.2, 1.2);
+        const Swarm swarm(P, *std::max_element(radii.begin(), radii.end()));
+        const AgentRadii team(swarm, radii);
+        const LimitedPartition a = limited_cells(P, radii);
+        const LimitedPartition b = coverage_cells(swarm, team, nullptr);
+        CHECK(a.indptr == b.indptr);
+        CHECK(a.indices == b.indices);
+        for (Index i = 0; i < a.size(); ++i) {
+            CHECK(b.areas[static_cast<std::size_t>(i)] ==
+                  doctest::Approx(a.areas[static_cast<std::size_t>(i)]).epsilon(1e-12));
+            // Both divide first moments (errors ~ eps |p| R_i^2) by the area: a sliver's centroid is
+            // as good as its area is large.
+            const double r = radii[static_cast<std::size_t>(i)], area = a.areas[static_cast<std::size_t>(i)];
+            if (area > 0)
+                CHECK((b.centroids.row(i) - a.centroids.row(i)).norm() < 1e-13 * 20.0 * std::max(1.0, r * r / area));
+        }
+        const ConvexPolygon box = ConvexPolygon::box(0, 0, 20, 20);
+        LloydStepper one(P, radii, box, 1.0, 1), two(P, radii, box, 1.0, 2);
+        double prev = one.cost();
+        for (int t = 0; t < 25; ++t) {
+            const double c1 = one.step(), c2 = two.step();
+            CHECK(c1 == c2);
+            CHECK(c1 <= prev * (1 + 1e-13));
+            prev = c1;
+        }
+        CHECK(one.points() == two.points());
+        for (Index i = 0; i < P.rows(); ++i) CHECK(box.contains(one.points().row(i).transpose()));
+    }
+}
+
+TEST_CASE("heterogeneous team: stored order and ids do not change the cells") {
+    const Points P = random_points(600, 7, 10.0);
+    const std::vector<double> radii = random_radii(600, 7, 0.2, 0.9);
+    const ConvexPolygon tri({Vec2(-1, -1), Vec2(12, 0), Vec2(4, 12)});
+    std::vector<Index> perm(600);
+    std::iota(perm.begin(), perm.end(), Index{0});
+    std::shuffle(perm.begin(), perm.end(), std::mt19937(4));
+    Points Q(600, 2);
+    std::vector<double> rq(600);
+    for (Index k = 0; k < 600; ++k) {
+        Q.row(k) = P.row(perm[static_cast<std::size_t>(k)]);
+        rq[static_cast<std::size_t>(k)] = radii[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])];
+    }
+    const double rmax = *std::max_element(radii.begin(), radii.end());
+    const Swarm sp(P, rmax), sq(Q, rmax, perm);
+    const CoverageMoments a = coverage_moments(sp, AgentRadii(sp, radii), &tri);
+    const CoverageMoments b = coverage_moments(sq, AgentRadii(sq, rq), &tri);
+    for (Index k = 0; k < 600; ++k) {
+        const auto i = static_cast<std::size_t>(perm[static_cast<std::size_t>(k)]);
+        CHECK(a.mass[i] == b.mass[static_cast<std::size_t>(k)]);
+        CHECK(a.polar[i] == b.polar[static_cast<std::size_t>(k)]);
+        CHECK(a.centroid.row(static_cast<Index>(i)) == b.centroid.row(k));
+    }
+    CHECK_THROWS_AS(AgentRadii(sp, std::vector<double>(599, 0.5)), InputError);
+    CHECK_THROWS_AS(AgentRadii(sp, std::vector<double>(600, 2.0 * rmax)), InputError);
 }
 
 TEST_CASE("bad input") {

@@ -1,11 +1,17 @@
 // Mass, first moment and polar moment of a (clipped) limited cell, exactly for uniform density and by
 // quadrature over the cell's exact pieces for any other density.
 //
-// The cell is convex and contains its agent, so it is the union of a fan of pieces around the agent:
-// for a straight piece (edge or wall) from u to v the triangle (agent, u, v); for an arc the circular
-// sector it subtends. Uniform density: closed forms per piece. Other densities: a Gauss rule per
-// piece, collapsed at the agent (a Duffy map for triangles, polar Gauss for sectors), so the nodes
-// never leave the cell and the integrand is never evaluated across a piece's boundary.
+// The cell is convex and its arcs lie on the agent's circle. It is the signed fan of its pieces around
+// the agent: for a straight piece (edge or wall) from u to v the triangle (agent, u, v), for an arc the
+// circular sector it subtends (Green's theorem: this holds whether or not the agent lies in the cell).
+// Uniform density: closed forms per piece. Other densities: a Gauss rule per piece, collapsed at the
+// agent (a Duffy map for triangles, polar Gauss for sectors), so the nodes never leave the cell and
+// the integrand is never evaluated across a piece's boundary. A power cell of a heterogeneous team
+// need not contain its agent (docs/spec.md): then some triangle has negative area and the fan would
+// put nodes outside the cell, so such a cell is cut instead into the convex polygon of its vertices
+// (a fan from its first vertex) and one circular segment per arc (polar Gauss around the agent between
+// the chord and the arc; each such arc is shorter than pi, as the cell lies in a half-plane that
+// misses the agent). All weights stay positive and all nodes stay in the cell.
 //
 // Quadrature accuracy with n nodes per direction (n^2 per triangle, per sector of at most pi/4;
 // arcs are split into such sectors): exact for polynomial densities of total degree <= 2n - 2 on
@@ -97,28 +103,87 @@ struct GaussRule {
 /// Largest angle of one quadrature sector.
 inline constexpr double kSectorMax = 0.78539816339744830962;  // pi / 4
 
+namespace detail {
+
+/// Does the fan around the agent cover the cell with non-negative weights (the agent lies in the
+/// closed cell)? A cell that misses its agent faces it with a straight piece of negative area.
+inline bool fan_is_star(const std::vector<Piece>& local) {
+    const std::size_t n = local.size();
+    for (std::size_t p = 0; p < n; ++p) {
+        if (local[p].neighbor == kArc) continue;
+        const Vec2& u = local[p].start;
+        const Vec2& v = local[(p + 1) % n].start;
+        if (u.x() * v.y() - u.y() * v.x() < 0.0) return false;
+    }
+    return true;
+}
+
+/// Sectors of at most kSectorMax that an arc of span phi is cut into.
+inline int arc_parts(double phi) { return std::max(1, static_cast<int>(std::ceil(phi / kSectorMax - 1e-12))); }
+
+/// Calls f(theta, cos theta, sin theta, dphi, a) at the Gauss angles of an arc from angle a0 sweeping
+/// phi, cut into arc_parts sectors of span dphi (node a of the rule in each).
+template <class F>
+void arc_angles(double a0, double phi, const GaussRule& g, F&& f) {
+    const int parts = arc_parts(phi);
+    const double dphi = phi / parts;
+    for (int s = 0; s < parts; ++s)
+        for (std::size_t a = 0; a < g.size(); ++a) {
+            const double th = a0 + dphi * (s + g.x[a]);
+            f(th, std::cos(th), std::sin(th), dphi, a);
+        }
+}
+
+}  // namespace detail
+
 /// Calls emit(q, weight) for every quadrature node q (relative to the agent) of the cell: the
-/// weights sum to the cell's area, and sum(weight * f(q)) approximates ∫ f over the cell.
+/// weights are positive and sum to the cell's area, and sum(weight * f(q)) approximates ∫ f over the
+/// cell. Every node lies in the cell (top of this file).
 template <class Emit>
 void quadrature_nodes(const std::vector<Piece>& local, double R, const GaussRule& g, Emit&& emit) {
     const std::size_t n = local.size(), k = g.size();
+    if (!detail::fan_is_star(local)) {
+        // The polygon of the vertices (a fan from the first, Duffy-mapped as below), then each arc's
+        // circular segment: angles theta over the arc, radius from the chord (rho0 = d / cos(theta -
+        // theta_n), d > 0 its distance from the agent) out to R.
+        const Vec2& o = local[0].start;
+        for (std::size_t p = 1; p + 1 < n; ++p) {
+            const Vec2 u = local[p].start - o, v = local[p + 1].start - o;
+            const double twice_a = u.x() * v.y() - u.y() * v.x();
+            if (!(twice_a > 0.0)) continue;
+            for (std::size_t a = 0; a < k; ++a) {
+                const Vec2 e = u + g.x[a] * (v - u);
+                for (std::size_t b = 0; b < k; ++b) emit(Vec2(o + g.x[b] * e), twice_a * g.x[b] * g.w[b] * g.w[a]);
+            }
+        }
+        for (std::size_t p = 0; p < n; ++p) {
+            if (local[p].neighbor != kArc) continue;
+            const Vec2& u = local[p].start;
+            const double phi = local[p].arc_span;
+            const double a0 = std::atan2(u.y(), u.x()), tn = a0 + 0.5 * phi;
+            const double d = R * std::cos(0.5 * phi);
+            detail::arc_angles(a0, phi, g, [&](double th, double c, double sn, double dphi, std::size_t a) {
+                const double r0 = std::min(R, d / std::cos(th - tn)), len = R - r0;
+                for (std::size_t b = 0; b < k; ++b) {
+                    const double r = r0 + len * g.x[b];
+                    emit(Vec2(r * c, r * sn), r * len * g.w[b] * dphi * g.w[a]);
+                }
+            });
+        }
+        return;
+    }
     for (std::size_t p = 0; p < n; ++p) {
         const Vec2& u = local[p].start;
         const Vec2& v = local[(p + 1) % n].start;
         if (local[p].neighbor == kArc) {
             const double phi = local[p].arc_span;
             const double a0 = std::atan2(u.y(), u.x());
-            const int parts = std::max(1, static_cast<int>(std::ceil(phi / kSectorMax - 1e-12)));
-            const double dphi = phi / parts;
-            for (int s = 0; s < parts; ++s)
-                for (std::size_t a = 0; a < k; ++a) {
-                    const double th = a0 + dphi * (s + g.x[a]);
-                    const double c = std::cos(th), sn = std::sin(th);
-                    for (std::size_t b = 0; b < k; ++b) {
-                        const double r = R * g.x[b];
-                        emit(Vec2(r * c, r * sn), R * r * g.w[b] * dphi * g.w[a]);
-                    }
+            detail::arc_angles(a0, phi, g, [&](double, double c, double sn, double dphi, std::size_t a) {
+                for (std::size_t b = 0; b < k; ++b) {
+                    const double r = R * g.x[b];
+                    emit(Vec2(r * c, r * sn), R * r * g.w[b] * dphi * g.w[a]);
                 }
+            });
         } else {
             // Duffy map (s, t) -> s (u + t (v - u)), Jacobian 2 A s: collapsed at the agent.
             const double twice_a = u.x() * v.y() - u.y() * v.x();
@@ -136,16 +201,17 @@ void quadrature_nodes(const std::vector<Piece>& local, double R, const GaussRule
 inline std::size_t quadrature_size(const std::vector<Piece>& local, const GaussRule& g) {
     std::size_t count = 0;
     const std::size_t n = local.size(), k2 = g.size() * g.size();
+    const bool star = detail::fan_is_star(local);
+    const auto twice_area = [](const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); };
     for (std::size_t p = 0; p < n; ++p) {
         if (local[p].neighbor == kArc)
-            count += k2 * static_cast<std::size_t>(
-                              std::max(1, static_cast<int>(std::ceil(local[p].arc_span / kSectorMax - 1e-12))));
-        else {
-            const Vec2& u = local[p].start;
-            const Vec2& v = local[(p + 1) % n].start;
-            if (u.x() * v.y() - u.y() * v.x() > 0.0) count += k2;
-        }
+            count += k2 * static_cast<std::size_t>(detail::arc_parts(local[p].arc_span));
+        else if (star && twice_area(local[p].start, local[(p + 1) % n].start) > 0.0)
+            count += k2;
     }
+    if (!star)
+        for (std::size_t p = 1; p + 1 < n; ++p)
+            if (twice_area(local[p].start - local[0].start, local[p + 1].start - local[0].start) > 0.0) count += k2;
     return count;
 }
 

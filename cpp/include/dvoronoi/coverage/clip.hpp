@@ -1,4 +1,6 @@
-// A limited cell clipped to a convex environment: V_i ∩ B(p_i, R) ∩ Q.
+// A limited cell clipped to a convex environment: V_i ∩ B(p_i, R) ∩ Q (or a heterogeneous team's power
+// cell ∩ B(p_i, R_i) ∩ Q: the same convex cycle of edges and arcs of the agent's circle, which need not
+// contain the agent; nothing below assumes it does).
 //
 // The cell is a convex cycle of edges and arcs given relative to its agent; each half-plane of Q that
 // reaches into the disk (distance from the agent below R) cuts it. A convex region meets a line in
@@ -178,14 +180,18 @@ inline bool disk_holds(const ConvexPolygon& env, const Vec2& center, double R) {
 /// the bisector runs along it). Nothing here is farther than Q's extent from the agent, whereas the
 /// cell's arcs at radius R >> |Q| would carry a rounding error of ~1e-16 R into every cut. Pieces
 /// shorter than 1e-13 of the cell's extent are dropped, as clip_cell drops them.
+/// With `shift` (one per neighbour, R^2 - R_j^2: heterogeneous teams) the cuts are the radical axes
+/// q.a <= (|a|^2 + shift_j) / 2 of the power cell instead of the bisectors.
 /// \note Thread-safe.
 inline void clip_environment(const ConvexPolygon& env, const Vec2& center, const std::vector<detail::Candidate>& neighbors,
-                             std::vector<Piece>& out, std::vector<Piece>& scratch) {
+                             std::vector<Piece>& out, std::vector<Piece>& scratch,
+                             const std::vector<double>* shift = nullptr) {
     out.clear();
     for (const Vec2& v : env.vertices()) out.push_back(Piece{kWall, v - center, 0.0});
-    for (const detail::Candidate& q : neighbors) {
+    for (std::size_t t = 0; t < neighbors.size(); ++t) {
+        const detail::Candidate& q = neighbors[t];
         const Vec2& a = q.p;
-        const double h = 0.5 * a.squaredNorm();
+        const double h = shift ? 0.5 * (a.squaredNorm() + (*shift)[t]) : 0.5 * a.squaredNorm();
         scratch.clear();
         const std::size_t m = out.size();
         for (std::size_t k = 0; k < m; ++k) {

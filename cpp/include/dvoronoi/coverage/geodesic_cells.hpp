@@ -7,6 +7,9 @@
 //   H   = sum over reached pixels phi(q) d(q)^2  +  sum over reachable, unreached pixels phi(q) R^2,
 // (times the pixel area) — the coverage cost of docs/spec.md with the range's R^2 for what no agent
 // covers, as for limited cells. "Reachable" = connected through free space to some agent.
+// A heterogeneous team (a range R_i per agent, geodesic_team.hpp) pays, as the limited power cost of
+// coverage/lloyd.hpp with R̄ = max R_i, d_i(q)^2 + R̄^2 - R_i^2 at a pixel of W_i and R̄^2 at a reachable,
+// unreached one: H = Σ_q φ(q) (min(min_i (d_i(q)^2 - R_i^2), 0) + R̄^2); equal ranges give the cost above.
 #pragma once
 
 #include "dvoronoi/coverage/geodesic_distance.hpp"
@@ -104,16 +107,20 @@ struct GeodesicMoments {
 
 /*! Moments and cost of the cells of field `f`. `weight` (per pixel, may be null = 1) is phi at the pixel
     centres; `reachable` (may be null) marks the pixels that pay R^2 = limit^2 when unreached (only when
-    `limit` is finite). Blocks of rows are summed by `workers` threads and combined in a fixed order, so
-    the sums do not depend on the worker count. */
+    `limit` is finite). `ranges` (may be null): a heterogeneous team's R_i, `limit` then being R̄ = max R_i.
+    Blocks of rows are summed by `workers` threads and combined in a fixed order, so the sums do not
+    depend on the worker count. */
 inline GeodesicMoments geodesic_moments(const GeodesicField& f, const double* weight, const std::uint8_t* reachable,
-                                        double limit, int workers) {
+                                        double limit, int workers, const std::vector<double>* ranges = nullptr) {
     const std::int32_t n = f.sources, rows = f.rows, cols = f.cols;
     constexpr std::int32_t BLOCK = 32;
     const std::int32_t blocks = (rows + BLOCK - 1) / BLOCK;
     std::vector<GeodesicMoments> part(static_cast<std::size_t>(blocks));
     std::atomic<std::int32_t> next{0};
     const double r2 = std::isfinite(limit) ? limit * limit : 0.0;
+    std::vector<double> extra(static_cast<std::size_t>(n), 0.0);  // R̄^2 - R_i^2
+    if (ranges)
+        for (std::size_t i = 0; i < extra.size(); ++i) extra[i] = r2 - (*ranges)[i] * (*ranges)[i];
     run_team(std::max(1, std::min(workers, blocks)), [&](int) {
         for (std::int32_t b; (b = next++) < blocks;) {
             GeodesicMoments& m = part[static_cast<std::size_t>(b)];
@@ -135,7 +142,7 @@ inline GeodesicMoments geodesic_moments(const GeodesicField& f, const double* we
                     m.mu[l] += phi * (c + 0.5);
                     m.mw[l] += phi * (r + 0.5);
                     m.pixels[l] += 1;
-                    m.cost += phi * d * d;
+                    m.cost += ranges ? phi * (d * d + extra[static_cast<std::size_t>(l)]) : phi * d * d;
                 }
         }
     });

@@ -10,12 +10,18 @@
 //      moves. A move ending on an occupied pixel's boundary (floor() lands in a wall) is not made.
 // So H never increases, and agents only ever travel along free segments.
 //
-// Threads: the wavefront is sequential; moments, targets and paths run on `workers` threads in fixed
-// blocks, so every result is the same for every worker count.
+// A heterogeneous team (a range R_i per agent) has the cells and cost of geodesic_team.hpp and
+// geodesic_cells.hpp; each agent's path comes from its own wavefront, and the same backtracking keeps
+// the cost from increasing.
+//
+// Threads: the wavefront is sequential (a team's per-agent wavefronts run in parallel, each on its
+// own); moments, targets and paths run on `workers` threads in fixed blocks, so every result is the
+// same for every worker count.
 #pragma once
 
 #include "dvoronoi/coverage/geodesic_cells.hpp"
 #include "dvoronoi/coverage/geodesic_path.hpp"
+#include "dvoronoi/coverage/geodesic_team.hpp"
 
 #include <atomic>
 #include <cmath>
@@ -29,12 +35,22 @@ namespace dvoronoi::coverage {
 class GeodesicLloyd {
 public:
     /*! `occ` rows x cols (nonzero occupied), agents in pixel units (checked by agents_on_map), `limit` the
-        range in pixel units (+inf none), `weight` phi per pixel (empty = uniform). */
+        range in pixel units (+inf none), `weight` phi per pixel (empty = uniform); `ranges` (pixel units,
+        one per agent, finite and > 0) makes a heterogeneous team, `limit` then ignored (empty: all at
+        `limit`; all equal: the same as that `limit`). */
     GeodesicLloyd(std::vector<std::uint8_t> occ, std::int32_t rows, std::int32_t cols, std::vector<PixelPoint> agents,
-                  double limit, std::vector<double> weight, double gain, int workers, int max_halvings = 12)
+                  double limit, std::vector<double> weight, double gain, int workers, int max_halvings = 12,
+                  std::vector<double> ranges = {})
         : occ_(std::move(occ)), rows_(rows), cols_(cols), points_(std::move(agents)), limit_(limit),
           weight_(std::move(weight)), gain_(gain), workers_(std::max(1, workers)), max_halvings_(max_halvings),
           workspace_(occ_.data(), rows, cols) {
+        if (!ranges.empty()) {
+            if (ranges.size() != points_.size()) throw std::invalid_argument("radius must have one range per agent");
+            for (const double R : ranges)
+                if (!(R > 0 && std::isfinite(R))) throw std::invalid_argument("radius: every range must be positive and finite");
+            limit_ = *std::max_element(ranges.begin(), ranges.end());
+            if (std::any_of(ranges.begin(), ranges.end(), [&](double R) { return R != limit_; })) ranges_ = std::move(ranges);
+        }
         if (occ_.size() != std::size_t(rows) * cols) throw std::invalid_argument("occupancy size does not match rows x cols");
         if (!weight_.empty() && weight_.size() != occ_.size())
             throw std::invalid_argument("density must have one value per pixel");
@@ -74,7 +90,8 @@ public:
                     q = nearest[i];
                     t = {double(q % cols_) + 0.5, double(q / cols_) + 0.5};
                 }
-                path[i] = geodesic_path(field_, g, q, t);
+                path[i] = ranges_.empty() ? geodesic_path(field_, g, q, t)
+                                          : team_path(waves_[static_cast<std::size_t>(i)], cols_, q, t);
                 length[i] = path_length(path[i]);
             }
         });
@@ -90,10 +107,11 @@ public:
                 if (pixel_of(p) >= 0) trial[i] = p;  // a point on a wall's boundary stays where it was
             }
             GeodesicMoments m;
-            evaluate(trial, trial_field_, m);
+            evaluate(trial, trial_field_, m, trial_waves_);
             if (m.cost <= h0) {
                 points_ = std::move(trial);
                 std::swap(field_, trial_field_);  // both keep their buffers for the next step
+                std::swap(waves_, trial_waves_);
                 moments_ = std::move(m);
                 last_halvings_ = h;
                 break;
@@ -110,6 +128,10 @@ public:
         evaluate(points_, field_, moments_);
     }
 
+    //! A heterogeneous team's ranges (pixel units; empty when every agent has limit()).
+    const std::vector<double>& ranges() const { return ranges_; }
+    double limit() const { return limit_; }
+
 private:
     // The free pixel containing p (floor), or -1.
     std::int64_t pixel_of(const PixelPoint& p) const {
@@ -119,9 +141,17 @@ private:
         return occ_[static_cast<std::size_t>(q)] ? -1 : q;
     }
 
-    void evaluate(const std::vector<PixelPoint>& pts, GeodesicField& f, GeodesicMoments& m) {
-        geodesic_field(occ_.data(), rows_, cols_, pts, limit_, f, workspace_);
-        m = geodesic_moments(f, weight_.empty() ? nullptr : weight_.data(), reachable_.data(), limit_, workers_);
+    void evaluate(const std::vector<PixelPoint>& pts, GeodesicField& f, GeodesicMoments& m) { evaluate(pts, f, m, waves_); }
+
+    void evaluate(const std::vector<PixelPoint>& pts, GeodesicField& f, GeodesicMoments& m, std::vector<AgentWave>& waves) {
+        const double* w = weight_.empty() ? nullptr : weight_.data();
+        if (ranges_.empty()) {
+            geodesic_field(occ_.data(), rows_, cols_, pts, limit_, f, workspace_);
+            m = geodesic_moments(f, w, reachable_.data(), limit_, workers_);
+            return;
+        }
+        geodesic_team_field(occ_.data(), rows_, cols_, pts, ranges_, workers_, f, waves);
+        m = geodesic_moments(f, w, reachable_.data(), limit_, workers_, &ranges_);
     }
 
     std::vector<std::uint8_t> occ_;
@@ -133,7 +163,9 @@ private:
     int workers_, max_halvings_;
     GeodesicWorkspace workspace_;
     std::vector<std::uint8_t> reachable_;
+    std::vector<double> ranges_;
     GeodesicField field_, trial_field_;
+    std::vector<AgentWave> waves_, trial_waves_;
     GeodesicMoments moments_;
     int last_halvings_ = 0;
     std::int64_t last_stuck_ = 0;

@@ -23,9 +23,27 @@
 //
 // Agents stay in Q: W_i ⊂ Q is convex and so contains C_i, and Q contains the segment from p_i to
 // C_i. A move that rounding puts a hair outside Q is shortened (halved until inside, exactly tested).
+//
+// Heterogeneous teams (a sensing radius R_i per agent; Pimenta, Kumar, Mesquita & Pereira, "Sensing
+// and coverage for a network of heterogeneous robots", CDC 2008): the cells are the power cells
+// (weights R_i^2) clipped to the disks and to Q, W_i = {q in B(p_i, R_i) ∩ Q : pow_i(q) <= pow_j(q)
+// for all j}, pow_i(q) = |q - p_i|^2 - R_i^2 (docs/spec.md), and the cost is Pimenta et al.'s power
+// cost Σ_i ∫ pow_i φ over the power cells, limited to the disks as above (a point no disk covers
+// costs as much as one on the rim of the largest disk), with R̄ = max R_i:
+//     H(P) = ∫_Q min(min_i pow_i(q), 0) φ(q) dq + R̄^2 Φ(Q)
+//          = Σ_i (J_i + (R̄^2 - R_i^2) M_i) + R̄^2 Φ(U)            (every term >= 0; plane: Σ_i (J_i - R_i^2 M_i)).
+// Equal radii give the cost above exactly (and the same cells: the Boundary Scan path is kept then).
+// The gradient is still ∂H/∂p_i = 2 M_i (p_i - C_i): moving p_i moves the boundaries of W_i, but the
+// integrand is continuous across each of them (pow_i = pow_j on a power edge, pow_i = 0 = the
+// uncovered value on an arc), so their terms cancel and only ∫_{W_i} 2 (p_i - q) φ remains. The same
+// step never increases H: with the cells fixed, Σ ∫_{W_i} (|q - p_i|^2 - R_i^2) φ drops by M_i (1 -
+// (1-g)^2) |p_i - C_i|^2 per agent, and for any partition (W_i and the rest) that sum plus the rest at
+// 0 is at least ∫ min(min_i pow_i, 0) φ at the new positions. C_i lies in the convex W_i ⊂ Q even when
+// p_i does not (a larger disk's power can win at p_i), so agents still stay in Q.
 #pragma once
 
 #include "dvoronoi/cells/boundary_scan.hpp"
+#include "dvoronoi/cells/power_cell.hpp"
 #include "dvoronoi/coverage/cell_moments.hpp"
 #include "dvoronoi/coverage/clip.hpp"
 #include "dvoronoi/coverage/environment.hpp"
@@ -52,41 +70,135 @@ struct CoverageWorkspace {
     std::vector<Index> same;
     LimitedCell cell;
     CellWorkspace ws;
+    PowerWorkspace power;
+    std::vector<double> cand_r, shift;
     std::vector<Piece> local, clipped, scratch;
+    double radius = 0.0;  ///< the radius of the agent whose cell `clipped` is
 };
 
-/// Agent i's cell W_i relative to its position, into ws.clipped. Throws CoincidentError (global ids)
-/// when another agent sits at the same position.
-inline void clipped_local_cell(const Swarm& swarm, Index i, const ConvexPolygon* env, CoverageWorkspace& w) {
+}  // namespace detail
+
+/// Per-agent sensing radii of a swarm (heterogeneous teams, docs/spec.md); empty (equal()) when every
+/// agent has the swarm's radius. With unequal radii the swarm's radius is the largest, R̄, so that
+/// Swarm::within (agents closer than 2 R̄) returns every agent that can shape a cell (closer than
+/// R_i + R_j). Radii are looked up by row and, for the candidates Swarm::within returns, by id.
+class AgentRadii {
+public:
+    AgentRadii() = default;
+
+    /// `radii[k]` for the swarm's row k. Radii all equal to the swarm's radius give equal().
+    /// \throws InputError naming `radius` for a wrong length, a bad radius or one above the swarm's.
+    AgentRadii(const Swarm& swarm, std::vector<double> radii) {
+        const Index n = swarm.size();
+        if (static_cast<Index>(radii.size()) != n)
+            throw InputError("radius must have one radius per agent: got " + std::to_string(radii.size()) +
+                             " radii for " + std::to_string(n) + " agents");
+        bool equal = true;
+        for (std::size_t k = 0; k < radii.size(); ++k) {
+            const double R = radii[k];
+            detail::require_finite_radius(R, "radius");
+            if (R > swarm.radius())
+                throw InputError("radius[" + std::to_string(k) + "] exceeds the swarm's largest radius " +
+                                 std::to_string(swarm.radius()));
+            equal &= R == swarm.radius();
+        }
+        if (equal) return;
+        by_row_ = std::move(radii);
+        const std::vector<Index>& ids = swarm.ids();
+        identity_ = true;
+        for (Index k = 0; k < n; ++k) identity_ &= ids[static_cast<std::size_t>(k)] == k;
+        if (identity_) return;
+        for (Index k = 0; k < n; ++k) by_id_.push_back({ids[static_cast<std::size_t>(k)], by_row_[static_cast<std::size_t>(k)]});
+        std::sort(by_id_.begin(), by_id_.end());
+    }
+
+    bool equal() const noexcept { return by_row_.empty(); }
+    /// Radii by row (empty when equal()).
+    const std::vector<double>& by_row() const noexcept { return by_row_; }
+    double of_row(const Swarm& swarm, Index k) const {
+        return equal() ? swarm.radius() : by_row_[static_cast<std::size_t>(k)];
+    }
+    double of_id(const Swarm& swarm, Index id) const {
+        if (equal()) return swarm.radius();
+        if (identity_) return by_row_[static_cast<std::size_t>(id)];
+        const auto it = std::lower_bound(by_id_.begin(), by_id_.end(), std::pair<Index, double>{id, -1.0});
+        return it->second;
+    }
+
+private:
+    std::vector<double> by_row_;
+    std::vector<std::pair<Index, double>> by_id_;  // (id, radius) sorted, when ids are not the rows
+    bool identity_ = true;
+};
+
+namespace detail {
+
+/// Agent i's cell W_i relative to its position, into w.clipped (its radius into w.radius). Throws
+/// CoincidentError (global ids) when another agent sits at the same position (with unequal radii:
+/// at the same position with the same radius; the larger disk holds a shared position).
+inline void clipped_local_cell(const Swarm& swarm, const AgentRadii& radii, Index i, const ConvexPolygon* env,
+                               CoverageWorkspace& w) {
     w.same.clear();
     swarm.within(i, w.cand, &w.same);
     const Index id = swarm.ids()[static_cast<std::size_t>(i)];
-    if (!w.same.empty()) {
-        const Index j = *std::min_element(w.same.begin(), w.same.end());
-        const Index a = std::min(id, j), b = std::max(id, j);
-        throw CoincidentError("points[" + std::to_string(a) + "] and points[" + std::to_string(b) +
-                                  "] coincide; their Voronoi cells are undefined",
-                              a, b);
-    }
     const Vec2 c = swarm.point(i);
-    boundary_scan(c, w.cand, swarm.radius(), w.cell, w.ws);
-    if (env && disk_holds(*env, c, swarm.radius())) {
-        // The disk holds Q, so W_i = V_i ∩ Q: Q cut by the edge neighbours' bisectors, without the
-        // arcs far outside Q (R may be 1e9 |Q|) that cutting the cell would construct.
+    if (radii.equal()) {
+        if (!w.same.empty()) {
+            const Index j = *std::min_element(w.same.begin(), w.same.end());
+            const Index a = std::min(id, j), b = std::max(id, j);
+            throw CoincidentError("points[" + std::to_string(a) + "] and points[" + std::to_string(b) +
+                                      "] coincide; their Voronoi cells are undefined",
+                                  a, b);
+        }
+        w.radius = swarm.radius();
+        boundary_scan(c, w.cand, w.radius, w.cell, w.ws);
+    } else {
+        // The power cell from the agents closer than R_i + R_j (the grid returns those within 2 R̄;
+        // the margin keeps every one that can matter, and the exact classification in power_cell
+        // drops the extras). Agents at p_i join them (the larger disk holds a shared position); the
+        // candidates stay sorted by id.
+        w.radius = radii.of_row(swarm, i);
+        std::size_t kept = 0;
+        w.cand_r.clear();
+        for (const Candidate& q : w.cand) {
+            const double Rj = radii.of_id(swarm, q.id), reach = (w.radius + Rj) * (1.0 + 0x1p-40);
+            if ((q.p - c).squaredNorm() >= reach * reach) continue;
+            w.cand[kept++] = q;
+            w.cand_r.push_back(Rj);
+        }
+        w.cand.resize(kept);
+        for (const Index j : w.same) {  // in id order, as the rest
+            const auto at = std::lower_bound(w.cand.begin(), w.cand.end(), j,
+                                             [](const Candidate& a, Index want) { return a.id < want; });
+            w.cand_r.insert(w.cand_r.begin() + (at - w.cand.begin()), radii.of_id(swarm, j));
+            w.cand.insert(at, {c, j});
+        }
+        power_cell(c, w.radius, w.cand, w.cand_r, w.cell, w.power, id);
+    }
+    const double R = w.radius;
+    if (env && disk_holds(*env, c, R)) {
+        // The disk holds Q, so W_i = (power) cell ∩ Q: Q cut by the edge neighbours' bisectors (radical
+        // axes), without the arcs far outside Q (R may be 1e9 |Q|) that cutting the cell would construct.
         w.edges.clear();
+        w.shift.clear();
+        if (w.cell.pieces.empty()) {  // an empty power cell: the power of a larger disk wins everywhere
+            w.clipped.clear();
+            return;
+        }
         for (const Piece& p : w.cell.pieces) {
             if (p.neighbor < 0) continue;
             const auto it = std::lower_bound(w.cand.begin(), w.cand.end(), p.neighbor,
                                              [](const Candidate& a, Index want) { return a.id < want; });
             w.edges.push_back({it->p - c, p.neighbor});  // candidates are sorted by id (Swarm::within)
+            if (!radii.equal()) w.shift.push_back(R * R - w.cand_r[static_cast<std::size_t>(it - w.cand.begin())]);
         }
-        clip_environment(*env, c, w.edges, w.clipped, w.scratch);
+        clip_environment(*env, c, w.edges, w.clipped, w.scratch, radii.equal() ? nullptr : &w.shift);
         return;
     }
     w.local = w.cell.pieces;
     for (Piece& p : w.local) p.start -= c;
     if (env)
-        clip_cell(w.local, c, swarm.radius(), *env, w.clipped, w.scratch);
+        clip_cell(w.local, c, R, *env, w.clipped, w.scratch);
     else
         w.clipped.swap(w.local);
 }
@@ -137,17 +249,24 @@ inline bool reaches_circle(const std::vector<Piece>& clipped) {
 
 /// The cost H (top of this file) from per-agent moments M_i (`mass`), J_i (`polar`) and whether W_i
 /// reaches its circle (`open`), summed without cancellation: `total` = Φ(Q), or nullptr for the plane
-/// (then Σ_i (J_i - R^2 M_i)). With an environment H = Σ J_i + R^2 Φ(U): Φ(U) = 0 when there are
-/// agents and no cell is open, else Φ(Q) - Σ M_i by a compensated sum (at least 0).
+/// (then Σ_i (J_i - R_i^2 M_i)). With an environment H = Σ (J_i + (R̄^2 - R_i^2) M_i) + R̄^2 Φ(U): Φ(U)
+/// = 0 when there are agents and no cell is open, else Φ(Q) - Σ M_i by a compensated sum (at least 0).
+/// `radius` is R̄ (every agent's radius when `radii` is null or empty), `radii` R_i per agent.
 inline double coverage_cost(const std::vector<double>& mass, const std::vector<double>& polar,
-                            const std::vector<char>& open, double radius, const double* total) {
+                            const std::vector<char>& open, double radius, const double* total,
+                            const std::vector<double>* radii = nullptr) {
     const double r2 = radius * radius;
+    const bool each = radii && !radii->empty();
+    const auto ri2 = [&](std::size_t i) { return each ? (*radii)[i] * (*radii)[i] : r2; };
     double s = 0.0;
     if (!total) {
-        for (std::size_t i = 0; i < mass.size(); ++i) s += polar[i] - r2 * mass[i];
+        for (std::size_t i = 0; i < mass.size(); ++i) s += polar[i] - ri2(i) * mass[i];
         return s;
     }
-    for (const double j : polar) s += j;
+    if (each)
+        for (std::size_t i = 0; i < mass.size(); ++i) s += polar[i] + (r2 - ri2(i)) * mass[i];
+    else
+        for (const double j : polar) s += j;
     // No agent: nothing is covered. Else U is empty exactly when no cell is open.
     if (!mass.empty() && std::find(open.begin(), open.end(), char{1}) == open.end()) return s;
     // Φ(Q) - Σ M_i, Neumaier's compensated sum: one rounding of the result, not one per agent.
@@ -166,26 +285,31 @@ struct CoverageMoments {
     Points centroid;            ///< C_i (the agent itself when W_i is empty)
     std::vector<double> polar;  ///< J_i = ∫_{W_i} |q - p_i|^2
     std::vector<char> open;     ///< W_i reaches its circle (reaches_circle)
+    std::vector<double> radii;  ///< R_i (heterogeneous teams; empty: every agent has the swarm's radius)
 
-    /// H at these moments (coverage_cost); `total` = Φ(Q), nullptr for the plane.
-    double cost(double radius, const double* total) const { return coverage_cost(mass, polar, open, radius, total); }
+    /// H at these moments (coverage_cost); `radius` = R̄, `total` = Φ(Q), nullptr for the plane.
+    double cost(double radius, const double* total) const {
+        return coverage_cost(mass, polar, open, radius, total, &radii);
+    }
 };
 
+/// \param radii the agents' radii (AgentRadii{}: every agent has the swarm's radius).
 /// \param owned the first `owned` agents get cells (the rest only shape them: an MPI halo); -1 = all.
 /// \param env the environment Q, or nullptr for the plane.
 /// \throws CoincidentError naming global ids. \note Thread-safe; O(owned m log m).
-inline CoverageMoments coverage_moments(const Swarm& swarm, const ConvexPolygon* env, Index owned = -1,
-                                        int threads = 0, const ProgressFn& progress = nullptr) {
+inline CoverageMoments coverage_moments(const Swarm& swarm, const AgentRadii& radii, const ConvexPolygon* env,
+                                        Index owned = -1, int threads = 0, const ProgressFn& progress = nullptr) {
     detail::require_moment_radius(swarm.radius());
     const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
     CoverageMoments out;
+    if (!radii.equal()) out.radii.assign(radii.by_row().begin(), radii.by_row().begin() + n);
     out.mass.assign(static_cast<std::size_t>(n), 0.0);
     out.polar.assign(static_cast<std::size_t>(n), 0.0);
     out.open.assign(static_cast<std::size_t>(n), 0);
     out.centroid.resize(n, 2);
     detail::for_each_agent(n, threads, progress, [&](Index i, detail::CoverageWorkspace& w) {
-        detail::clipped_local_cell(swarm, i, env, w);
-        const Moments m = uniform_moments(w.clipped, swarm.radius());
+        detail::clipped_local_cell(swarm, radii, i, env, w);
+        const Moments m = uniform_moments(w.clipped, w.radius);
         const auto ii = static_cast<std::size_t>(i);
         out.mass[ii] = m.mass;
         out.polar[ii] = m.polar;
@@ -195,23 +319,31 @@ inline CoverageMoments coverage_moments(const Swarm& swarm, const ConvexPolygon*
     return out;
 }
 
+/// coverage_moments with every agent at the swarm's radius.
+inline CoverageMoments coverage_moments(const Swarm& swarm, const ConvexPolygon* env, Index owned = -1,
+                                        int threads = 0, const ProgressFn& progress = nullptr) {
+    return coverage_moments(swarm, AgentRadii{}, env, owned, threads, progress);
+}
+
 /// The clipped cells W_i of agents 0..owned-1 as a LimitedPartition (pieces in the caller's frame;
 /// walls have neighbor kWall and span 0; edge neighbours and the CSR relation use the swarm's ids;
 /// areas, centroids and perimeters are those of W_i). Its flat arrays and io::write_svg handle walls;
 /// LimitedPartition::cell(i) and the JSON/GeoJSON writers know only edges and arcs (they would read a
 /// wall as an arc), so clipped cells are exported by dvoronoi.coverage.CoverageCells instead.
-inline LimitedPartition coverage_cells(const Swarm& swarm, const ConvexPolygon* env, Index owned = -1,
-                                       int threads = 0) {
+/// With unequal `radii`, `radius` is R̄ and `radii` holds R_i (LimitedPartition::radius_of).
+inline LimitedPartition coverage_cells(const Swarm& swarm, const AgentRadii& radii, const ConvexPolygon* env,
+                                       Index owned = -1, int threads = 0) {
     const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
     std::vector<std::vector<Piece>> cells(static_cast<std::size_t>(n));
     std::vector<Moments> mom(static_cast<std::size_t>(n));
     detail::for_each_agent(n, threads, nullptr, [&](Index i, detail::CoverageWorkspace& w) {
-        detail::clipped_local_cell(swarm, i, env, w);
-        mom[static_cast<std::size_t>(i)] = uniform_moments(w.clipped, swarm.radius());
+        detail::clipped_local_cell(swarm, radii, i, env, w);
+        mom[static_cast<std::size_t>(i)] = uniform_moments(w.clipped, w.radius);
         cells[static_cast<std::size_t>(i)] = w.clipped;
     });
     LimitedPartition out;
     out.radius = swarm.radius();
+    if (!radii.equal()) out.radii.assign(radii.by_row().begin(), radii.by_row().begin() + n);
     out.points = swarm.points().topRows(n);
     out.areas.resize(static_cast<std::size_t>(n));
     out.perimeters.resize(static_cast<std::size_t>(n));
@@ -240,6 +372,11 @@ inline LimitedPartition coverage_cells(const Swarm& swarm, const ConvexPolygon* 
     return out;
 }
 
+/// coverage_cells with every agent at the swarm's radius.
+inline LimitedPartition coverage_cells(const Swarm& swarm, const ConvexPolygon* env, Index owned = -1, int threads = 0) {
+    return coverage_cells(swarm, AgentRadii{}, env, owned, threads);
+}
+
 /// Quadrature nodes of the clipped cells of agents 0..owned-1 (see quadrature_nodes): flat arrays,
 /// node k at (x[k], y[k]) (caller's frame) with weight w[k] in the cell of agent owner[k]; agent i's
 /// nodes are [ptr[i], ptr[i+1]).
@@ -249,8 +386,8 @@ struct CoverageQuadrature {
     std::vector<char> open;  ///< per cell: W_i reaches its circle (reaches_circle); empty for Q itself
 };
 
-inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPolygon* env, int order,
-                                              Index owned = -1, int threads = 0) {
+inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const AgentRadii& radii, const ConvexPolygon* env,
+                                              int order, Index owned = -1, int threads = 0) {
     detail::require_moment_radius(swarm.radius());
     const GaussRule g(order);
     const Index n = owned < 0 ? swarm.size() : std::min(owned, swarm.size());
@@ -258,7 +395,7 @@ inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPo
     CoverageQuadrature out;
     out.open.assign(static_cast<std::size_t>(n), 0);
     detail::for_each_agent(n, threads, nullptr, [&](Index i, detail::CoverageWorkspace& w) {
-        detail::clipped_local_cell(swarm, i, env, w);
+        detail::clipped_local_cell(swarm, radii, i, env, w);
         const auto ii = static_cast<std::size_t>(i);
         out.open[ii] = reaches_circle(w.clipped);
         const Vec2 c = swarm.point(i);
@@ -269,7 +406,7 @@ inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPo
         xs[ii].reserve(k);
         ys[ii].reserve(k);
         ws[ii].reserve(k);
-        quadrature_nodes(w.clipped, swarm.radius(), g, [&](const Vec2& q, double wt) {
+        quadrature_nodes(w.clipped, w.radius, g, [&](const Vec2& q, double wt) {
             xs[ii].push_back(c.x() + q.x());
             ys[ii].push_back(c.y() + q.y());
             ws[ii].push_back(wt);
@@ -283,6 +420,12 @@ inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPo
         out.ptr.push_back(static_cast<Index>(out.x.size()));
     }
     return out;
+}
+
+/// coverage_quadrature with every agent at the swarm's radius.
+inline CoverageQuadrature coverage_quadrature(const Swarm& swarm, const ConvexPolygon* env, int order, Index owned = -1,
+                                              int threads = 0) {
+    return coverage_quadrature(swarm, AgentRadii{}, env, order, owned, threads);
 }
 
 /// Quadrature nodes of the environment itself (a fan of triangles from vertex 0, the same rule), for
@@ -330,31 +473,42 @@ public:
     LloydStepper(PointsRef points, double radius, std::optional<ConvexPolygon> env = std::nullopt,
                  double gain = 1.0, int threads = 0)
         : env_(std::move(env)), gain_(gain), threads_(threads) {
-        if (!(gain > 0.0 && gain <= 1.0))
-            throw InputError("gain must be in (0, 1], got " + std::to_string(gain));
-        detail::require_finite_radius(radius);
-        detail::require_moment_radius(radius);
-        detail::require_finite_points(points, "points");
-        if (env_)
-            for (Eigen::Index i = 0; i < points.rows(); ++i)
-                if (!env_->contains(points.row(i).transpose()))
-                    throw InputError("points[" + std::to_string(i) + "] lies outside bounds");
+        check(points, radius);
         swarm_ = Swarm(points, radius);
+    }
+
+    /// A heterogeneous team: agent i senses within radii[i] (top of this file). All radii equal give
+    /// exactly the scalar stepper.
+    /// \throws as above, and InputError naming `radius` for a wrong length or a bad radius.
+    LloydStepper(PointsRef points, const std::vector<double>& radii, std::optional<ConvexPolygon> env = std::nullopt,
+                 double gain = 1.0, int threads = 0)
+        : env_(std::move(env)), gain_(gain), threads_(threads) {
+        if (static_cast<Index>(radii.size()) != points.rows())
+            throw InputError("radius must have one radius per agent: got " + std::to_string(radii.size()) +
+                             " radii for " + std::to_string(points.rows()) + " agents");
+        for (const double R : radii) detail::require_finite_radius(R, "radius");
+        const double rmax = radii.empty() ? 1.0 : *std::max_element(radii.begin(), radii.end());
+        check(points, rmax);
+        for (const double R : radii) detail::require_moment_radius(R);
+        swarm_ = Swarm(points, rmax);
+        radii_ = AgentRadii(swarm_, radii);
     }
 
     const Swarm& swarm() const noexcept { return swarm_; }
     const Points& points() const noexcept { return swarm_.points(); }
+    /// The radius, or the largest R̄ of a heterogeneous team.
     double radius() const noexcept { return swarm_.radius(); }
+    const AgentRadii& radii() const noexcept { return radii_; }
     double gain() const noexcept { return gain_; }
     const ConvexPolygon* environment() const noexcept { return env_ ? &*env_ : nullptr; }
 
     /// The uniform-density cost H at the current positions (see the top of this file).
-    double cost() const { return cost_of(coverage_moments(swarm_, environment(), -1, threads_)); }
+    double cost() const { return cost_of(coverage_moments(swarm_, radii_, environment(), -1, threads_)); }
 
     /// One Lloyd step with uniform density: cells at the current positions, then every agent moves.
     /// Returns H at the positions before the move.
     double step(const ProgressFn& progress = nullptr) {
-        const CoverageMoments m = coverage_moments(swarm_, environment(), -1, threads_, progress);
+        const CoverageMoments m = coverage_moments(swarm_, radii_, environment(), -1, threads_, progress);
         move_to_targets(m.centroid);
         return cost_of(m);
     }
@@ -385,10 +539,23 @@ public:
     }
 
 private:
+    void check(PointsRef points, double radius) const {
+        if (!(gain_ > 0.0 && gain_ <= 1.0))
+            throw InputError("gain must be in (0, 1], got " + std::to_string(gain_));
+        detail::require_finite_radius(radius);
+        detail::require_moment_radius(radius);
+        detail::require_finite_points(points, "points");
+        if (env_)
+            for (Eigen::Index i = 0; i < points.rows(); ++i)
+                if (!env_->contains(points.row(i).transpose()))
+                    throw InputError("points[" + std::to_string(i) + "] lies outside bounds");
+    }
+
     std::optional<ConvexPolygon> env_;
     double gain_;
     int threads_;
     Swarm swarm_;
+    AgentRadii radii_;
 };
 
 }  // namespace dvoronoi
