@@ -71,10 +71,6 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     for (double R : radii) detail::require_finite_radius(R, "radius");
     const bool equal = std::all_of(radii.begin(), radii.end(), [&](double R) { return R == radii.front(); });
     if (n == 0 || equal) return limited_cells(points, n == 0 ? 1.0 : radii.front(), method, threads, progress);
-    if (method != Method::Auto)
-        throw InputError(std::string("method \"") + method_name(method) +
-                         "\" (Boundary Scan or RCVC around the agent) needs equal radii; with one radius per agent "
-                         "the cells are computed by power-cell clipping: use method \"auto\"");
 
     LimitedPartition out;
     out.method = method;
@@ -99,9 +95,9 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     out.candidates.assign(un, 0);
     out.piece_ptr.assign(un + 1, 0);  // counts, summed below
     detail::ProgressTracker tracker(progress, n);
-    Index computed = 0;
+    Index by_clipping = 0, by_scan = 0, by_chords = 0;
 
-#pragma omp parallel num_threads(team) reduction(+ : computed)
+#pragma omp parallel num_threads(team) reduction(+ : by_clipping, by_scan, by_chords)
     {
         std::vector<detail::Candidate> cand;
         std::vector<double> cand_r;
@@ -109,6 +105,7 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
         std::vector<Piece>& mine = lists[static_cast<std::size_t>(me)];
         LimitedCell cell;
         detail::PowerWorkspace ws;
+        detail::PowerChordWorkspace chord_ws;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             const Index lo = b * block, hi = std::min(n, lo + block);
@@ -125,8 +122,18 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
                     index.within_at(pp, 0.5 * (r + rmax) * (1.0 + 0x1p-40), cand);
                     cand_r.clear();
                     for (const detail::Candidate& q : cand) cand_r.push_back(radii[static_cast<std::size_t>(q.id)]);
-                    detail::power_cell(index.point_at(pp), r, cand, cand_r, cell, ws, static_cast<Index>(i));
-                    ++computed;
+                    const Vec2 c = index.point_at(pp);
+                    const auto self = static_cast<Index>(i);
+                    if (method == Method::Scan) {
+                        detail::power_boundary_scan(c, r, cand, cand_r, cell, chord_ws, self);
+                        ++by_scan;
+                    } else if (method == Method::Chords) {
+                        detail::power_rcvc(c, r, cand, cand_r, cell, chord_ws, self);
+                        ++by_chords;
+                    } else {
+                        detail::power_cell(c, r, cand, cand_r, cell, ws, self);
+                        ++by_clipping;
+                    }
                     const CellMeasures& m = cell.measures();
                     out.areas[i] = m.area;
                     out.perimeters[i] = m.perimeter;
@@ -144,7 +151,9 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
         }
     }
     tracker.rethrow_if_failed();
-    out.computed_by.power = computed;
+    out.computed_by.power = by_clipping;
+    out.computed_by.scan = by_scan;
+    out.computed_by.chords = by_chords;
 
     out.indptr.assign(un + 1, 0);
     for (std::size_t i = 0; i < un; ++i) out.piece_ptr[i + 1] += out.piece_ptr[i];  // counts to offsets

@@ -1,0 +1,94 @@
+// Boundary Scan (He, Feng & Ren, Sensors 2018) generalised to a heterogeneous team: agent c's cell
+// W = power cell (weights R^2) ∩ B(c, r) by the paper's stack scan of its chords, which are chords of
+// c's own circle cut by the radical axes (docs/spec.md, heterogeneous teams). O(m log m) for m agents
+// within r + R_j when c lies in its cell.
+//
+// The paper's three steps, on radical axes (cells/power_chords.hpp says what changes and why):
+//   1. the chord set, sorted counter-clockwise by the axes' normals from the nearest radical axis;
+//   2. the scan: the chord on top of the stack (b_j) against the scanned one (b_k), the paper's five
+//      cases decided by one exact test, "does b_j keep a part of positive length between its stack
+//      neighbours" (PowerGeometry::keeps), then a loop back to the first chord;
+//   3. the labelled vertex set: consecutive chords meeting at a vertex or joined by an arc.
+// Lemma 1 (the first chord bounds the cell, so it is never popped) holds when c lies strictly inside
+// every chord's half-plane. Otherwise the scan starts from each chord in turn, nearest axis first,
+// until power_cycle_is_cell accepts the cycle; a chord that bounds the cell is a right start (the
+// scan from it is the paper's), so when none is accepted the cell is empty. Crescents away from c
+// usually take one or two starts.
+#pragma once
+
+#include "dvoronoi/cells/power_chords.hpp"
+
+namespace dvoronoi {
+namespace detail {
+
+/// The scan of step 2 on the chords `seq` (sorted, seq[0] the start): the boundary cycle and its
+/// labels in ws.cycle, ws.meets.
+inline void power_scan(const PowerGeometry& g, const std::vector<int>& seq, PowerChordWorkspace& ws) {
+    auto& st = ws.scan;
+    st.clear();
+    const std::size_t m = seq.size();
+    st.push_back({seq[0], 0, true});
+    for (std::size_t step = 1; step <= m && m > 1; ++step) {
+        const int k = seq[step % m];
+        const bool closing = step == m;  // b_0 again: it only pops
+        int tested = -1, o_tested = 0;
+        if (!closing) {
+            tested = st.back().line;
+            o_tested = g.orient(k, tested);
+            if (!g.chord_bound_ok(k, tested, o_tested)) continue;  // case (3): b_k outside b_j's half-plane
+        }
+        while (st.size() >= 2) {
+            const PowerChordWorkspace::Entry& e = st.back();
+            const int j = e.line, i = st[st.size() - 2].line;
+            const int o = g.orient(j, k);
+            bool keep = e.ok_prev && g.chord_bound_ok(j, k, o);
+            if (keep && e.o_prev != 0 && o != 0 && (e.o_prev > 0) != (o > 0))
+                keep = e.o_prev < 0 ? g.vertex_before(j, i, k) : g.vertex_before(j, k, i);
+            if (keep) break;  // cases (1), (2), (5): b_j stays
+            st.pop_back();    // case (4): b_j is cut away
+        }
+        if (!closing) {
+            const int top = st.back().line;
+            const int o = top == tested ? o_tested : g.orient(k, top);
+            st.push_back({k, o, top == tested || g.chord_bound_ok(k, top, o)});
+        }
+    }
+    // Step 3: a vertex where consecutive chords meet in the closed disk, else an arc.
+    ws.cycle.clear();
+    for (const auto& e : st) ws.cycle.push_back(e.line);
+    const std::size_t s = ws.cycle.size();
+    ws.meets.assign(s, 0);
+    for (std::size_t t = 0; t < s && s >= 2; ++t) ws.meets[t] = g.meets(ws.cycle[t], ws.cycle[(t + 1) % s]);
+}
+
+/// The cell of c (radius r) among candidate agents cand with radii cand_r (any agents: those whose
+/// radical axis misses the disk are dropped) by the generalised Boundary Scan. Writes `out` as
+/// power_cell does (an empty cell has no pieces, area 0, centroid c).
+/// \throws CoincidentError when a candidate lies at c with the same radius (`self` names c).
+inline void power_boundary_scan(const Vec2& c, double r, const std::vector<Candidate>& cand,
+                                const std::vector<double>& cand_r, LimitedCell& out, PowerChordWorkspace& ws,
+                                Index self = -1) {
+    const pred::power::Frame f{c, r};
+    power_empty_cell(c, r, static_cast<Index>(cand.size()), out);
+    ws.lines.clear();
+    ws.fast.clear();
+    ws.ids.clear();
+    bool inside = true;
+    if (!collect_chords(f, cand, cand_r, self, ws.lines, ws.fast, ws.ids, inside)) return;  // Step 1
+    if (ws.lines.empty()) return power_full_disk(c, r, out);
+    const PowerGeometry g{f, ws.lines, ws.fast};
+    sort_chords(g, 0, ws.order, ws.half);
+    const std::size_t m = ws.order.size();
+    for (std::size_t start = 0; start < m; ++start) {
+        ws.from_start.assign(ws.order.begin() + static_cast<std::ptrdiff_t>(start), ws.order.end());
+        ws.from_start.insert(ws.from_start.end(), ws.order.begin(), ws.order.begin() + static_cast<std::ptrdiff_t>(start));
+        power_scan(g, ws.from_start, ws);
+        if (inside || power_cycle_is_cell(g, ws.order, ws.cycle, ws.meets, ws.in_cycle)) {
+            emit_power_cell(f, ws.lines, ws.ids, ws.cycle, ws.meets, out, ws.rel, ws.is_arc, ws.span);
+            return;
+        }
+    }
+}
+
+}  // namespace detail
+}  // namespace dvoronoi

@@ -1,0 +1,133 @@
+// RCVC (Guruprasad & Dasgupta, IROS 2012) generalised to a heterogeneous team: agent c's cell
+// W = power cell (weights R^2) ∩ B(c, r) by the paper's constructChords, checkChords and constructVor
+// on the chords of c's own circle cut by the radical axes (docs/spec.md, heterogeneous teams).
+// Quadratic in the chords, as published (kMaxChordsCandidates bounds the agents, as for equal radii).
+//
+//   constructChords: the chords sorted counter-clockwise by the axes' normals from the nearest
+//     radical axis (cells/power_chords.hpp).
+//   checkChords: chord q with both ends on or beyond L_j lies outside j's side of the disk. The paper
+//     removes it ("keep c's side"); here c's side need not be the cell's, so j's chord ends decide:
+//     j's side lies in H_q (q is redundant: removed) or outside it (the cell is empty).
+//   constructVor: the walk over consecutive chords with the self-intersection refinement, as for
+//     equal radii (cells/rcvc.hpp), closing on the first chord.
+// The first chord must bound the cell (the walk never removes it): true for the nearest axis when c
+// lies strictly inside every chord's half-plane; otherwise the walk starts from each kept chord in
+// turn until power_cycle_is_cell accepts the cycle, and the cell is empty when none does.
+#pragma once
+
+#include "dvoronoi/cells/power_chords.hpp"
+#include "dvoronoi/cells/rcvc.hpp"
+
+namespace dvoronoi {
+namespace detail {
+
+/// constructVor on the kept chords `seq` (sorted, seq[0] the start): ws.cycle, ws.meets.
+inline void power_walk(const PowerGeometry& g, const std::vector<int>& seq, PowerChordWorkspace& ws) {
+    auto& st = ws.cycle;
+    auto& line_start = ws.meets;  // for now: st[t] starts at a 'line' vertex with st[t-1]
+    st.clear();
+    line_start.clear();
+    const std::size_t mk = seq.size();
+    st.push_back(seq[0]);
+    line_start.push_back(0);
+    for (std::size_t step = 1; step <= mk && mk > 1; ++step) {
+        const int k = seq[step % mk];
+        for (;;) {
+            const int j = st.back();
+            // Consecutive chords intersect in the disk when L_k's first end lies on or beyond L_j.
+            const bool intersect = k != j && g.end_side(k, -1, j) >= 0;
+            if (!intersect) {
+                if (step % mk != 0) {
+                    st.push_back(k);
+                    line_start.push_back(0);
+                } else {
+                    line_start[0] = 0;
+                }
+                break;
+            }
+            // Self-intersection test: the new vertex x_jk must lie after the vertex where L_j starts.
+            bool accepted;
+            if (st.size() >= 2 && line_start.back())
+                accepted = g.vertex_before(j, st[st.size() - 2], k);
+            else
+                accepted = g.vertex_vs_end(j, k, -1) > 0;
+            if (accepted || st.size() == 1) {
+                if (step % mk != 0) {
+                    st.push_back(k);
+                    line_start.push_back(1);
+                } else {
+                    line_start[0] = 1;
+                }
+                break;
+            }
+            st.pop_back();  // remove L_j and its vertex; retry with the previous chord
+            line_start.pop_back();
+        }
+    }
+    // Joint t (between st[t] and st[t+1]) is a 'line' vertex when st[t+1] starts at one.
+    const std::size_t s = st.size();
+    std::vector<char> starts(line_start);
+    for (std::size_t t = 0; t < s; ++t) line_start[t] = s >= 2 && starts[(t + 1) % s];
+}
+
+/// The cell of c (radius r) among cand with radii cand_r by the generalised RCVC; as
+/// power_boundary_scan otherwise.
+/// \throws RangeError for more than kMaxChordsCandidates candidates; CoincidentError as
+///         power_boundary_scan.
+inline void power_rcvc(const Vec2& c, double r, const std::vector<Candidate>& cand, const std::vector<double>& cand_r,
+                       LimitedCell& out, PowerChordWorkspace& ws, Index self = -1) {
+    if (cand.size() > kMaxChordsCandidates) {
+        char rs[32];
+        std::snprintf(rs, sizeof rs, "%.17g", r);
+        throw RangeError("method \"chords\" (RCVC, quadratic in the agents within reach) accepts at most " +
+                         std::to_string(kMaxChordsCandidates) + " agents within r + R_j of an agent; this one (radius " +
+                         rs + ") has " + std::to_string(cand.size()) +
+                         ": use method \"scan\" (the same cells in O(m log m))");
+    }
+    const pred::power::Frame f{c, r};
+    power_empty_cell(c, r, static_cast<Index>(cand.size()), out);
+    ws.lines.clear();
+    ws.fast.clear();
+    ws.ids.clear();
+    bool inside = true;
+    if (!collect_chords(f, cand, cand_r, self, ws.lines, ws.fast, ws.ids, inside)) return;
+    if (ws.lines.empty()) return power_full_disk(c, r, out);
+    const PowerGeometry g{f, ws.lines, ws.fast};
+    sort_chords(g, 0, ws.order, ws.half);  // constructChords
+    const int m = static_cast<int>(ws.order.size());
+
+    // checkChords.
+    auto& removed = ws.removed;
+    removed.assign(static_cast<std::size_t>(m), 0);
+    for (int a = 0; a < m; ++a)
+        for (int b = 0; b < m; ++b) {
+            if (a == b || removed[static_cast<std::size_t>(b)]) continue;
+            const int j = ws.order[static_cast<std::size_t>(a)], q = ws.order[static_cast<std::size_t>(b)];
+            if (g.end_side(q, -1, j) < 0 || g.end_side(q, +1, j) < 0) continue;
+            // Chord q misses j's open side of the disk: that side lies on one side of L_q, the side
+            // of j's chord ends (both on L_q only when the axes coincide, opposite: no area).
+            int side = g.end_side(j, -1, q);
+            if (side == 0) side = g.end_side(j, +1, q);
+            if (side >= 0) return;  // j's side of the disk is outside H_q: the cell is empty
+            removed[static_cast<std::size_t>(b)] = 1;
+        }
+    auto& kept = ws.kept;
+    kept.clear();
+    for (int a = 0; a < m; ++a)
+        if (!removed[static_cast<std::size_t>(a)]) kept.push_back(ws.order[static_cast<std::size_t>(a)]);
+    out.chords_after_check = static_cast<Index>(kept.size());
+
+    // constructVor, from each kept chord in turn when the first need not bound the cell.
+    for (std::size_t start = 0; start < kept.size(); ++start) {
+        ws.from_start.assign(kept.begin() + static_cast<std::ptrdiff_t>(start), kept.end());
+        ws.from_start.insert(ws.from_start.end(), kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(start));
+        power_walk(g, ws.from_start, ws);
+        if (inside || power_cycle_is_cell(g, kept, ws.cycle, ws.meets, ws.in_cycle)) {
+            emit_power_cell(f, ws.lines, ws.ids, ws.cycle, ws.meets, out, ws.rel, ws.is_arc, ws.span);
+            return;
+        }
+    }
+}
+
+}  // namespace detail
+}  // namespace dvoronoi
