@@ -3,7 +3,10 @@
 // index), in parallel (OpenMP), in input order.
 #pragma once
 
+#include "dvoronoi/cells/certified_power_clip.hpp"
+#include "dvoronoi/cells/power_boundary_scan.hpp"
 #include "dvoronoi/cells/power_cell.hpp"
+#include "dvoronoi/cells/power_rcvc.hpp"
 #include "dvoronoi/partition/limited_partition.hpp"
 
 #include <algorithm>
@@ -78,12 +81,13 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     out.radii = radii;
     const double rmax = *std::max_element(radii.begin(), radii.end());
     out.radius = rmax;
-    detail::require_distinct_weighted(out.points, out.radii);
-
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
     const int team = detail::thread_team(threads, nblocks);
-    const GridIndex index(out.points, 2.0 * rmax, team);
+    const GridIndex index(out.points, rmax, team);  // cells of R_max: a query scans little beyond its disk
+    // Coinciding positions share a grid cell (O(n) expected); only when some exist are the radii
+    // compared (O(n log n)).
+    if (index.first_duplicate().first >= 0) detail::require_distinct_weighted(out.points, out.radii);
     const std::vector<Index>& order = index.grid_order();
     // Each thread appends its cells' pieces to its own list; agent i's run is (thread, offset).
     std::vector<std::vector<Piece>> lists(static_cast<std::size_t>(team));
@@ -95,9 +99,13 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     out.candidates.assign(un, 0);
     out.piece_ptr.assign(un + 1, 0);  // counts, summed below
     detail::ProgressTracker tracker(progress, n);
-    Index by_clipping = 0, by_scan = 0, by_chords = 0;
+    Index by_filter = 0, by_clipping = 0, by_scan = 0, by_chords = 0;
+    // The radii in grid order: the fast path reads its candidates' radii next to their positions.
+    std::vector<double> radius_at(un);
+    for (std::size_t pos = 0; pos < un; ++pos) radius_at[pos] = radii[static_cast<std::size_t>(order[pos])];
+    const Index* order0 = order.data();
 
-#pragma omp parallel num_threads(team) reduction(+ : by_clipping, by_scan, by_chords)
+#pragma omp parallel num_threads(team) reduction(+ : by_filter, by_clipping, by_scan, by_chords)
     {
         std::vector<detail::Candidate> cand;
         std::vector<double> cand_r;
@@ -106,6 +114,7 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
         LimitedCell cell;
         detail::PowerWorkspace ws;
         detail::PowerChordWorkspace chord_ws;
+        detail::PowerClipWorkspace clip_ws;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             const Index lo = b * block, hi = std::min(n, lo + block);
@@ -118,21 +127,42 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
                     const double r = radii[i];
                     // Agents that can shape the cell are closer than r + R_j <= r + R_max; the query
                     // radius is half the range, widened so that rounding never drops one (the exact
-                    // classification in power_cell discards the extras).
-                    index.within_at(pp, 0.5 * (r + rmax) * (1.0 + 0x1p-40), cand);
-                    cand_r.clear();
-                    for (const detail::Candidate& q : cand) cand_r.push_back(radii[static_cast<std::size_t>(q.id)]);
+                    // classification of every route discards the extras).
+                    const double half_range = 0.5 * (r + rmax) * (1.0 + 0x1p-40);
                     const Vec2 c = index.point_at(pp);
                     const auto self = static_cast<Index>(i);
-                    if (method == Method::Scan) {
-                        detail::power_boundary_scan(c, r, cand, cand_r, cell, chord_ws, self);
-                        ++by_scan;
-                    } else if (method == Method::Chords) {
-                        detail::power_rcvc(c, r, cand, cand_r, cell, chord_ws, self);
-                        ++by_chords;
+                    if (method == Method::Auto) {
+                        // The certified clipping (agents with the same position and radius were
+                        // refused above), the exact clipping where it gives up.
+                        clip_ws.start(c, r);
+                        index.for_each_batch_within_at(pp, half_range, [&](const double* xs, const double* ys, const Index* ids,
+                                                                           const std::uint32_t* sel, std::size_t count) {
+                            const double* rs = radius_at.data() + (ids - order0);  // the batch's grid positions
+                            clip_ws.add_batch(xs, ys, ids, sel, count, [&](std::uint32_t t) { return rs[t]; });
+                        });
+                        if (detail::certified_power_clip_loaded(cell, clip_ws)) {
+                            ++by_filter;
+                        } else {
+                            cand.clear();
+                            cand_r.clear();
+                            for (std::size_t t = 0; t < clip_ws.m; ++t) {
+                                cand.push_back({Vec2(clip_ws.px[t], clip_ws.py[t]), clip_ws.id[t]});
+                                cand_r.push_back(clip_ws.pr[t]);
+                            }
+                            detail::power_cell(c, r, cand, cand_r, cell, ws, self);
+                            ++by_clipping;
+                        }
                     } else {
-                        detail::power_cell(c, r, cand, cand_r, cell, ws, self);
-                        ++by_clipping;
+                        index.within_at(pp, half_range, cand);
+                        cand_r.clear();
+                        for (const detail::Candidate& q : cand) cand_r.push_back(radii[static_cast<std::size_t>(q.id)]);
+                        if (method == Method::Scan) {
+                            detail::power_boundary_scan(c, r, cand, cand_r, cell, chord_ws, self);
+                            ++by_scan;
+                        } else {
+                            detail::power_rcvc(c, r, cand, cand_r, cell, chord_ws, self);
+                            ++by_chords;
+                        }
                     }
                     const CellMeasures& m = cell.measures();
                     out.areas[i] = m.area;
@@ -151,6 +181,7 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
         }
     }
     tracker.rethrow_if_failed();
+    out.computed_by.clip = by_filter;
     out.computed_by.power = by_clipping;
     out.computed_by.scan = by_scan;
     out.computed_by.chords = by_chords;
