@@ -16,46 +16,19 @@
 // usually take one or two starts.
 #pragma once
 
+#include "dvoronoi/cells/boundary_scan.hpp"
 #include "dvoronoi/cells/power_chords.hpp"
 
 namespace dvoronoi {
 namespace detail {
 
-/// The scan of step 2 on the chords `seq` (sorted, seq[0] the start): the boundary cycle and its
-/// labels in ws.cycle, ws.meets.
+/// Steps 2 and 3 on the chords `seq` (sorted, seq[0] the start): Boundary Scan's stack scan
+/// (cells/boundary_scan.hpp, scan_stack) on the radical axes, then the labels: a vertex where
+/// consecutive chords meet in the closed disk, else an arc. The cycle in ws.cycle, ws.meets.
 inline void power_scan(const PowerGeometry& g, const std::vector<int>& seq, PowerChordWorkspace& ws) {
-    auto& st = ws.scan;
-    st.clear();
-    const std::size_t m = seq.size();
-    st.push_back({seq[0], 0, true});
-    for (std::size_t step = 1; step <= m && m > 1; ++step) {
-        const int k = seq[step % m];
-        const bool closing = step == m;  // b_0 again: it only pops
-        int tested = -1, o_tested = 0;
-        if (!closing) {
-            tested = st.back().line;
-            o_tested = g.orient(k, tested);
-            if (!g.chord_bound_ok(k, tested, o_tested)) continue;  // case (3): b_k outside b_j's half-plane
-        }
-        while (st.size() >= 2) {
-            const PowerChordWorkspace::Entry& e = st.back();
-            const int j = e.line, i = st[st.size() - 2].line;
-            const int o = g.orient(j, k);
-            bool keep = e.ok_prev && g.chord_bound_ok(j, k, o);
-            if (keep && e.o_prev != 0 && o != 0 && (e.o_prev > 0) != (o > 0))
-                keep = e.o_prev < 0 ? g.vertex_before(j, i, k) : g.vertex_before(j, k, i);
-            if (keep) break;  // cases (1), (2), (5): b_j stays
-            st.pop_back();    // case (4): b_j is cut away
-        }
-        if (!closing) {
-            const int top = st.back().line;
-            const int o = top == tested ? o_tested : g.orient(k, top);
-            st.push_back({k, o, top == tested || g.chord_bound_ok(k, top, o)});
-        }
-    }
-    // Step 3: a vertex where consecutive chords meet in the closed disk, else an arc.
+    scan_stack(g, static_cast<int>(seq.size()), [&](int t) { return seq[static_cast<std::size_t>(t)]; }, ws.scan);
     ws.cycle.clear();
-    for (const auto& e : st) ws.cycle.push_back(e.line);
+    for (const ScanEntry& e : ws.scan) ws.cycle.push_back(e.line);
     const std::size_t s = ws.cycle.size();
     ws.meets.assign(s, 0);
     for (std::size_t t = 0; t < s && s >= 2; ++t) ws.meets[t] = g.meets(ws.cycle[t], ws.cycle[(t + 1) % s]);

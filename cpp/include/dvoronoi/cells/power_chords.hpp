@@ -19,6 +19,7 @@
 //     the cell empty when none does.
 #pragma once
 
+#include "dvoronoi/cells/bisectors.hpp"  // ScanEntry
 #include "dvoronoi/cells/limited_cell.hpp"
 #include "dvoronoi/core/accurate.hpp"
 #include "dvoronoi/core/cell.hpp"
@@ -213,8 +214,14 @@ struct PowerGeometry {
     }
     /// Consecutive boundary chords j, k meet at x_jk in the closed disk (else an arc joins them).
     bool meets(int j, int k) const { return orient(j, k) > 0 && vertex_vs_end(j, k, +1) <= 0; }
-    int end_side(int m, int sigma, int j) const { return pred::power::chord_end_side(f, l(m), sigma, l(j)); }
+    /// Side of the chord end e_m^sigma w.r.t. L_j (-1 strictly inside H_j).
+    int endpoint_side(int m, int sigma, int j) const { return pred::power::chord_end_side(f, l(m), sigma, l(j)); }
+    /// Is x_jk strictly after the chord start e_j^- along L_j? Requires orient(j, k) != 0.
+    bool after_chord_start(int j, int k) const { return vertex_vs_end(j, k, -1) > 0; }
 };
+
+/// The chord bound of Boundary Scan's step 2 (cells/boundary_scan.hpp, scan_stack) on radical axes.
+inline bool chord_bound_ok(const PowerGeometry& g, int j, int k, int o) { return g.chord_bound_ok(j, k, o); }
 
 /// Step 2: the chords lines[first..) in the counter-clockwise order of their normals a_j, starting
 /// from the nearest radical axis (smallest signed s_j / |a_j|). Of axes with the same normal only the
@@ -279,7 +286,7 @@ inline bool power_cycle_is_cell(const PowerGeometry& g, const std::vector<int>& 
             const int a = cycle[t], b = cycle[(t + 1) % s];
             if (meets[t]) {
                 if (side_of_vertex(g.f, g.l(j), g.l(a), g.l(b), g.fl(j), g.fl(a), g.fl(b)) > 0) return false;
-            } else if (g.end_side(a, +1, j) > 0 || g.end_side(b, -1, j) > 0) {
+            } else if (g.endpoint_side(a, +1, j) > 0 || g.endpoint_side(b, -1, j) > 0) {
                 return false;
             }
         }
@@ -297,13 +304,8 @@ struct PowerChordWorkspace {
     std::vector<pred::power::FastLine> fast;
     std::vector<Index> ids;
     std::vector<int> order, from_start, cycle, kept;
-    std::vector<char> half, meets, in_cycle, removed;
-    struct Entry {
-        int line;
-        int o_prev;    // orient(line, predecessor)
-        bool ok_prev;  // chord_bound_ok(line, predecessor)
-    };
-    std::vector<Entry> scan;
+    std::vector<char> half, meets, in_cycle, removed, line_start;
+    std::vector<ScanEntry> scan;  // Boundary Scan's stack
     std::vector<Vec2> rel;
     std::vector<char> is_arc;
     std::vector<double> span;

@@ -21,53 +21,15 @@
 namespace dvoronoi {
 namespace detail {
 
-/// constructVor on the kept chords `seq` (sorted, seq[0] the start): ws.cycle, ws.meets.
+/// constructVor (cells/rcvc.hpp, construct_vor) on the kept chords `seq` (sorted, seq[0] the start)
+/// on the radical axes: ws.cycle, and ws.meets[t] when cycle[t] meets cycle[t+1] at a vertex.
 inline void power_walk(const PowerGeometry& g, const std::vector<int>& seq, PowerChordWorkspace& ws) {
     auto& st = ws.cycle;
-    auto& line_start = ws.meets;  // for now: st[t] starts at a 'line' vertex with st[t-1]
-    st.clear();
-    line_start.clear();
-    const std::size_t mk = seq.size();
-    st.push_back(seq[0]);
-    line_start.push_back(0);
-    for (std::size_t step = 1; step <= mk && mk > 1; ++step) {
-        const int k = seq[step % mk];
-        for (;;) {
-            const int j = st.back();
-            // Consecutive chords intersect in the disk when L_k's first end lies on or beyond L_j.
-            const bool intersect = k != j && g.end_side(k, -1, j) >= 0;
-            if (!intersect) {
-                if (step % mk != 0) {
-                    st.push_back(k);
-                    line_start.push_back(0);
-                } else {
-                    line_start[0] = 0;
-                }
-                break;
-            }
-            // Self-intersection test: the new vertex x_jk must lie after the vertex where L_j starts.
-            bool accepted;
-            if (st.size() >= 2 && line_start.back())
-                accepted = g.vertex_before(j, st[st.size() - 2], k);
-            else
-                accepted = g.vertex_vs_end(j, k, -1) > 0;
-            if (accepted || st.size() == 1) {
-                if (step % mk != 0) {
-                    st.push_back(k);
-                    line_start.push_back(1);
-                } else {
-                    line_start[0] = 1;
-                }
-                break;
-            }
-            st.pop_back();  // remove L_j and its vertex; retry with the previous chord
-            line_start.pop_back();
-        }
-    }
-    // Joint t (between st[t] and st[t+1]) is a 'line' vertex when st[t+1] starts at one.
+    auto& line_start = ws.line_start;  // st[t] starts at a 'line' vertex with st[t-1]
+    construct_vor(g, static_cast<int>(seq.size()), [&](int t) { return seq[static_cast<std::size_t>(t)]; }, st, line_start);
     const std::size_t s = st.size();
-    std::vector<char> starts(line_start);
-    for (std::size_t t = 0; t < s; ++t) line_start[t] = s >= 2 && starts[(t + 1) % s];
+    ws.meets.assign(s, 0);
+    for (std::size_t t = 0; t < s && s >= 2; ++t) ws.meets[t] = line_start[(t + 1) % s];
 }
 
 /// The cell of c (radius r) among cand with radii cand_r by the generalised RCVC; as
@@ -103,11 +65,11 @@ inline void power_rcvc(const Vec2& c, double r, const std::vector<Candidate>& ca
         for (int b = 0; b < m; ++b) {
             if (a == b || removed[static_cast<std::size_t>(b)]) continue;
             const int j = ws.order[static_cast<std::size_t>(a)], q = ws.order[static_cast<std::size_t>(b)];
-            if (g.end_side(q, -1, j) < 0 || g.end_side(q, +1, j) < 0) continue;
+            if (g.endpoint_side(q, -1, j) < 0 || g.endpoint_side(q, +1, j) < 0) continue;
             // Chord q misses j's open side of the disk: that side lies on one side of L_q, the side
             // of j's chord ends (both on L_q only when the axes coincide, opposite: no area).
-            int side = g.end_side(j, -1, q);
-            if (side == 0) side = g.end_side(j, +1, q);
+            int side = g.endpoint_side(j, -1, q);
+            if (side == 0) side = g.endpoint_side(j, +1, q);
             if (side >= 0) return;  // j's side of the disk is outside H_q: the cell is empty
             removed[static_cast<std::size_t>(b)] = 1;
         }
