@@ -377,21 +377,31 @@ inline bool certified_power_clip_loaded(LimitedCell& out, PowerClipWorkspace& w)
     // Step 1: classify (C4 = 4 r^2 |a|^2 - s^2, its terms bounded by 4 r^2 |a|^2 + ps^2).
     auto& chords = w.chords;
     auto& key = w.key;
-    chords.clear();
-    key.clear();
+    // Branch-free: which way a candidate goes is hard to predict, so every candidate is classified
+    // and the chords' indices written in one pass, and the verdicts combined after it.
+    if (chords.size() < w.m) chords.resize(w.m);
+    std::size_t nc = 0;
+    bool out_of_range = false, empty = false, unsure = false;
     for (std::size_t k = 0; k < w.m; ++k) {
         const double n2 = w.ax[k] * w.ax[k] + w.ay[k] * w.ay[k], sk = w.s[k], pk = w.ps[k];
-        if (!(pk > 1e-90 && pk < 1e90)) return false;
+        out_of_range |= !(pk > 1e-90 && pk < 1e90);
         const double fr = 4.0 * r2 * n2, c4 = fr - sk * sk, bc = 32.0 * kU * (fr + pk * pk);
         const double bs = 12.0 * kU * pk;
-        if (c4 < -bc) {  // the axis misses the disk: no effect, or the disk lies outside H_k
-            if (sk > bs) continue;
-            if (sk < -bs) return true;  // empty: out is the empty cell
-            return false;
-        }
-        if (!(c4 > bc) || !(n2 > 0.0)) return false;
-        chords.push_back(static_cast<int>(k));
-        key.push_back(sk * std::fabs(sk) / n2);
+        const bool misses = c4 < -bc, cuts = c4 > bc && n2 > 0.0;
+        empty |= misses & (sk < -bs);                        // the disk lies outside H_k
+        unsure |= !misses & !cuts;                           // tangent, or too close to call
+        unsure |= misses & !(sk < -bs) & !(sk > bs);
+        chords[nc] = static_cast<int>(k);
+        nc += cuts;
+    }
+    if (out_of_range) return false;
+    if (empty) return true;  // out is the empty cell, whatever the others
+    if (unsure) return false;
+    chords.resize(nc);
+    key.resize(nc);
+    for (std::size_t t = 0; t < nc; ++t) {
+        const auto k = static_cast<std::size_t>(chords[t]);
+        key[t] = w.s[k] * std::fabs(w.s[k]) / (w.ax[k] * w.ax[k] + w.ay[k] * w.ay[k]);
     }
     if (chords.empty()) {
         power_full_disk(w.c, r, out);

@@ -42,25 +42,10 @@ inline void power_boundary_scan(const Vec2& c, double r, const std::vector<Candi
                                 const std::vector<double>& cand_r, LimitedCell& out, PowerChordWorkspace& ws,
                                 Index self = -1) {
     const pred::power::Frame f{c, r};
-    power_empty_cell(c, r, static_cast<Index>(cand.size()), out);
-    ws.lines.clear();
-    ws.fast.clear();
-    ws.ids.clear();
     bool inside = true;
-    if (!collect_chords(f, cand, cand_r, self, ws.lines, ws.fast, ws.ids, inside)) return;  // Step 1
-    if (ws.lines.empty()) return power_full_disk(c, r, out);
+    if (!start_chords(f, cand, cand_r, self, out, ws, inside)) return;  // step 1 decided the cell
     const PowerGeometry g{f, ws.lines, ws.fast};
-    sort_chords(g, 0, ws.order, ws.half);
-    const std::size_t m = ws.order.size();
-    for (std::size_t start = 0; start < m; ++start) {
-        ws.from_start.assign(ws.order.begin() + static_cast<std::ptrdiff_t>(start), ws.order.end());
-        ws.from_start.insert(ws.from_start.end(), ws.order.begin(), ws.order.begin() + static_cast<std::ptrdiff_t>(start));
-        power_scan(g, ws.from_start, ws);
-        if (inside || power_cycle_is_cell(g, ws.order, ws.cycle, ws.meets, ws.in_cycle)) {
-            emit_power_cell(f, ws.lines, ws.ids, ws.cycle, ws.meets, out, ws.rel, ws.is_arc, ws.span);
-            return;
-        }
-    }
+    first_accepted_cycle(g, ws.order, inside, ws, out, [&](const std::vector<int>& seq) { power_scan(g, seq, ws); });
 }
 
 }  // namespace detail

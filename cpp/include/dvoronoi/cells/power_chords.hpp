@@ -381,4 +381,40 @@ inline void emit_power_cell(const pred::power::Frame& f, const std::vector<pred:
     out.measures_ = m;
 }
 
+/// Step 1 and the sort of the chord algorithms: ws.lines, ws.fast, ws.ids and ws.order (sorted, the
+/// nearest radical axis first). False when that already decides the cell (empty, or the whole disk:
+/// `out` holds it). `inside`: c lies strictly inside every chord's half-plane.
+inline bool start_chords(const pred::power::Frame& f, const std::vector<Candidate>& cand, const std::vector<double>& cand_r,
+                         Index self, LimitedCell& out, PowerChordWorkspace& ws, bool& inside) {
+    power_empty_cell(f.c, f.r, static_cast<Index>(cand.size()), out);
+    ws.lines.clear();
+    ws.fast.clear();
+    ws.ids.clear();
+    if (!collect_chords(f, cand, cand_r, self, ws.lines, ws.fast, ws.ids, inside)) return false;
+    if (ws.lines.empty()) {
+        power_full_disk(f.c, f.r, out);
+        return false;
+    }
+    sort_chords(PowerGeometry{f, ws.lines, ws.fast}, 0, ws.order, ws.half);
+    return true;
+}
+
+/// Runs cycle_from(seq) (the scan or the walk, writing ws.cycle and ws.meets) on `chords` rotated to
+/// start at each chord in turn, until the cycle is the cell, and emits it: at once when `inside`
+/// (Lemma 1: the first chord bounds the cell), else when power_cycle_is_cell accepts it. When no
+/// start is accepted the cell is empty (`out` stays as start_chords left it).
+template <class CycleFrom>
+void first_accepted_cycle(const PowerGeometry& g, const std::vector<int>& chords, bool inside, PowerChordWorkspace& ws,
+                          LimitedCell& out, CycleFrom&& cycle_from) {
+    for (std::size_t start = 0; start < chords.size(); ++start) {
+        ws.from_start.assign(chords.begin() + static_cast<std::ptrdiff_t>(start), chords.end());
+        ws.from_start.insert(ws.from_start.end(), chords.begin(), chords.begin() + static_cast<std::ptrdiff_t>(start));
+        cycle_from(ws.from_start);
+        if (inside || power_cycle_is_cell(g, chords, ws.cycle, ws.meets, ws.in_cycle)) {
+            emit_power_cell(g.f, ws.lines, ws.ids, ws.cycle, ws.meets, out, ws.rel, ws.is_arc, ws.span);
+            return;
+        }
+    }
+}
+
 }  // namespace dvoronoi::detail

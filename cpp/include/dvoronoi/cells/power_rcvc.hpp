@@ -47,15 +47,9 @@ inline void power_rcvc(const Vec2& c, double r, const std::vector<Candidate>& ca
                          ": use method \"scan\" (the same cells in O(m log m))");
     }
     const pred::power::Frame f{c, r};
-    power_empty_cell(c, r, static_cast<Index>(cand.size()), out);
-    ws.lines.clear();
-    ws.fast.clear();
-    ws.ids.clear();
     bool inside = true;
-    if (!collect_chords(f, cand, cand_r, self, ws.lines, ws.fast, ws.ids, inside)) return;
-    if (ws.lines.empty()) return power_full_disk(c, r, out);
+    if (!start_chords(f, cand, cand_r, self, out, ws, inside)) return;  // constructChords decided the cell
     const PowerGeometry g{f, ws.lines, ws.fast};
-    sort_chords(g, 0, ws.order, ws.half);  // constructChords
     const int m = static_cast<int>(ws.order.size());
 
     // checkChords.
@@ -80,15 +74,7 @@ inline void power_rcvc(const Vec2& c, double r, const std::vector<Candidate>& ca
     out.chords_after_check = static_cast<Index>(kept.size());
 
     // constructVor, from each kept chord in turn when the first need not bound the cell.
-    for (std::size_t start = 0; start < kept.size(); ++start) {
-        ws.from_start.assign(kept.begin() + static_cast<std::ptrdiff_t>(start), kept.end());
-        ws.from_start.insert(ws.from_start.end(), kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(start));
-        power_walk(g, ws.from_start, ws);
-        if (inside || power_cycle_is_cell(g, kept, ws.cycle, ws.meets, ws.in_cycle)) {
-            emit_power_cell(f, ws.lines, ws.ids, ws.cycle, ws.meets, out, ws.rel, ws.is_arc, ws.span);
-            return;
-        }
-    }
+    first_accepted_cycle(g, kept, inside, ws, out, [&](const std::vector<int>& seq) { power_walk(g, seq, ws); });
 }
 
 }  // namespace detail

@@ -124,7 +124,16 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
                 for (; pos < hi; ++pos) {
                     const auto pp = static_cast<std::size_t>(pos);
                     const auto i = static_cast<std::size_t>(order[pp]);
-                    const double r = radii[i];
+                    const double r = radius_at[pp];
+                    if (pos + detail::kWriteAhead < n) {  // this agent's results go to scattered places
+                        const auto a = static_cast<std::size_t>(order[pp + detail::kWriteAhead]);
+                        detail::prefetch_for_write(&out.areas[a]);
+                        detail::prefetch_for_write(&out.perimeters[a]);
+                        detail::prefetch_for_write(out.centroids.data() + 2 * a);
+                        detail::prefetch_for_write(&out.candidates[a]);
+                        detail::prefetch_for_write(&out.piece_ptr[a + 1]);
+                        detail::prefetch_for_write(&run_of[a]);
+                    }
                     // Agents that can shape the cell are closer than r + R_j <= r + R_max; the query
                     // radius is half the range, widened so that rounding never drops one (the exact
                     // classification of every route discards the extras).
@@ -194,6 +203,12 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     out.piece_span.reserve(total);
     out.piece_neighbor.reserve(total);
     for (std::size_t i = 0; i < un; ++i) {
+        // Runs are read in input order, scattered over the threads' lists: a few agents ahead are
+        // prefetched so that the misses overlap.
+        if (i + detail::kAhead < un) {
+            const auto [ta, aa] = run_of[i + detail::kAhead];
+            if (aa < lists[static_cast<std::size_t>(ta)].size()) detail::prefetch(&lists[static_cast<std::size_t>(ta)][aa]);
+        }
         const auto [t, at] = run_of[i];
         const std::size_t len = static_cast<std::size_t>(out.piece_ptr[i + 1] - out.piece_ptr[i]);
         for (std::size_t q = 0; q < len; ++q) {
