@@ -98,6 +98,7 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     out.centroids.resize(n, 2);
     out.candidates.assign(un, 0);
     out.piece_ptr.assign(un + 1, 0);  // counts, summed below
+    out.indptr.assign(un + 1, 0);     // the same
     detail::ProgressTracker tracker(progress, n);
     Index by_filter = 0, by_clipping = 0, by_scan = 0, by_chords = 0;
     // The radii in grid order: the fast path reads its candidates' radii next to their positions.
@@ -182,6 +183,9 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
                     run_of[i] = {me, mine.size()};
                     mine.insert(mine.end(), cell.pieces.begin(), cell.pieces.end());
                     out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
+                    Index edges = 0;  // one per neighbour: a chord bounds a convex cell once
+                    for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
+                    out.indptr[i + 1] = edges;
                 }
             } catch (...) {
                 tracker.fail(pos, order[static_cast<std::size_t>(pos)]);
@@ -195,33 +199,37 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     out.computed_by.scan = by_scan;
     out.computed_by.chords = by_chords;
 
-    out.indptr.assign(un + 1, 0);
-    for (std::size_t i = 0; i < un; ++i) out.piece_ptr[i + 1] += out.piece_ptr[i];  // counts to offsets
-    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
-    out.piece_x.reserve(total);
-    out.piece_y.reserve(total);
-    out.piece_span.reserve(total);
-    out.piece_neighbor.reserve(total);
+    // Counts to offsets; then each agent's run to its place in input order, and its neighbours
+    // sorted, in parallel (runs are read scattered over the threads' lists: a few agents ahead are
+    // prefetched so that the misses overlap).
     for (std::size_t i = 0; i < un; ++i) {
-        // Runs are read in input order, scattered over the threads' lists: a few agents ahead are
-        // prefetched so that the misses overlap.
+        out.piece_ptr[i + 1] += out.piece_ptr[i];
+        out.indptr[i + 1] += out.indptr[i];
+    }
+    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
+    out.piece_x.resize(total);
+    out.piece_y.resize(total);
+    out.piece_span.resize(total);
+    out.piece_neighbor.resize(total);
+    out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
+#pragma omp parallel for num_threads(team) schedule(static)
+    for (Index ii = 0; ii < n; ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
         if (i + detail::kAhead < un) {
             const auto [ta, aa] = run_of[i + detail::kAhead];
             if (aa < lists[static_cast<std::size_t>(ta)].size()) detail::prefetch(&lists[static_cast<std::size_t>(ta)][aa]);
         }
         const auto [t, at] = run_of[i];
-        const std::size_t len = static_cast<std::size_t>(out.piece_ptr[i + 1] - out.piece_ptr[i]);
+        const auto to = static_cast<std::size_t>(out.piece_ptr[i]);
+        const std::size_t len = static_cast<std::size_t>(out.piece_ptr[i + 1]) - to;
         for (std::size_t q = 0; q < len; ++q) {
             const Piece& p = lists[static_cast<std::size_t>(t)][at + q];
-            out.piece_x.push_back(p.start.x());
-            out.piece_y.push_back(p.start.y());
-            out.piece_span.push_back(p.arc_span);
-            out.piece_neighbor.push_back(p.neighbor);
-            if (!p.is_arc()) out.indices.push_back(p.neighbor);
+            out.piece_x[to + q] = p.start.x();
+            out.piece_y[to + q] = p.start.y();
+            out.piece_span[to + q] = p.arc_span;
+            out.piece_neighbor[to + q] = p.neighbor;
         }
-        std::sort(out.indices.begin() + out.indptr[i], out.indices.end());
-        out.indices.erase(std::unique(out.indices.begin() + out.indptr[i], out.indices.end()), out.indices.end());
-        out.indptr[i + 1] = static_cast<Index>(out.indices.size());
+        detail::sorted_edge_neighbors(out.piece_neighbor.data() + to, len, out.indices.data() + out.indptr[i]);
     }
     tracker.report_all();
     return out;
