@@ -54,3 +54,26 @@ TEST_CASE("a disk inside a bigger one is empty at step 1") {
     CHECK(c.measures().area == 0.0);
     CHECK(c.measures().centroid == Vec2(0.5, 0));
 }
+
+TEST_CASE("a ring of small disks cutting caps off a big one: an arc after every edge") {
+    // The big disk (r = 1) keeps all but k caps; the clipper holds 2 k vertices.
+    for (int k : {9, 16, 24}) {
+        std::vector<detail::Candidate> cand;
+        std::vector<double> rs;
+        detail::PowerClipWorkspace w;
+        w.start(Vec2(0, 0), 1.0);
+        for (int t = 0; t < k; ++t) {
+            const double a = 2 * 3.14159265358979 * t / k + 0.1, d = 1.05 + 0.001 * t;
+            cand.push_back({Vec2(d * std::cos(a), d * std::sin(a)), t});
+            rs.push_back(0.1);
+            w.add(cand.back().p, 0.1, t);
+        }
+        LimitedCell fast, exact;
+        REQUIRE(detail::certified_power_clip_loaded(fast, w));
+        detail::PowerWorkspace ws;
+        detail::power_cell(Vec2(0, 0), 1.0, cand, rs, exact, ws);
+        CHECK(fast.pieces.size() == static_cast<std::size_t>(2 * k));
+        CHECK(power_families::labels(fast) == power_families::labels(exact));
+        CHECK(fast.measures().area == doctest::Approx(exact.measures().area).epsilon(1e-13));
+    }
+}

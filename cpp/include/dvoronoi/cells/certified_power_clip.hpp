@@ -160,11 +160,14 @@ inline Vertex chord_vertex(const PowerClipWorkspace& w, std::size_t k, int sigma
 /// candidate index or kArcSide); no vertex at all is the whole disk.
 class Clipper {
 public:
+    /// Room for every cell of m chords: each chord bounds the cell once and an arc may follow it
+    /// (2 m vertices), and a cut adds at most two.
     explicit Clipper(PowerClipWorkspace& w) : w_(w) {
-        if (w_.cur.size() < w_.m + 8) {
-            w_.cur.resize(w_.m + 8);
-            w_.next.resize(w_.m + 8);
-            w_.flags.resize(w_.m + 8);
+        const std::size_t room = 2 * w_.m + 4;
+        if (w_.cur.size() < room) {
+            w_.cur.resize(room);
+            w_.next.resize(room);
+            w_.flags.resize(room);
         }
     }
 
