@@ -10,10 +10,11 @@
 //      neighbours" (PowerGeometry::keeps), then a loop back to the first chord;
 //   3. the labelled vertex set: consecutive chords meeting at a vertex or joined by an arc.
 // Lemma 1 (the first chord bounds the cell, so it is never popped) holds when c lies strictly inside
-// every chord's half-plane. Otherwise the scan starts from each chord in turn, nearest axis first,
-// until power_cycle_is_cell accepts the cycle; a chord that bounds the cell is a right start (the
-// scan from it is the paper's), so when none is accepted the cell is empty. Crescents away from c
-// usually take one or two starts.
+// every chord's half-plane. Otherwise the scan starts again from another chord until
+// power_cycle_is_cell accepts the cycle; a chord that bounds the cell is a right start (the scan from
+// it is the paper's), and no scan ever drops one, so the next start is taken among the chords that
+// every cycle so far kept, and the cell is empty when none is left. Crescents usually take one or
+// two starts, empty cells a few.
 #pragma once
 
 #include "dvoronoi/cells/boundary_scan.hpp"
@@ -45,7 +46,34 @@ inline void power_boundary_scan(const Vec2& c, double r, const std::vector<Candi
     bool inside = true;
     if (!start_chords(f, cand, cand_r, self, out, ws, inside)) return;  // step 1 decided the cell
     const PowerGeometry g{f, ws.lines, ws.fast};
-    first_accepted_cycle(g, ws.order, inside, ws, out, [&](const std::vector<int>& seq) { power_scan(g, seq, ws); });
+    const auto& order = ws.order;
+    const std::size_t m = order.size();
+    // Which chords may still bound the cell. A chord that bounds a nonempty cell keeps a part of
+    // positive length between any two others, so no scan pops or skips it, whatever its start:
+    // every scan's cycle holds all of them. So the next start is taken among the chords of every
+    // cycle so far, and when none is left the cell is empty.
+    auto& maybe = ws.removed;  // scratch
+    maybe.assign(ws.lines.size(), 1);
+    std::size_t start = 0;
+    for (;;) {
+        ws.from_start.assign(order.begin() + static_cast<std::ptrdiff_t>(start), order.end());
+        ws.from_start.insert(ws.from_start.end(), order.begin(), order.begin() + static_cast<std::ptrdiff_t>(start));
+        power_scan(g, ws.from_start, ws);
+        if (inside || power_cycle_is_cell(g, order, ws.cycle, ws.meets, ws.in_cycle)) {
+            emit_power_cell(f, ws.lines, ws.ids, ws.cycle, ws.meets, out, ws.rel, ws.is_arc, ws.span);
+            return;
+        }
+        // in_cycle: the cycle's chords (power_cycle_is_cell marks them before it can fail on another).
+        ws.in_cycle.assign(ws.lines.size(), 0);
+        for (const int j : ws.cycle) ws.in_cycle[static_cast<std::size_t>(j)] = 1;
+        for (std::size_t t = 0; t < ws.lines.size(); ++t) maybe[t] = maybe[t] && ws.in_cycle[t];
+        maybe[static_cast<std::size_t>(order[start])] = 0;  // tried
+        std::size_t next = m;
+        for (std::size_t d = 1; d < m && next == m; ++d)
+            if (maybe[static_cast<std::size_t>(order[(start + d) % m])]) next = (start + d) % m;
+        if (next == m) return;  // no chord can bound the cell: it is empty
+        start = next;
+    }
 }
 
 }  // namespace detail

@@ -56,14 +56,19 @@ inline void require_distinct_weighted(const Points& pts, const std::vector<doubl
 /// agent: is_empty(i)).
 ///
 /// With every radius equal this is limited_cells(points, radius, method, threads, progress) itself
-/// (the same result, bit for bit; `radii` stays empty). Otherwise the cells are computed by
-/// cells/power_cell.hpp (computed_by.power counts them) and `method` must be Auto.
+/// (the same result, bit for bit; `radii` stays empty). Otherwise, by `method` (the same cells;
+/// computed_by counts which algorithm computed each):
+///   - Auto: the certified clipping of cells/certified_power_clip.hpp (computed_by.clip), the exact
+///     clipping of cells/power_cell.hpp where it gives up (computed_by.power);
+///   - Scan: Boundary Scan on the radical axes, cells/power_boundary_scan.hpp (computed_by.scan);
+///   - Chords: RCVC on the radical axes, cells/power_rcvc.hpp (computed_by.chords).
 ///
-/// \throws InputError naming `radii` when its length is not n or a radius is not positive and finite,
-///         naming `method` for Scan or Chords with unequal radii; CoincidentError for two agents with
-///         the same position and radius (lowest pair named); RangeError as limited_cells.
-/// \note O(n m k) work: m agents within R_i + R_max, k vertices per cell; memory O(n k). Thread-safe.
-///       Results do not depend on `threads`.
+/// \throws InputError naming `radii` when its length is not n or a radius is not positive and finite;
+///         CoincidentError for two agents with the same position and radius (lowest pair named);
+///         RangeError as limited_cells (Chords: more than kMaxChordsCandidates agents in reach).
+/// \note Per agent, m agents within R_i + R_max: O(m) for Auto in a swarm, O(m log m) for Scan when
+///       the agent lies in its cell (a few restarts otherwise), O(m^2) for Chords; memory O(n k) for k
+///       pieces per cell. Thread-safe. Results do not depend on `threads`.
 inline LimitedPartition limited_cells(PointsRef points, const std::vector<double>& radii, Method method = Method::Auto,
                                       int threads = 0, const ProgressFn& progress = nullptr) {
     detail::require_finite_points(points, "points");
