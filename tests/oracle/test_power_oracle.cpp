@@ -62,28 +62,28 @@ std::vector<std::set<std::size_t>> check_team(const Team& t) {
     const auto oracle = dvoronoi_oracle::compute_power_oracle(t.points, t.radii);
     std::vector<std::set<std::size_t>> first;
     for (const dvoronoi::Method method : kMethods) {
-    INFO("case ", t.name, " method ", dvoronoi::method_name(method));
-    const dvoronoi::LimitedPartition part = dvoronoi::limited_cells(to_points(t.points), t.radii, method, 2);
-    const auto got = sets_of(part);
-    int reports = 0;
-    for (std::size_t i = 0; i < t.points.size(); ++i) {
-        const bool ok_sets = got[i] == oracle.limited_neighbors[i];
-        const bool ok_empty = part.is_empty(static_cast<dvoronoi::Index>(i)) == oracle.empty[i];
-        const double r = t.radii[i];
-        const bool ok_area = std::fabs(part.areas[i] - oracle.areas[i]) <= 1e-9 * oracle.areas[i] + 1e-12 * r * r;
-        if ((!ok_sets || !ok_empty || !ok_area) && reports++ < 8) {
-            INFO("agent ", i, " at (", t.points[i][0], ", ", t.points[i][1], ") R=", r, " area ", part.areas[i], " oracle ",
-                 oracle.areas[i], " empty ", part.is_empty(static_cast<dvoronoi::Index>(i)), " oracle ", oracle.empty[i],
-                 " neighbours ", show(got[i]), " oracle ", show(oracle.limited_neighbors[i]));
-            CHECK(ok_sets);
-            CHECK(ok_empty);
-            CHECK(ok_area);
+        INFO("case ", t.name, " method ", dvoronoi::method_name(method));
+        const dvoronoi::LimitedPartition part = dvoronoi::limited_cells(to_points(t.points), t.radii, method, 2);
+        const auto got = sets_of(part);
+        int reports = 0;
+        for (std::size_t i = 0; i < t.points.size(); ++i) {
+            const bool ok_sets = got[i] == oracle.limited_neighbors[i];
+            const bool ok_empty = part.is_empty(static_cast<dvoronoi::Index>(i)) == oracle.empty[i];
+            const double r = t.radii[i];
+            const bool ok_area = std::fabs(part.areas[i] - oracle.areas[i]) <= 1e-9 * oracle.areas[i] + 1e-12 * r * r;
+            if ((!ok_sets || !ok_empty || !ok_area) && reports++ < 8) {
+                INFO("agent ", i, " at (", t.points[i][0], ", ", t.points[i][1], ") R=", r, " area ", part.areas[i], " oracle ",
+                     oracle.areas[i], " empty ", part.is_empty(static_cast<dvoronoi::Index>(i)), " oracle ", oracle.empty[i],
+                     " neighbours ", show(got[i]), " oracle ", show(oracle.limited_neighbors[i]));
+                CHECK(ok_sets);
+                CHECK(ok_empty);
+                CHECK(ok_area);
+            }
+            // The oracle's own consistency: limited neighbours are power neighbours.
+            for (std::size_t j : oracle.limited_neighbors[i]) CHECK(oracle.power_neighbors[i].count(j) == 1);
         }
-        // The oracle's own consistency: limited neighbours are power neighbours.
-        for (std::size_t j : oracle.limited_neighbors[i]) CHECK(oracle.power_neighbors[i].count(j) == 1);
-    }
-    CHECK(reports == 0);
-    if (first.empty()) first = got;
+        CHECK(reports == 0);
+        if (first.empty()) first = got;
     }
     return first;
 }
@@ -104,16 +104,16 @@ void check_transforms(const Team& t, const std::vector<std::set<std::size_t>>& b
             c.radii.push_back(t.radii[perm[k]] * scale);
         }
         for (const dvoronoi::Method method : kMethods) {
-        const auto part = dvoronoi::limited_cells(to_points(c.points), c.radii, method, 1);
-        const auto got = sets_of(part);
-        bool same = true;
-        for (std::size_t k = 0; k < n; ++k) {
-            std::set<std::size_t> mapped;
-            for (std::size_t j : got[k]) mapped.insert(perm[j]);
-            same = same && mapped == base[perm[k]];
-        }
-        INFO("transformed copy ", c.name, " method ", dvoronoi::method_name(method));
-        CHECK(same);
+            const auto part = dvoronoi::limited_cells(to_points(c.points), c.radii, method, 1);
+            const auto got = sets_of(part);
+            bool same = true;
+            for (std::size_t k = 0; k < n; ++k) {
+                std::set<std::size_t> mapped;
+                for (std::size_t j : got[k]) mapped.insert(perm[j]);
+                same = same && mapped == base[perm[k]];
+            }
+            INFO("transformed copy ", c.name, " method ", dvoronoi::method_name(method));
+            CHECK(same);
         }
     };
     run("permuted", [](const XY& p) { return p; }, 1.0);
