@@ -15,8 +15,9 @@
 //     antiparallel axis bounds nothing or leaves nothing;
 //   - a chord that another cuts away may mean an empty cell rather than a redundant chord;
 //   - when c is not strictly inside its cell no chord is known to bound it in advance: the algorithms
-//     start from each chord in turn until power_cycle_is_cell accepts the result (exact), or report
-//     the cell empty when none does.
+//     start again from other chords until power_cycle_is_cell accepts the result (exact), and report
+//     the cell empty when no start is left (RCVC tries every kept chord; Boundary Scan only those
+//     that every scan so far kept, cells/power_boundary_scan.hpp).
 #pragma once
 
 #include "dvoronoi/cells/bisectors.hpp"  // ScanEntry
@@ -399,8 +400,8 @@ inline bool start_chords(const pred::power::Frame& f, const std::vector<Candidat
     return true;
 }
 
-/// Runs cycle_from(seq) (the scan or the walk, writing ws.cycle and ws.meets) on `chords` rotated to
-/// start at each chord in turn, until the cycle is the cell, and emits it: at once when `inside`
+/// Runs cycle_from(seq) (RCVC's walk, writing ws.cycle and ws.meets) on `chords` rotated to start at
+/// each chord in turn, until the cycle is the cell, and emits it: at once when `inside`
 /// (Lemma 1: the first chord bounds the cell), else when power_cycle_is_cell accepts it. When no
 /// start is accepted the cell is empty (`out` stays as start_chords left it).
 template <class CycleFrom>
