@@ -43,7 +43,16 @@ TEST_CASE("checkChords: a chord beyond another is redundant or leaves an empty c
 TEST_CASE("more agents than RCVC accepts name the method") {
     std::vector<detail::Candidate> cand;
     std::vector<double> rs;
-    for (std::size_t k = 0; k <= kMaxChordsCandidates; ++k) cand.push_back({Vec2(1e-3 * static_cast<double>(k + 1), 0), static_cast<Index>(k)}), rs.push_back(2.0);
+    // Agents on a circle of radius 1.5 around c, radius 1: every radical axis cuts the unit disk.
+    for (std::size_t k = 0; k <= kMaxChordsCandidates; ++k) {
+        const double a = 6.283185307179586 * static_cast<double>(k) / static_cast<double>(kMaxChordsCandidates + 1);
+        cand.push_back({Vec2(1.5 * std::cos(a), 1.5 * std::sin(a)), static_cast<Index>(k)});
+        rs.push_back(1.0);
+    }
     LimitedCell c;
     CHECK_THROWS_WITH_AS(walk(Vec2(0, 0), 1.0, cand, rs, c), doctest::Contains("chords"), RangeError);
+    // As many agents far away (their axes miss the disk) are no reason to refuse.
+    for (auto& q : cand) q.p *= 10.0;
+    walk(Vec2(0, 0), 1.0, cand, rs, c);
+    CHECK(c.pieces.size() == 1);  // the whole disk
 }

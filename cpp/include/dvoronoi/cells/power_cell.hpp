@@ -191,7 +191,7 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
 ///
 /// \throws InputError for a bad radius, radii of the wrong length, non-finite coordinates;
 ///         CoincidentError for an agent of `others` at `center` with the same radius; RangeError for
-///         Chords with more than kMaxChordsCandidates agents.
+///         Chords with more than kMaxChordsCandidates radical axes cutting the disk.
 /// \note Thread-safe (pure function). O(m k) for Auto (m agents within radius + R_j, k vertices of the
 ///       cell), O(m log m) for Scan when the agent lies in its cell (else a few restarts), O(m^2) for Chords.
 inline LimitedCell power_limited_cell(const Vec2& center, PointsRef others, double radius,

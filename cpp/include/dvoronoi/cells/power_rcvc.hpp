@@ -1,7 +1,7 @@
 // RCVC (Guruprasad & Dasgupta, IROS 2012) generalised to a heterogeneous team: agent c's cell
 // W = power cell (weights R^2) ∩ B(c, r) by the paper's constructChords, checkChords and constructVor
 // on the chords of c's own circle cut by the radical axes (docs/spec.md, heterogeneous teams).
-// Quadratic in the chords, as published (kMaxChordsCandidates bounds the agents, as for equal radii).
+// Quadratic in the chords, as published (at most kMaxChordsCandidates of them, as for equal radii).
 //
 //   constructChords: the chords sorted counter-clockwise by the axes' normals from the nearest
 //     radical axis (cells/power_chords.hpp).
@@ -34,21 +34,21 @@ inline void power_walk(const PowerGeometry& g, const std::vector<int>& seq, Powe
 
 /// The cell of c (radius r) among cand with radii cand_r by the generalised RCVC; as
 /// power_boundary_scan otherwise.
-/// \throws RangeError for more than kMaxChordsCandidates candidates; CoincidentError as
+/// \throws RangeError for more than kMaxChordsCandidates chords; CoincidentError as
 ///         power_boundary_scan.
 inline void power_rcvc(const Vec2& c, double r, const std::vector<Candidate>& cand, const std::vector<double>& cand_r,
                        LimitedCell& out, PowerChordWorkspace& ws, Index self = -1) {
-    if (cand.size() > kMaxChordsCandidates) {
-        char rs[32];
-        std::snprintf(rs, sizeof rs, "%.17g", r);
-        throw RangeError("method \"chords\" (RCVC, quadratic in the agents within reach) accepts at most " +
-                         std::to_string(kMaxChordsCandidates) + " agents within r + R_j of an agent; this one (radius " +
-                         rs + ") has " + std::to_string(cand.size()) +
-                         ": use method \"scan\" (the same cells in O(m log m))");
-    }
     const pred::power::Frame f{c, r};
     bool inside = true;
     if (!start_chords(f, cand, cand_r, self, out, ws, inside)) return;  // constructChords decided the cell
+    if (ws.lines.size() > kMaxChordsCandidates) {  // the agents whose radical axes cut the disk
+        char rs[32];
+        std::snprintf(rs, sizeof rs, "%.17g", r);
+        throw RangeError("method \"chords\" (RCVC, quadratic in the chords) accepts at most " +
+                         std::to_string(kMaxChordsCandidates) + " agents whose radical axis cuts an agent's disk; this one (radius " +
+                         rs + ") has " + std::to_string(ws.lines.size()) +
+                         ": use method \"scan\" (the same cells in O(m log m))");
+    }
     const PowerGeometry g{f, ws.lines, ws.fast};
     const int m = static_cast<int>(ws.order.size());
 

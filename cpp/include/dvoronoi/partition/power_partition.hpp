@@ -65,7 +65,8 @@ inline void require_distinct_weighted(const Points& pts, const std::vector<doubl
 ///
 /// \throws InputError naming `radii` when its length is not n or a radius is not positive and finite;
 ///         CoincidentError for two agents with the same position and radius (lowest pair named);
-///         RangeError as limited_cells (Chords: more than kMaxChordsCandidates agents in reach).
+///         RangeError as limited_cells (Chords: more than kMaxChordsCandidates radical axes cutting
+///         an agent's disk).
 /// \note Per agent, m agents within R_i + R_max: O(m) for Auto in a swarm, O(m log m) for Scan when
 ///       the agent lies in its cell (a few restarts otherwise), O(m^2) for Chords; memory O(n k) for k
 ///       pieces per cell. Thread-safe. Results do not depend on `threads`.
