@@ -275,8 +275,9 @@ radius : float
     The cell radius R > 0.
 method : {"auto", "scan", "chords"}
     "scan": Boundary Scan (He, Feng & Ren 2018), O(m log m). "chords": RCVC (Guruprasad &
-    Dasgupta 2012), O(m^2) worst case. "auto" (default): for one agent, Boundary Scan. All
-    return the same cell.
+    Dasgupta 2012), O(m^2) worst case. "auto" (default): for one agent, Boundary Scan (with
+    other_radii: the exact power-cell clipping; "scan" and "chords" then run on the radical
+    axes). All return the same cell.
 other_radii : (m,) array-like of float, optional
     Heterogeneous teams: the radius of each agent of `others`. The cell is then the power cell
     (weights R^2) clipped to B(center, radius), which may be empty (no pieces) or not contain
@@ -455,8 +456,8 @@ void bind_cells(py::module_& m) {
                 return d;
             },
             "How many cells each algorithm computed: {\"clip\": certified clipping filter (auto), "
-            "\"scan\": Boundary Scan, \"chords\": RCVC, \"power\": power-cell clipping (one radius per "
-            "agent)}; the values add up to n.")
+            "\"scan\": Boundary Scan, \"chords\": RCVC, \"power\": exact power-cell clipping (one radius "
+            "per agent, auto, where the filter gave up)}; the values add up to n.")
         .def_property_readonly(
             "radii",
             [](const Self& s) {

@@ -161,10 +161,14 @@ def heterogeneous(dv, n: int, args, out) -> None:
         out(f"| `limited_cells`, {name} | {row[0]:.3f} | {row[1]:.3f} |")
     eq, het = times["equal radius R"], times["radii in [0.5R, 1.5R]"]
     part = dv.limited_cells(pts, radii, progress=False)
+    # The published algorithms generalised to radical axes, 1 thread (slower: --hetero-methods).
+    for m in args.hetero_methods:
+        t = best_of(args.reps, lambda: dv.limited_cells(pts, radii, method=m, workers=1, progress=False))[0]
+        out(f"| `limited_cells`, radii in [0.5R, 1.5R], `method=\"{m}\"` | {t:.3f} | — |")
     out()
     out(f"Ratio heterogeneous / equal radius: {het[0] / eq[0]:.2f} x (1 thread), {het[1] / eq[1]:.2f} x "
         f"(all cores). Mean agents examined per cell: {part.candidates.mean():.1f}; "
-        f"empty cells: {int(part.empty.sum())}.")
+        f"empty cells: {int(part.empty.sum())}; computed by: {part.computed_by}.")
     out()
 
 
@@ -187,6 +191,8 @@ def main(argv=None) -> int:
     ap.add_argument("--out", type=Path, help="also write the markdown report to this file")
     ap.add_argument("--hetero-only", action="store_true",
                     help="only the heterogeneous-team comparison (section 3)")
+    ap.add_argument("--hetero-methods", type=lambda v: [m for m in v.split(",") if m], default=[],
+                    help="also time these methods with per-agent radii, 1 thread (e.g. scan,chords)")
     ap.add_argument("--quick", action="store_true",
                     help="small smoke run: n = 1e4, C++ n = 1e5, subset 300, 1 rep")
     args = ap.parse_args(argv)

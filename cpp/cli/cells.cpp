@@ -99,7 +99,8 @@ Command add_cells(CLI::App& parent) {
     sub->add_option("-m,--method", o->method,
                     "algorithm: auto (our certified clipping fast path, Boundary Scan where it gives "
                     "up), scan (Boundary Scan on every agent, O(m log m)) or chords (RCVC on every "
-                    "agent, O(m^2) worst case); same cells")
+                    "agent, O(m^2) worst case); same cells. With a radius column all three run on the "
+                    "radical axes (auto's fallback is the exact power-cell clipping)")
         ->check(CLI::IsMember({"auto", "scan", "chords"}))
         ->capture_default_str();
     sub->add_option("-o,--output", o->output,

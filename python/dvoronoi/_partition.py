@@ -37,8 +37,9 @@ class LimitedPartition(CellResult):
         ``"auto"``, ``"scan"`` or ``"chords"``.
     computed_by : dict
         How many cells each algorithm computed: ``{"clip": ..., "scan": ..., "chords": ...,
-        "power": ...}`` (the certified clipping filter, Boundary Scan, RCVC, the power-cell clipping of
-        heterogeneous teams); the values add up to n.
+        "power": ...}`` (the certified clipping filter, Boundary Scan, RCVC, and for heterogeneous
+        teams under "auto" the exact power-cell clipping where the filter gave up); the values add
+        up to n.
     indptr, indices : int64
         Limited neighbours in scipy's CSR layout (ascending per agent).
     areas, perimeters : (n,) float64
@@ -229,6 +230,10 @@ def limited_cells(points: Any, radius: Any, method: str = "auto", workers: Optio
         - ``"scan"``: Boundary Scan (He, Feng & Ren 2018) on every agent, O(m log m).
         - ``"chords"``: RCVC (Guruprasad & Dasgupta 2012) on every agent, O(m^2) worst case, so at
           most 1024 agents within 2R of any agent.
+
+        With one radius per agent all three run on the radical axes (:doc:`heterogeneous`): "auto"
+        a certified clipping filter with the exact power-cell clipping behind it, "scan" and
+        "chords" Boundary Scan and RCVC generalised to cells that need not contain their agent.
     workers : int, optional
         Worker threads: None or -1 uses every core, k >= 1 uses k. The result does not depend on
         it. (``threads=`` is a deprecated alias, 0 = every core.)
@@ -249,7 +254,7 @@ def limited_cells(points: Any, radius: Any, method: str = "auto", workers: Optio
         range (below), naming the agent: ``points[17]: out of the exact range ...``; "chords" with
         more than 1024 agents within 2R of an agent. Per-agent radii: a wrong length or shape, a
         radius that is not positive and finite (the message names ``radius[i]``), two agents with the
-        same position and radius, ``method`` other than "auto" with unequal radii.
+        same position and radius.
     TypeError
         Non-numeric input (a radius given as a string, too).
 

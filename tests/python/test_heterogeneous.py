@@ -76,7 +76,9 @@ def test_equal_radii_are_the_scalar_call_bit_for_bit():
 def test_areas_sum_to_the_union_of_the_disks(seed):
     pts, radii = team(300, seed, R=0.06 if seed < 2 else 0.15)
     part = dv.limited_cells(pts, radii)
-    assert part.computed_by == {"clip": 0, "scan": 0, "chords": 0, "power": len(pts)}
+    ran = part.computed_by
+    assert ran["clip"] + ran["power"] == len(pts) and ran["scan"] == ran["chords"] == 0
+    assert ran["clip"] > 0.9 * len(pts)  # the certified fast path decides nearly every cell
     assert part.areas.sum() == pytest.approx(union_area(pts, radii), rel=1e-9)
     assert np.all(part.areas <= np.pi * radii**2 * (1 + 1e-12))
 
@@ -102,7 +104,7 @@ def test_crescent_the_agent_outside_its_cell():
     cell = part.cell(1)
     assert cell.radius == 1.0 and cell.neighbors.tolist() == [0]
     one = dv.limited_cell([9.5, 0], [[0, 0]], 1.0, other_radii=[10.0])
-    assert one.area == pytest.approx(part.areas[1], rel=1e-15)
+    assert one.area == pytest.approx(part.areas[1], rel=1e-12)
 
 
 def test_neighbours_are_symmetric_and_invariant():
@@ -140,12 +142,10 @@ def test_bad_radii_name_the_argument():
         dv.limited_cells(pts, np.ones((3, 1)))
     with pytest.raises(ValueError, match="radius"):
         dv.limited_cells(pts, ["a", "b", "c"])
-    with pytest.raises(ValueError, match="method"):
-        dv.limited_cells(pts, [1.0, 2.0, 1.0], method="scan")
     with pytest.raises(ValueError, match="other_radii"):
         dv.limited_cell([0, 0], pts, 1.0, other_radii=[1.0])
     with pytest.raises(ValueError, match="method"):
-        dv.limited_cell([0, 0], [[1, 0]], 1.0, method="chords", other_radii=[2.0])
+        dv.limited_cells(pts, [1.0, 2.0, 1.0], method="clip")
     with pytest.raises(dv.CoincidentError, match="points\\[1\\] and points\\[2\\]"):
         dv.limited_cells([[0, 0], [1, 1], [1, 1]], [1.0, 2.0, 2.0])
     dv.limited_cells([[0, 0], [1, 1], [1, 1]], [1.0, 2.0, 3.0])  # same place, different radii: allowed

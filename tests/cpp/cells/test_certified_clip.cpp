@@ -162,3 +162,20 @@ TEST_CASE("limited_cells through the filter equals the per-agent Boundary Scan")
         }
     }
 }
+
+TEST_CASE("a ring of agents near 2R: an arc after every edge (the filter's buffers hold 2 m vertices)") {
+    for (int k : {9, 16, 24}) {
+        std::vector<detail::Candidate> cand;
+        for (int t = 0; t < k; ++t) {
+            const double a = 2 * 3.14159265358979 * t / k + 0.1, d = 1.99 + 0.0001 * t;
+            cand.push_back({Vec2(d * std::cos(a), d * std::sin(a)), t});
+        }
+        LimitedCell clipped, scanned;
+        detail::ClipWorkspace cw;
+        detail::CellWorkspace ws;
+        REQUIRE(detail::certified_clip_cell(Vec2(0, 0), cand, 1.0, clipped, cw));
+        detail::boundary_scan(Vec2(0, 0), cand, 1.0, scanned, ws);
+        CHECK(clipped.pieces.size() == static_cast<std::size_t>(2 * k));
+        CHECK(same_cell(clipped, scanned));
+    }
+}

@@ -39,7 +39,7 @@ TEST_CASE("crescent: the agent outside its own cell (the issue's example)") {
     // R = 10 at the origin, R = 1 at (9.5, 0): agent 1 keeps the part of its disk outside the big one.
     const Points P = pts({{0, 0}, {9.5, 0}});
     const LimitedPartition part = limited_cells(P, std::vector<double>{10.0, 1.0}, Method::Auto, 1);
-    CHECK(part.computed_by.power == 2);
+    CHECK(part.computed_by.clip + part.computed_by.power == 2);
     CHECK(!part.is_empty(1));
     // W_1 is the cap of B_1 beyond the radical axis, at h = (d^2 + R_0^2 - R_1^2) / 2d - d from p_1.
     const double h = (9.5 * 9.5 + 100.0 - 1.0) / 19.0 - 9.5;
@@ -134,7 +134,6 @@ TEST_CASE("bad radii name the argument") {
     CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0}), doctest::Contains("radius"), InputError);
     CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0, -1.0}), doctest::Contains("radius"), InputError);
     CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0, NAN}), doctest::Contains("radius"), InputError);
-    CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0, 2.0}, Method::Scan), doctest::Contains("method"), InputError);
 }
 
 TEST_CASE("nearly tangent disks: a tiny cap and a disk minus a tiny cap") {
@@ -165,9 +164,23 @@ TEST_CASE("nearly tangent disks: a tiny cap and a disk minus a tiny cap") {
     }
 }
 
-TEST_CASE("one agent: methods other than auto need equal radii") {
+TEST_CASE("every method with unequal radii, and computed_by says which ran") {
     const Points others = pts({{1, 0}});
-    CHECK_THROWS_WITH_AS(power_limited_cell(Vec2(0, 0), others, 1.0, {2.0}, Method::Chords), doctest::Contains("method"), InputError);
-    CHECK(power_limited_cell(Vec2(0, 0), others, 1.0, {1.0}, Method::Chords).neighbors() == std::vector<Index>{0});
+    for (Method m : {Method::Auto, Method::Scan, Method::Chords}) {
+        CHECK(power_limited_cell(Vec2(0, 0), others, 1.0, {1.5}, m).neighbors() == std::vector<Index>{0});
+        CHECK(power_limited_cell(Vec2(0, 0), others, 1.0, {2.0}, m).pieces.empty());  // inside, tangent
+        CHECK(power_limited_cell(Vec2(0, 0), others, 1.0, {1.0}, m).neighbors() == std::vector<Index>{0});
+    }
+    const Points P = pts({{0, 0}, {9.5, 0}, {0, 10.5}, {3, 3}});
+    const std::vector<double> R{10.0, 1.0, 1.0, 0.5};
+    const LimitedPartition a = limited_cells(P, R, Method::Auto, 1), s = limited_cells(P, R, Method::Scan, 1),
+                           c = limited_cells(P, R, Method::Chords, 1);
+    CHECK(a.computed_by.clip + a.computed_by.power == 4);
+    CHECK(s.computed_by.scan == 4);
+    CHECK(c.computed_by.chords == 4);
+    CHECK(s.computed_by.clip + s.computed_by.power + c.computed_by.power == 0);
+    CHECK(a.indices == s.indices);
+    CHECK(a.indices == c.indices);
+    CHECK(a.is_empty(3));
     CHECK_THROWS_WITH_AS(power_limited_cell(Vec2(0, 0), others, 1.0, {1.0, 2.0}), doctest::Contains("other_radii"), InputError);
 }

@@ -33,26 +33,21 @@ inline bool chord_bound_ok(const LineGeometry& g, int j, int k, int o) {
     return true;
 }
 
-/// Boundary Scan on candidates already known to lie strictly within 2R of c.
-inline void boundary_scan(const Vec2& c, const std::vector<Candidate>& cand, double radius,
-                          LimitedCell& out, CellWorkspace& ws) {
-    sorted_bisectors(c, cand, ws);  // Step 1
-    out.candidates = static_cast<Index>(cand.size());
-    out.chords_after_check = -1;
-    const auto& L = ws.lines;
-    const int m = static_cast<int>(L.size());
-    const LineGeometry g{c, L, radius};
-    auto& st = ws.scan;
+/// Step 2, the scan, on m lines in sorted order (at(t): the t-th line's index; at(0) bounds the
+/// cell, Lemma 1), with the geometry `g` (LineGeometry here, PowerGeometry for radical axes:
+/// orient, vertex_before, and chord_bound_ok(g, j, k, o)). Leaves the boundary lines on `st`.
+/// b_j on top keeps a part of positive length between its neighbours b_i (below) and b_k when both
+/// chord bounds leave part of the chord and, if one bounds from below and the other from above, the
+/// lower vertex comes first; otherwise it is cut away (case 4). The scan loops back to at(0) to close
+/// the loop (it only pops), so case (2) is settled.
+template <class Geometry, class At>
+void scan_stack(const Geometry& g, int m, const At& at, std::vector<ScanEntry>& st) {
     st.clear();
-    if (m > 0) st.push_back({0, 0, true});
-    // Step 2: scan b_1 .. b_{m-1}, then b_0 again to close the loop (it only pops). b_j on top keeps
-    // a part of positive length between its neighbours b_i (below) and b_k when both chord bounds
-    // leave part of the chord and, if one bounds from below and the other from above, the lower
-    // vertex comes first; otherwise it is cut away (case 4).
+    if (m > 0) st.push_back({at(0), 0, true});
     for (int step = 1; step <= m && m > 1; ++step) {
-        const int k = step % m;
+        const int k = at(step % m);
         int tested = -1, o_tested = 0;
-        if (k != 0) {
+        if (step != m) {
             tested = st.back().line;
             o_tested = g.orient(k, tested);
             if (!chord_bound_ok(g, k, tested, o_tested)) continue;  // case (3): b_k outside b_j's half-plane
@@ -67,12 +62,25 @@ inline void boundary_scan(const Vec2& c, const std::vector<Candidate>& cand, dou
             if (keep) break;  // cases (1), (2), (5): b_j stays
             st.pop_back();    // case (4): b_j is cut away
         }
-        if (k != 0) {
+        if (step != m) {
             const int top = st.back().line;
             const int o = top == tested ? o_tested : g.orient(k, top);
             st.push_back({k, o, top == tested || chord_bound_ok(g, k, top, o)});
         }
     }
+}
+
+/// Boundary Scan on candidates already known to lie strictly within 2R of c.
+inline void boundary_scan(const Vec2& c, const std::vector<Candidate>& cand, double radius,
+                          LimitedCell& out, CellWorkspace& ws) {
+    sorted_bisectors(c, cand, ws);  // Step 1
+    out.candidates = static_cast<Index>(cand.size());
+    out.chords_after_check = -1;
+    const auto& L = ws.lines;
+    const int m = static_cast<int>(L.size());
+    const LineGeometry g{c, L, radius};
+    auto& st = ws.scan;
+    scan_stack(g, m, [](int t) { return t; }, st);  // Step 2
     auto& cycle = ws.stack;
     cycle.clear();
     for (const ScanEntry& e : st) cycle.push_back(e.line);

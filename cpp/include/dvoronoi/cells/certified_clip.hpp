@@ -200,13 +200,15 @@ namespace clip {
 /// The cell being clipped: a counter-clockwise cycle of vertices, each starting a side.
 class Clipper {
 public:
-    /// Room for m candidates: a cell has at most m + 1 sides (m + 4 from the square), and a cut
-    /// adds at most two.
+    /// Room for m candidates: a cell has at most m edges, each followed by at most one arc (2 m
+    /// vertices; m + 4 from the square), and a cut adds at most two. (m + 8 was too little for a
+    /// ring of nine or more agents near 2R, an arc after every edge.)
     Clipper(ClipWorkspace& w, double radius, std::size_t m) : w_(w), radius_(radius), cap_(radius) {
-        if (w_.cur.size() < m + 8) {
-            w_.cur.resize(m + 8);
-            w_.next.resize(m + 8);
-            w_.flags.resize(m + 8);
+        const std::size_t room = 2 * m + 8;
+        if (w_.cur.size() < room) {
+            w_.cur.resize(room);
+            w_.next.resize(room);
+            w_.flags.resize(room);
         }
     }
 

@@ -2,11 +2,10 @@
 // W_i = {q in B(p_i, R_i) : |q - p_i|^2 - R_i^2 <= |q - p_j|^2 - R_j^2 for all j}, the power cell with
 // weights R^2 clipped to the agent's own disk.
 //
-// Why not Boundary Scan or RCVC as they stand: both walk the chords sorted by angle around p_i and keep
-// "p_i's side" of each, but p_i need not lie in its own cell (a big disk nearby can cover it while
-// p_i keeps a crescent of its disk). So the cell is built by clipping, which needs no point of the
-// cell known in advance:
-//   1. classify each agent j with an exact test on (s_j, C4_j) (core/power_predicates.hpp): its
+// The exact clipping route (Method::Auto's exact fallback; the generalised Boundary Scan and RCVC are
+// cells/power_boundary_scan.hpp and cells/power_rcvc.hpp). Clipping needs no point of the cell known
+// in advance, so it handles a cell that does not contain its agent in one pass:
+//   1. classify each agent j with an exact test on (s_j, C4_j) (cells/power_chords.hpp): its
 //      radical axis misses the disk on the far side (irrelevant), cuts it (a chord), or leaves the
 //      disk outside the open half-plane (the cell is empty: zero area, at most a tangent point);
 //   2. clip the box |x|,|y| <= 2R_i (which holds the disk) by the half-planes of the chords:
@@ -15,7 +14,7 @@
 //      means zero area (empty cell);
 //   3. intersect each edge of the polygon with the open disk by exact comparisons of positions along
 //      its line (degree 8); edges of positive length inside the disk are the cell's edges, and the
-//      arcs of the circle join them.
+//      arcs of the circle join them (emit_power_cell, cells/power_chords.hpp).
 // All decisions are exact, so neighbours, empty flags and the order of pieces are the exact ones.
 // Cost: O(m k) for m chords and k polygon vertices (k is small: about six in a swarm).
 // Constructions: vertices in double-double from the exact differences (from exact expansions where
@@ -24,10 +23,9 @@
 // from those vertices (Green's theorem, arcs exact).
 #pragma once
 
-#include "dvoronoi/cells/limited_cell.hpp"
-#include "dvoronoi/core/accurate.hpp"
-#include "dvoronoi/core/cell.hpp"
-#include "dvoronoi/core/power_predicates.hpp"
+#include "dvoronoi/cells/power_boundary_scan.hpp"  // for power_limited_cell's methods
+#include "dvoronoi/cells/power_chords.hpp"
+#include "dvoronoi/cells/power_rcvc.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,8 +36,6 @@
 namespace dvoronoi {
 
 namespace detail {
-
-inline constexpr double kPowerPi = 3.14159265358979323846;
 
 /// Scratch of power_cell, reused across agents.
 struct PowerWorkspace {
@@ -56,103 +52,12 @@ struct PowerWorkspace {
         bool to_vertex;    // ends at polygon vertex k + 1 (else at the chord's exit end)
     };
     std::vector<Kept> kept;
+    std::vector<int> cycle;
+    std::vector<char> meets;
     std::vector<Vec2> rel;
     std::vector<char> is_arc;
     std::vector<double> span;
 };
-
-/// A line in double-double: a = p - c exactly (two_sum), s rounded once per operation (about 2^-104
-/// of its terms' sizes `ps`).
-struct DDLine {
-    DD ax, ay, s;
-    double ps;
-};
-
-inline DDLine dd_line(const pred::power::Frame& f, const pred::power::WLine& l) {
-    const DD r = dd(f.r);
-    if (l.box >= 0) {
-        const DD zero = dd(0.0);
-        const DD s = r * r * 4.0;
-        const double ps = 4.0 * f.r * f.r;
-        switch (l.box) {
-            case 0: return {r, zero, s, ps};
-            case 1: return {zero, r, s, ps};
-            case 2: return {-r, zero, s, ps};
-            default: return {zero, -r, s, ps};
-        }
-    }
-    DD ax, ay;
-    two_sum(l.p.x(), -f.c.x(), ax.hi, ax.lo);
-    two_sum(l.p.y(), -f.c.y(), ay.hi, ay.lo);
-    const DD n2 = ax * ax + ay * ay, R2 = dd(l.R) * dd(l.R);
-    return {ax, ay, n2 + r * r - R2, n2.hi + f.r * f.r + l.R * l.R};
-}
-
-/// The point x_jk (relative to c) as double-double. From double-double line data when the
-/// denominator D_jk keeps 40 of its bits (then each coordinate is within about 2^-60 R of the exact
-/// one: |M| / |D| <= 2^40 R-sized terms carry 2^-100 relative errors), else from exact expansions
-/// of M_jk and D_jk rounded once.
-inline DDPoint power_vertex(const pred::power::Frame& f, const pred::power::WLine& j, const pred::power::WLine& k) {
-    using pred::power::line;
-    const DDLine A = dd_line(f, j), B = dd_line(f, k);
-    const DD D = A.ax * B.ay - A.ay * B.ax;
-    const double pD = std::fabs(A.ax.hi * B.ay.hi) + std::fabs(A.ay.hi * B.ax.hi);
-    if (std::fabs(D.hi) >= 0x1p-40 * pD && pD > 1e-250 && pD < 1e250) {
-        const DD d2 = D * 2.0;
-        return {(A.s * B.ay - B.s * A.ay) / d2, (B.s * A.ax - A.s * B.ax) / d2};
-    }
-    const auto Ae = line<Expansion>(f, j), Be = line<Expansion>(f, k);
-    const Expansion mx = Ae.s * Be.ay - Be.s * Ae.ay, my = Be.s * Ae.ax - Ae.s * Be.ax;
-    const Expansion De = Ae.ax * Be.ay - Ae.ay * Be.ax;
-    const DD d2 = to_dd(De) * 2.0;
-    return {to_dd(mx) / d2, to_dd(my) / d2};
-}
-
-/// The chord end e_j^sigma (relative to c): (s a + sigma perp(a) sqrt(C4)) / (2 |a|^2). In
-/// double-double when C4 keeps 40 of its bits, else with C4 from exact expansions.
-inline DDPoint power_chord_end(const pred::power::Frame& f, const pred::power::WLine& j, int sigma) {
-    using pred::power::line;
-    const DDLine A = dd_line(f, j);
-    const DD n2 = A.ax * A.ax + A.ay * A.ay;
-    DD c4 = dd(f.r) * dd(f.r) * n2 * 4.0 - A.s * A.s;
-    const double pc4 = 4.0 * f.r * f.r * n2.hi + A.ps * A.ps;
-    if (!(c4.hi >= 0x1p-40 * pc4) || !(pc4 > 1e-250 && pc4 < 1e250)) {
-        const auto Ae = line<Expansion>(f, j);
-        const Expansion r = Expansion(f.r);
-        c4 = to_dd(Expansion(4.0) * r * r * (Ae.ax * Ae.ax + Ae.ay * Ae.ay) - Ae.s * Ae.s);
-    }
-    const DD root = sqrt(c4), den = n2 * 2.0, sg = dd(static_cast<double>(sigma));
-    return {(A.s * A.ax - sg * A.ay * root) / den, (A.s * A.ay + sg * A.ax * root) / den};
-}
-
-/// Area, centroid (relative to c) and perimeter of a closed cycle of pieces given relative to c, by
-/// Green's theorem: segments exactly, arcs of radius r through the closed forms of x^2 dy and y^2 dx.
-inline CellMeasures power_measures(const std::vector<Vec2>& v, const std::vector<char>& arc,
-                                   const std::vector<double>& span, double r) {
-    double a2 = 0.0, mx = 0.0, my = 0.0, per = 0.0;
-    const std::size_t n = v.size();
-    for (std::size_t k = 0; k < n; ++k) {
-        const Vec2& u = v[k];
-        const Vec2& w = v[(k + 1) % n];
-        if (arc[k]) {
-            a2 += r * r * span[k];
-            mx += (r * r * w.y() - w.y() * w.y() * w.y() / 3.0) - (r * r * u.y() - u.y() * u.y() * u.y() / 3.0);
-            my += (-r * r * w.x() + w.x() * w.x() * w.x() / 3.0) - (-r * r * u.x() + u.x() * u.x() * u.x() / 3.0);
-            per += r * span[k];
-        } else {
-            a2 += u.x() * w.y() - u.y() * w.x();
-            mx += (w.y() - u.y()) * (u.x() * u.x() + u.x() * w.x() + w.x() * w.x()) / 3.0;
-            my -= (w.x() - u.x()) * (u.y() * u.y() + u.y() * w.y() + w.y() * w.y()) / 3.0;
-            per += (w - u).norm();
-        }
-    }
-    CellMeasures m;
-    m.area = 0.5 * a2;
-    m.perimeter = per;
-    // The moments above are twice the integrals of x and y.
-    if (m.area > 0.0) m.centroid = Vec2(0.5 * mx / m.area, 0.5 * my / m.area);
-    return m;
-}
 
 /// The cell of c (radius r) among candidate agents cand with radii cand_r (any agents: the exact
 /// classification ignores those whose radical axis misses the disk). Writes `out`; an empty cell has
@@ -162,14 +67,7 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
                        LimitedCell& out, PowerWorkspace& ws, Index self = -1) {
     using namespace pred::power;
     const Frame f{c, r};
-    out.center = c;
-    out.radius = r;
-    out.pieces.clear();
-    out.candidates = static_cast<Index>(cand.size());
-    out.chords_after_check = -1;
-    out.measures_ = CellMeasures{};
-    out.measures_.centroid = c;
-
+    power_empty_cell(c, r, static_cast<Index>(cand.size()), out);
     ws.lines.clear();
     ws.fast.clear();
     ws.ids.clear();
@@ -180,39 +78,8 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
         ws.fast.push_back(fast_line(f, l));
         ws.ids.push_back(-1);
     }
-    bool empty = false;
     bool center_inside = true;  // c strictly inside every chord's half-plane
-    for (std::size_t t = 0; t < cand.size(); ++t) {
-        const Vec2& p = cand[t].p;
-        const double R = cand_r[t];
-        if (p == c) {
-            if (R == r) {
-                const Index j = cand[t].id;
-                char at[64];
-                std::snprintf(at, sizeof at, "(%.17g, %.17g)", c.x(), c.y());
-                const std::string who = self >= 0 ? "points[" + std::to_string(self) + "]" : std::string("center");
-                throw CoincidentError(who + " and points[" + std::to_string(j) + "] coincide at " + at +
-                                          " with the same radius; their cells are undefined",
-                                      self, j);
-            }
-            if (R > r) empty = true;  // the larger disk at the same place holds the cell
-            continue;
-        }
-        WLine l;
-        l.p = p;
-        l.R = R;
-        const FastLine fl = fast_line(f, l);
-        const int c4 = chord_sign(f, l, fl);
-        if (c4 > 0) {
-            ws.lines.push_back(l);
-            ws.fast.push_back(fl);
-            ws.ids.push_back(cand[t].id);
-            if (center_inside && s_sign(f, l, fl) <= 0) center_inside = false;
-        } else if (s_sign(f, l, fl) <= 0) {
-            empty = true;  // the closed disk lies outside the open half-plane: zero area
-        }
-    }
-    if (empty) return;
+    if (!collect_chords(f, cand, cand_r, self, ws.lines, ws.fast, ws.ids, center_inside)) return;
 
     // 2. Clip the box by the chords' half-planes.
     auto& poly = ws.poly;
@@ -296,66 +163,20 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
                         position_vs_chord_end(f, Lt, Lt, Ln, +1, Ft, Ft, Fn) <= 0});
     }
     if (kept.empty()) {
-        if (!center_inside) return;  // the polygon misses the open disk: zero area
-        Piece p;
-        p.start = c + Vec2(r, 0.0);
-        p.arc_span = 2.0 * kPowerPi;
-        out.pieces.push_back(p);
-        CellMeasures m;
-        m.area = kPowerPi * r * r;
-        m.centroid = c;
-        m.perimeter = 2.0 * kPowerPi * r;
-        out.measures_ = m;
+        if (center_inside) power_full_disk(c, r, out);  // else the polygon misses the open disk: zero area
         return;
     }
-    auto& rel = ws.rel;
-    auto& is_arc = ws.is_arc;
-    auto& span = ws.span;
-    rel.clear();
-    is_arc.clear();
-    span.clear();
-    const auto start_of = [&](const Kept& e) {
-        const int t = poly[e.k];
-        return e.from_vertex ? power_vertex(f, L[static_cast<std::size_t>(poly[(e.k + n - 1) % n])], L[static_cast<std::size_t>(t)])
-                             : power_chord_end(f, L[static_cast<std::size_t>(t)], -1);
-    };
-    const auto end_of = [&](const Kept& e) {
-        const int t = poly[e.k];
-        return e.to_vertex ? power_vertex(f, L[static_cast<std::size_t>(t)], L[static_cast<std::size_t>(poly[(e.k + 1) % n])])
-                           : power_chord_end(f, L[static_cast<std::size_t>(t)], +1);
-    };
+    // The kept edges are the cycle; consecutive ones meet at the polygon vertex between them (inside
+    // the disk or on the circle), else an arc joins them.
+    ws.cycle.clear();
+    ws.meets.clear();
     for (std::size_t q = 0; q < kept.size(); ++q) {
         const Kept& e = kept[q];
         const Kept& g = kept[(q + 1) % kept.size()];
-        const Vec2 s = start_of(e).value();
-        Piece edge;
-        edge.neighbor = ws.ids[static_cast<std::size_t>(poly[e.k])];
-        edge.start = c + s;
-        out.pieces.push_back(edge);
-        rel.push_back(s);
-        is_arc.push_back(0);
-        span.push_back(0.0);
-        // Joined at a polygon vertex (inside the disk or on the circle): no arc between.
-        if (kept.size() > 1 && e.to_vertex && g.from_vertex && g.k == (e.k + 1) % n) continue;
-        const DDPoint ud = end_of(e), wd = start_of(g);
-        const Vec2 u = ud.value();
-        // The span from the double-double ends (before rounding), so that only an arc shorter than
-        // about 2^-100 radians could be mistaken for a full turn; the exact combinatorics above
-        // already know it has positive length, and counter-clockwise means a in (0, 2 pi].
-        const DD cr = ud.x * wd.y - ud.y * wd.x, dt = ud.x * wd.x + ud.y * wd.y;
-        double a = std::atan2(cr.hi + cr.lo, dt.hi + dt.lo);
-        if (a <= 0.0) a += 2.0 * kPowerPi;
-        Piece arc;
-        arc.start = c + u;
-        arc.arc_span = a;
-        out.pieces.push_back(arc);
-        rel.push_back(u);
-        is_arc.push_back(1);
-        span.push_back(a);
+        ws.cycle.push_back(poly[e.k]);
+        ws.meets.push_back(kept.size() > 1 && e.to_vertex && g.from_vertex && g.k == (e.k + 1) % n);
     }
-    CellMeasures m = power_measures(rel, is_arc, span, r);
-    m.centroid += c;
-    out.measures_ = m;
+    emit_power_cell(f, L, ws.ids, ws.cycle, ws.meets, out, ws.rel, ws.is_arc, ws.span);
 }
 
 }  // namespace detail
@@ -365,10 +186,14 @@ inline void power_cell(const Vec2& c, double r, const std::vector<Candidate>& ca
 /// Edge pieces name their neighbour by its row in `others`. An empty cell (zero area) has no pieces.
 /// With every other radius equal to `radius` this is limited_cell(center, others, radius, method).
 ///
-/// \throws InputError for a bad radius, radii of the wrong length, non-finite coordinates, Scan or
-///         Chords with unequal radii;
-///         CoincidentError for an agent of `others` at `center` with the same radius.
-/// \note Thread-safe (pure function). O(m k): m agents within radius + R_j, k vertices of the cell.
+/// Methods: Auto is the exact clipping (power_cell), Scan the generalised Boundary Scan
+/// (cells/power_boundary_scan.hpp), Chords the generalised RCVC (cells/power_rcvc.hpp); the same cell.
+///
+/// \throws InputError for a bad radius, radii of the wrong length, non-finite coordinates;
+///         CoincidentError for an agent of `others` at `center` with the same radius; RangeError for
+///         Chords with more than kMaxChordsCandidates radical axes cutting the disk.
+/// \note Thread-safe (pure function). O(m k) for Auto (m agents within radius + R_j, k vertices of the
+///       cell), O(m log m) for Scan when the agent lies in its cell (else a few restarts), O(m^2) for Chords.
 inline LimitedCell power_limited_cell(const Vec2& center, PointsRef others, double radius,
                                       const std::vector<double>& other_radii, Method method = Method::Auto) {
     detail::require_finite_radius(radius);
@@ -383,10 +208,6 @@ inline LimitedCell power_limited_cell(const Vec2& center, PointsRef others, doub
         equal &= R == radius;
     }
     if (equal) return limited_cell(center, others, radius, method);
-    if (method != Method::Auto)
-        throw InputError(std::string("method \"") + method_name(method) +
-                         "\" (Boundary Scan or RCVC around the agent) needs equal radii; with other_radii the cell is "
-                         "computed by power-cell clipping: use method \"auto\"");
     std::vector<detail::Candidate> cand;
     std::vector<double> rs;
     for (Index j = 0; j < others.rows(); ++j) {
@@ -394,8 +215,16 @@ inline LimitedCell power_limited_cell(const Vec2& center, PointsRef others, doub
         rs.push_back(other_radii[static_cast<std::size_t>(j)]);
     }
     LimitedCell cell;
-    detail::PowerWorkspace ws;
-    detail::power_cell(center, radius, cand, rs, cell, ws);
+    if (method == Method::Auto) {
+        detail::PowerWorkspace ws;
+        detail::power_cell(center, radius, cand, rs, cell, ws);
+    } else {
+        detail::PowerChordWorkspace ws;
+        if (method == Method::Scan)
+            detail::power_boundary_scan(center, radius, cand, rs, cell, ws);
+        else
+            detail::power_rcvc(center, radius, cand, rs, cell, ws);
+    }
     return cell;
 }
 

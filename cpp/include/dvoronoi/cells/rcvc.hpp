@@ -31,6 +31,56 @@ inline constexpr std::size_t kMaxChordsCandidates = 1024;
 
 namespace detail {
 
+/// constructVor on mk kept chords in sorted order (at(t): the t-th one's index; at(0) bounds the
+/// cell and is never removed), with the geometry `g` (LineGeometry here, PowerGeometry for radical
+/// axes: endpoint_side, vertex_before, after_chord_start). `st` holds the chords of the boundary so
+/// far; line_start[t] says whether chord st[t] starts at a 'line' vertex with st[t-1] (else at its
+/// 'circ' endpoint s_j).
+template <class Geometry, class At>
+void construct_vor(const Geometry& g, int mk, const At& at, std::vector<int>& st, std::vector<char>& line_start) {
+    st.clear();
+    line_start.clear();
+    if (mk > 0) {
+        st.push_back(at(0));
+        line_start.push_back(0);
+    }
+    for (int step = 1; step <= mk && mk > 1; ++step) {
+        const int k = at(step % mk);
+        for (;;) {
+            const int j = st.back();
+            // Consecutive chords intersect in the disk when L_k's first endpoint lies on or beyond
+            // L_j (after checkChords, the only way one endpoint of L_k is beyond L_j).
+            const bool intersect = k != j && g.endpoint_side(k, -1, j) >= 0;
+            if (!intersect) {
+                if (step % mk != 0) {
+                    st.push_back(k);
+                    line_start.push_back(0);
+                } else {
+                    line_start[0] = 0;
+                }
+                break;
+            }
+            // Self-intersection test: the new vertex x_jk must lie after the vertex where L_j starts.
+            bool accepted;
+            if (st.size() >= 2 && line_start.back())
+                accepted = g.vertex_before(j, st[st.size() - 2], k);
+            else
+                accepted = g.after_chord_start(j, k);
+            if (accepted || st.size() == 1) {
+                if (step % mk != 0) {
+                    st.push_back(k);
+                    line_start.push_back(1);
+                } else {
+                    line_start[0] = 1;
+                }
+                break;
+            }
+            st.pop_back();  // remove L_j and its vertex; retry with the previous chord
+            line_start.pop_back();
+        }
+    }
+}
+
 /// RCVC on candidates already known to lie strictly within 2R of c.
 /// \throws RangeError when there are more than kMaxChordsCandidates of them.
 inline void rcvc(const Vec2& c, const std::vector<Candidate>& cand, double radius, LimitedCell& out,
@@ -65,52 +115,10 @@ inline void rcvc(const Vec2& c, const std::vector<Candidate>& cand, double radiu
         if (!removed[static_cast<std::size_t>(j)]) kept.push_back(j);
     out.chords_after_check = static_cast<Index>(kept.size());
 
-    // constructVor: `st` holds the chords of the boundary so far; start_is_vertex[t] says whether
-    // chord st[t] starts at a 'line' vertex with st[t-1] (else at its 'circ' endpoint s_j).
+    // constructVor.
     auto& st = ws.stack;
     auto& line_start = ws.start_is_vertex;
-    st.clear();
-    line_start.clear();
-    const int mk = static_cast<int>(kept.size());
-    if (mk > 0) {
-        st.push_back(kept[0]);
-        line_start.push_back(0);
-    }
-    for (int step = 1; step <= mk && mk > 1; ++step) {
-        const int k = kept[static_cast<std::size_t>(step % mk)];
-        for (;;) {
-            const int j = st.back();
-            // Consecutive chords intersect in the disk when L_k's first endpoint lies on or beyond
-            // L_j (after checkChords, the only way one endpoint of L_k is beyond L_j).
-            const bool intersect = k != j && g.endpoint_side(k, -1, j) >= 0;
-            if (!intersect) {
-                if (step % mk != 0) {
-                    st.push_back(k);
-                    line_start.push_back(0);
-                } else {
-                    line_start[0] = 0;
-                }
-                break;
-            }
-            // Self-intersection test: the new vertex x_jk must lie after the vertex where L_j starts.
-            bool accepted;
-            if (st.size() >= 2 && line_start.back())
-                accepted = g.vertex_before(j, st[st.size() - 2], k);
-            else
-                accepted = g.after_chord_start(j, k);
-            if (accepted || st.size() == 1) {
-                if (step % mk != 0) {
-                    st.push_back(k);
-                    line_start.push_back(1);
-                } else {
-                    line_start[0] = 1;
-                }
-                break;
-            }
-            st.pop_back();  // remove L_j and its vertex; retry with the previous chord
-            line_start.pop_back();
-        }
-    }
+    construct_vor(g, static_cast<int>(kept.size()), [&](int t) { return kept[static_cast<std::size_t>(t)]; }, st, line_start);
     // Labelled vertex set: joint t (between st[t] and st[t+1]) is a 'line' vertex when st[t+1] starts
     // at one.
     const std::size_t s = st.size();

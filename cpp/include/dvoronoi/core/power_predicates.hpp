@@ -16,7 +16,9 @@
 // polynomial evaluated by core/expansion.hpp's filtered_sign (ErrDouble filter, then exact
 // expansions, rescaled where an exact product under- or overflowed):
 //   chord_class: s (2) and C4 (4); side_of_vertex: D (2) and a_l.M - s_l D (4);
-//   position_vs_chord_end: cross(a_t, M) (4), cross(a_t, M)^2 - D^2 C4_t (8); farther: |a_l|^2 - |a_j|^2 (2).
+//   position_vs_chord_end: cross(a_t, M) (4), cross(a_t, M)^2 - D^2 C4_t (8); farther: |a_l|^2 - |a_j|^2 (2);
+//   the scan's and the walk's (cells/power_chords.hpp): dot_sign (2), foot_side (4), axis_distance_cmp
+//   (6), chord_end_side (4, then 8), cap_middle_side (3, then 6).
 #pragma once
 
 #include "dvoronoi/core/expansion.hpp"
@@ -141,6 +143,85 @@ inline int farther(const Frame& f, const WLine& l, const WLine& j) {
         const LineT<T> A = line<T>(f, l), B = line<T>(f, j);
         return A.ax * A.ax + A.ay * A.ay - (B.ax * B.ax + B.ay * B.ay);
     });
+}
+
+/// sign(a_j . a_k): with cross_sign, the exact direction order of the normals (Boundary Scan's sort).
+inline int dot_sign(const Frame& f, const WLine& j, const WLine& k) {
+    return filtered_sign([&](auto tag) {
+        using T = typename decltype(tag)::type;
+        const LineT<T> A = line<T>(f, j), B = line<T>(f, k);
+        return A.ax * B.ax + A.ay * B.ay;
+    });
+}
+
+/// Side of the foot of L_j (the point of L_j nearest c, s_j a_j / (2 |a_j|^2)) w.r.t. L_l: sign of
+/// s_j (a_l.a_j) - s_l |a_j|^2 (degree 4; -1 strictly inside H_l). For parallel lines it is the side
+/// of all of L_j.
+inline int foot_side(const Frame& f, const WLine& j, const WLine& l) {
+    return filtered_sign([&](auto tag) {
+        using T = typename decltype(tag)::type;
+        const LineT<T> A = line<T>(f, j), B = line<T>(f, l);
+        return A.s * (B.ax * A.ax + B.ay * A.ay) - B.s * (A.ax * A.ax + A.ay * A.ay);
+    });
+}
+
+/// sign(d_j - d_k) for the signed distances d = s / (2 |a|) of the radical axes from c (negative: c
+/// outside the half-plane): sign(s_j |a_k| - s_k |a_j|), by signs and then squares (degree 6).
+inline int axis_distance_cmp(const Frame& f, const WLine& j, const WLine& k) {
+    const int sj = s_sign(f, j), sk = s_sign(f, k);
+    if (sj != sk) return sj > sk ? 1 : -1;
+    if (sj == 0) return 0;
+    const int sq = filtered_sign([&](auto tag) {
+        using T = typename decltype(tag)::type;
+        const LineT<T> A = line<T>(f, j), B = line<T>(f, k);
+        return A.s * A.s * (B.ax * B.ax + B.ay * B.ay) - B.s * B.s * (A.ax * A.ax + A.ay * A.ay);
+    });
+    return sj > 0 ? sq : -sq;
+}
+
+/// Side of the chord end e_m^sigma w.r.t. L_l (-1 strictly inside H_l): 2 a_l.e - s_l has the sign
+/// of X + sigma Y sqrt(C4_m), X = s_m (a_l.a_m) - s_l |a_m|^2 (degree 4), Y = cross(a_m, a_l) (2);
+/// compared by squares where the signs differ (degree 8). Requires C4_m > 0.
+inline int chord_end_side(const Frame& f, const WLine& m, int sigma, const WLine& l) {
+    const int sx = filtered_sign([&](auto tag) {
+        using T = typename decltype(tag)::type;
+        const LineT<T> A = line<T>(f, m), B = line<T>(f, l);
+        return A.s * (B.ax * A.ax + B.ay * A.ay) - B.s * (A.ax * A.ax + A.ay * A.ay);
+    });
+    const int sy = sigma * cross_sign(f, m, l);
+    if (sy == 0 || sx == sy) return sx;
+    if (sx == 0) return sy;
+    const int sq = filtered_sign([&](auto tag) {
+        using T = typename decltype(tag)::type;
+        const LineT<T> A = line<T>(f, m), B = line<T>(f, l);
+        const T r = T::from(f.r);
+        const T x = A.s * (B.ax * A.ax + B.ay * A.ay) - B.s * (A.ax * A.ax + A.ay * A.ay);
+        const T y = A.ax * B.ay - A.ay * B.ax;
+        const T n2 = A.ax * A.ax + A.ay * A.ay;
+        return x * x - y * y * (T::constant(4.0) * r * r * n2 - A.s * A.s);
+    });
+    return sq > 0 ? sx : sq < 0 ? sy : 0;  // the larger magnitude decides (0: the end lies on L_l)
+}
+
+/// Side of q_j = r a_j / |a_j| (the circle's point in the middle of the cap that H_j cuts off)
+/// w.r.t. L_l: sign(2 r (a_l.a_j) - s_l |a_j|), by signs and then squares (degree 6).
+inline int cap_middle_side(const Frame& f, const WLine& j, const WLine& l) {
+    const int su = filtered_sign([&](auto tag) {
+        using T = typename decltype(tag)::type;
+        const LineT<T> A = line<T>(f, j), B = line<T>(f, l);
+        return B.ax * A.ax + B.ay * A.ay;
+    });
+    const int sv = s_sign(f, l);
+    if (su != sv) return su > sv ? 1 : -1;
+    if (su == 0) return 0;
+    const int sq = filtered_sign([&](auto tag) {
+        using T = typename decltype(tag)::type;
+        const LineT<T> A = line<T>(f, j), B = line<T>(f, l);
+        const T r = T::from(f.r);
+        const T u = B.ax * A.ax + B.ay * A.ay;
+        return T::constant(4.0) * r * r * u * u - B.s * B.s * (A.ax * A.ax + A.ay * A.ay);
+    });
+    return su > 0 ? sq : -sq;
 }
 
 // ---- the fast path: the same signs in double from values rounded once per line ----

@@ -3,7 +3,10 @@
 // index), in parallel (OpenMP), in input order.
 #pragma once
 
+#include "dvoronoi/cells/certified_power_clip.hpp"
+#include "dvoronoi/cells/power_boundary_scan.hpp"
 #include "dvoronoi/cells/power_cell.hpp"
+#include "dvoronoi/cells/power_rcvc.hpp"
 #include "dvoronoi/partition/limited_partition.hpp"
 
 #include <algorithm>
@@ -53,14 +56,20 @@ inline void require_distinct_weighted(const Points& pts, const std::vector<doubl
 /// agent: is_empty(i)).
 ///
 /// With every radius equal this is limited_cells(points, radius, method, threads, progress) itself
-/// (the same result, bit for bit; `radii` stays empty). Otherwise the cells are computed by
-/// cells/power_cell.hpp (computed_by.power counts them) and `method` must be Auto.
+/// (the same result, bit for bit; `radii` stays empty). Otherwise, by `method` (the same cells;
+/// computed_by counts which algorithm computed each):
+///   - Auto: the certified clipping of cells/certified_power_clip.hpp (computed_by.clip), the exact
+///     clipping of cells/power_cell.hpp where it gives up (computed_by.power);
+///   - Scan: Boundary Scan on the radical axes, cells/power_boundary_scan.hpp (computed_by.scan);
+///   - Chords: RCVC on the radical axes, cells/power_rcvc.hpp (computed_by.chords).
 ///
-/// \throws InputError naming `radii` when its length is not n or a radius is not positive and finite,
-///         naming `method` for Scan or Chords with unequal radii; CoincidentError for two agents with
-///         the same position and radius (lowest pair named); RangeError as limited_cells.
-/// \note O(n m k) work: m agents within R_i + R_max, k vertices per cell; memory O(n k). Thread-safe.
-///       Results do not depend on `threads`.
+/// \throws InputError naming `radii` when its length is not n or a radius is not positive and finite;
+///         CoincidentError for two agents with the same position and radius (lowest pair named);
+///         RangeError as limited_cells (Chords: more than kMaxChordsCandidates radical axes cutting
+///         an agent's disk).
+/// \note Per agent, m agents within R_i + R_max: O(m) for Auto in a swarm, O(m log m) for Scan when
+///       the agent lies in its cell (a few restarts otherwise), O(m^2) for Chords; memory O(n k) for k
+///       pieces per cell. Thread-safe. Results do not depend on `threads`.
 inline LimitedPartition limited_cells(PointsRef points, const std::vector<double>& radii, Method method = Method::Auto,
                                       int threads = 0, const ProgressFn& progress = nullptr) {
     detail::require_finite_points(points, "points");
@@ -71,10 +80,6 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     for (double R : radii) detail::require_finite_radius(R, "radius");
     const bool equal = std::all_of(radii.begin(), radii.end(), [&](double R) { return R == radii.front(); });
     if (n == 0 || equal) return limited_cells(points, n == 0 ? 1.0 : radii.front(), method, threads, progress);
-    if (method != Method::Auto)
-        throw InputError(std::string("method \"") + method_name(method) +
-                         "\" (Boundary Scan or RCVC around the agent) needs equal radii; with one radius per agent "
-                         "the cells are computed by power-cell clipping: use method \"auto\"");
 
     LimitedPartition out;
     out.method = method;
@@ -82,12 +87,13 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     out.radii = radii;
     const double rmax = *std::max_element(radii.begin(), radii.end());
     out.radius = rmax;
-    detail::require_distinct_weighted(out.points, out.radii);
-
     const Index block = detail::kBlock;
     const Index nblocks = (n + block - 1) / block;
     const int team = detail::thread_team(threads, nblocks);
-    const GridIndex index(out.points, 2.0 * rmax, team);
+    const GridIndex index(out.points, rmax, team);  // cells of R_max: a query scans little beyond its disk
+    // Coinciding positions share a grid cell (O(n) expected); only when some exist are the radii
+    // compared (O(n log n)).
+    if (index.first_duplicate().first >= 0) detail::require_distinct_weighted(out.points, out.radii);
     const std::vector<Index>& order = index.grid_order();
     // Each thread appends its cells' pieces to its own list; agent i's run is (thread, offset).
     std::vector<std::vector<Piece>> lists(static_cast<std::size_t>(team));
@@ -98,10 +104,15 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     out.centroids.resize(n, 2);
     out.candidates.assign(un, 0);
     out.piece_ptr.assign(un + 1, 0);  // counts, summed below
+    out.indptr.assign(un + 1, 0);     // the same
     detail::ProgressTracker tracker(progress, n);
-    Index computed = 0;
+    Index by_filter = 0, by_clipping = 0, by_scan = 0, by_chords = 0;
+    // The radii in grid order: the fast path reads its candidates' radii next to their positions.
+    std::vector<double> radius_at(un);
+    for (std::size_t pos = 0; pos < un; ++pos) radius_at[pos] = radii[static_cast<std::size_t>(order[pos])];
+    const Index* order0 = order.data();
 
-#pragma omp parallel num_threads(team) reduction(+ : computed)
+#pragma omp parallel num_threads(team) reduction(+ : by_filter, by_clipping, by_scan, by_chords)
     {
         std::vector<detail::Candidate> cand;
         std::vector<double> cand_r;
@@ -109,6 +120,8 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
         std::vector<Piece>& mine = lists[static_cast<std::size_t>(me)];
         LimitedCell cell;
         detail::PowerWorkspace ws;
+        detail::PowerChordWorkspace chord_ws;
+        detail::PowerClipWorkspace clip_ws;
 #pragma omp for schedule(dynamic, 1)
         for (Index b = 0; b < nblocks; ++b) {
             const Index lo = b * block, hi = std::min(n, lo + block);
@@ -118,15 +131,55 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
                 for (; pos < hi; ++pos) {
                     const auto pp = static_cast<std::size_t>(pos);
                     const auto i = static_cast<std::size_t>(order[pp]);
-                    const double r = radii[i];
+                    const double r = radius_at[pp];
+                    if (pos + detail::kWriteAhead < n) {  // this agent's results go to scattered places
+                        const auto a = static_cast<std::size_t>(order[pp + detail::kWriteAhead]);
+                        detail::prefetch_for_write(&out.areas[a]);
+                        detail::prefetch_for_write(&out.perimeters[a]);
+                        detail::prefetch_for_write(out.centroids.data() + 2 * a);
+                        detail::prefetch_for_write(&out.candidates[a]);
+                        detail::prefetch_for_write(&out.piece_ptr[a + 1]);
+                        detail::prefetch_for_write(&run_of[a]);
+                    }
                     // Agents that can shape the cell are closer than r + R_j <= r + R_max; the query
                     // radius is half the range, widened so that rounding never drops one (the exact
-                    // classification in power_cell discards the extras).
-                    index.within_at(pp, 0.5 * (r + rmax) * (1.0 + 0x1p-40), cand);
-                    cand_r.clear();
-                    for (const detail::Candidate& q : cand) cand_r.push_back(radii[static_cast<std::size_t>(q.id)]);
-                    detail::power_cell(index.point_at(pp), r, cand, cand_r, cell, ws, static_cast<Index>(i));
-                    ++computed;
+                    // classification of every route discards the extras).
+                    const double half_range = 0.5 * (r + rmax) * (1.0 + 0x1p-40);
+                    const Vec2 c = index.point_at(pp);
+                    const auto self = static_cast<Index>(i);
+                    if (method == Method::Auto) {
+                        // The certified clipping (agents with the same position and radius were
+                        // refused above), the exact clipping where it gives up.
+                        clip_ws.start(c, r);
+                        index.for_each_batch_within_at(pp, half_range, [&](const double* xs, const double* ys, const Index* ids,
+                                                                           const std::uint32_t* sel, std::size_t count) {
+                            const double* rs = radius_at.data() + (ids - order0);  // the batch's grid positions
+                            clip_ws.add_batch(xs, ys, ids, sel, count, [&](std::uint32_t t) { return rs[t]; });
+                        });
+                        if (detail::certified_power_clip_loaded(cell, clip_ws)) {
+                            ++by_filter;
+                        } else {
+                            cand.clear();
+                            cand_r.clear();
+                            for (std::size_t t = 0; t < clip_ws.m; ++t) {
+                                cand.push_back({Vec2(clip_ws.px[t], clip_ws.py[t]), clip_ws.id[t]});
+                                cand_r.push_back(clip_ws.pr[t]);
+                            }
+                            detail::power_cell(c, r, cand, cand_r, cell, ws, self);
+                            ++by_clipping;
+                        }
+                    } else {
+                        index.within_at(pp, half_range, cand);
+                        cand_r.clear();
+                        for (const detail::Candidate& q : cand) cand_r.push_back(radii[static_cast<std::size_t>(q.id)]);
+                        if (method == Method::Scan) {
+                            detail::power_boundary_scan(c, r, cand, cand_r, cell, chord_ws, self);
+                            ++by_scan;
+                        } else {
+                            detail::power_rcvc(c, r, cand, cand_r, cell, chord_ws, self);
+                            ++by_chords;
+                        }
+                    }
                     const CellMeasures& m = cell.measures();
                     out.areas[i] = m.area;
                     out.perimeters[i] = m.perimeter;
@@ -136,6 +189,9 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
                     run_of[i] = {me, mine.size()};
                     mine.insert(mine.end(), cell.pieces.begin(), cell.pieces.end());
                     out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
+                    Index edges = 0;  // one per neighbour: a chord bounds a convex cell once
+                    for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
+                    out.indptr[i + 1] = edges;
                 }
             } catch (...) {
                 tracker.fail(pos, order[static_cast<std::size_t>(pos)]);
@@ -144,29 +200,42 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
         }
     }
     tracker.rethrow_if_failed();
-    out.computed_by.power = computed;
+    out.computed_by.clip = by_filter;
+    out.computed_by.power = by_clipping;
+    out.computed_by.scan = by_scan;
+    out.computed_by.chords = by_chords;
 
-    out.indptr.assign(un + 1, 0);
-    for (std::size_t i = 0; i < un; ++i) out.piece_ptr[i + 1] += out.piece_ptr[i];  // counts to offsets
-    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
-    out.piece_x.reserve(total);
-    out.piece_y.reserve(total);
-    out.piece_span.reserve(total);
-    out.piece_neighbor.reserve(total);
+    // Counts to offsets; then each agent's run to its place in input order, and its neighbours
+    // sorted, in parallel (runs are read scattered over the threads' lists: a few agents ahead are
+    // prefetched so that the misses overlap).
     for (std::size_t i = 0; i < un; ++i) {
+        out.piece_ptr[i + 1] += out.piece_ptr[i];
+        out.indptr[i + 1] += out.indptr[i];
+    }
+    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
+    out.piece_x.resize(total);
+    out.piece_y.resize(total);
+    out.piece_span.resize(total);
+    out.piece_neighbor.resize(total);
+    out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
+#pragma omp parallel for num_threads(team) schedule(static)
+    for (Index ii = 0; ii < n; ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
+        if (i + detail::kAhead < un) {
+            const auto [ta, aa] = run_of[i + detail::kAhead];
+            if (aa < lists[static_cast<std::size_t>(ta)].size()) detail::prefetch(&lists[static_cast<std::size_t>(ta)][aa]);
+        }
         const auto [t, at] = run_of[i];
-        const std::size_t len = static_cast<std::size_t>(out.piece_ptr[i + 1] - out.piece_ptr[i]);
+        const auto to = static_cast<std::size_t>(out.piece_ptr[i]);
+        const std::size_t len = static_cast<std::size_t>(out.piece_ptr[i + 1]) - to;
         for (std::size_t q = 0; q < len; ++q) {
             const Piece& p = lists[static_cast<std::size_t>(t)][at + q];
-            out.piece_x.push_back(p.start.x());
-            out.piece_y.push_back(p.start.y());
-            out.piece_span.push_back(p.arc_span);
-            out.piece_neighbor.push_back(p.neighbor);
-            if (!p.is_arc()) out.indices.push_back(p.neighbor);
+            out.piece_x[to + q] = p.start.x();
+            out.piece_y[to + q] = p.start.y();
+            out.piece_span[to + q] = p.arc_span;
+            out.piece_neighbor[to + q] = p.neighbor;
         }
-        std::sort(out.indices.begin() + out.indptr[i], out.indices.end());
-        out.indices.erase(std::unique(out.indices.begin() + out.indptr[i], out.indices.end()), out.indices.end());
-        out.indptr[i + 1] = static_cast<Index>(out.indices.size());
+        detail::sorted_edge_neighbors(out.piece_neighbor.data() + to, len, out.indices.data() + out.indptr[i]);
     }
     tracker.report_all();
     return out;
