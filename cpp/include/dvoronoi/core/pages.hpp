@@ -1,6 +1,9 @@
 // Fresh memory, mapped in bulk: a fresh page costs a fault and a zeroing (and on a VM that hands freed
-// memory back to its host, a host fault). At 1e6 agents the drivers' results alone are 300 MB, so
-// how their pages are mapped is a measurable part of a run.
+// memory back to its host, a host fault). Used where it measurably pays: limited_cells' output
+// columns (partition/detail/cell_columns.hpp) and the grid index's arrays, a few percent of CPU time
+// (system time) at 1e6 agents; and an allocator that leaves arrays unfilled for the grid diagram's
+// nearest-point maps. Elsewhere (the exact partition, the feature maps' pages) mapping up front
+// measured within noise and was removed (docs/performance.md).
 #pragma once
 
 #include <cstddef>
@@ -74,24 +77,6 @@ inline void advise_huge_pages(const void* p, std::size_t bytes) {
     (void)p;
     (void)bytes;
 #endif
-}
-
-/// v.assign(n, value) on prefaulted pages.
-template <class T>
-void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
-    v.clear();
-    v.reserve(n);
-    prefault(v.data(), n * sizeof(T));
-    v.assign(n, value);
-}
-
-/// The same on huge pages, for an array accessed in scattered order (see advise_huge_pages).
-template <class T>
-void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
-    v.clear();
-    v.reserve(n);
-    advise_huge_pages(v.data(), n * sizeof(T));
-    assign_prefaulted(v, n, value);  // keeps the storage reserved above
 }
 
 /// prefault for several buffers at once, each split over up to `team` threads: page faults are

@@ -114,9 +114,9 @@ inline LimitedPartition limited_cells(PointsRef points, double radius, Method me
         n, team, tracker, [](int thread) { return detail::LimitedScratch(thread); },
         [&](detail::LimitedScratch& s, Index pos) {
             const auto pp = static_cast<std::size_t>(pos);
-            if (pos + detail::kWriteAhead < n) columns.prefetch(order[pp + detail::kWriteAhead]);
             detail::limited_cell_at(index, pp, index.point_at(pp), radius, method, s);
-            columns.store(order[pp], s.cell, s.thread);
+            const Index ahead = pos + detail::kWriteAhead < n ? order[pp + detail::kWriteAhead] : -1;
+            columns.store(order[pp], s.cell, s.thread, ahead);
         },
         [&](Index pos) { return order[static_cast<std::size_t>(pos)]; },
         [&](const detail::LimitedScratch& s) {

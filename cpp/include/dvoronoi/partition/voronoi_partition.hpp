@@ -307,14 +307,13 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     VoronoiPartition out;
     out.points = points;
     out.bounds = bounds;
-    // Large outputs on pages mapped up front (one call instead of a fault per page).
-    detail::assign_prefaulted(out.areas, static_cast<std::size_t>(n), 0.0);
+    const auto un = static_cast<std::size_t>(n);
+    out.areas.assign(un, 0.0);
     out.centroids.resize(n, 2);
-    detail::prefault(out.centroids.data(), static_cast<std::size_t>(out.centroids.size()) * sizeof(double));
-    detail::assign_prefaulted(out.on_hull, static_cast<std::size_t>(n), char{0});
-    detail::assign_prefaulted(out.radius_steps, static_cast<std::size_t>(n), 0);
-    detail::assign_prefaulted(out.agents_used, static_cast<std::size_t>(n), Index{0});
-    detail::assign_prefaulted(out.indptr, static_cast<std::size_t>(n) + 1, Index{0});
+    out.on_hull.assign(un, 0);
+    out.radius_steps.assign(un, 0);
+    out.agents_used.assign(un, 0);
+    out.indptr.assign(un + 1, 0);
     if (n == 0) return out;
 
     // The one-shot radius R: 1.5 mean spacings certifies ~97% of a uniform swarm's cells; the grid's
@@ -328,7 +327,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     const detail::AsrSchedule schedule(out.points, index, hull);
     const std::vector<Index>& order = index.grid_order();
     detail::VoronoiSteps steps{out.points, index, schedule, one_shot, bounds, team, {}, {}};
-    detail::assign_scattered(steps.by_pos, static_cast<std::size_t>(n), detail::VoronoiRow{});
+    steps.by_pos.assign(un, detail::VoronoiRow{});
     steps.columns.resize(static_cast<std::size_t>(team));
     for (int t = 0; t < team; ++t)  // about six neighbours per cell: room for seven (untouched room costs address space only)
         steps.columns[static_cast<std::size_t>(t)].reserve(static_cast<std::size_t>(t == 0 ? n : n / team + detail::kBlock) * 7);
@@ -413,8 +412,7 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     }
 
     // The rows and the neighbour CSR in input order (scattered reads, prefetched).
-    std::vector<Index> source;  // where agent i's neighbours start (column_place, then joined offsets)
-    detail::assign_prefaulted(source, static_cast<std::size_t>(n), Index{0});
+    std::vector<Index> source(un);  // where agent i's neighbours start (column_place, then joined offsets)
     detail::gather_in_input_order(detail::positions_of(order), steps.by_pos, [&](Index i, std::size_t, const detail::VoronoiRow& r) {
         const auto ii = static_cast<std::size_t>(i);
         source[ii] = r.first;

@@ -9,6 +9,7 @@
 
 #include "dvoronoi/core/cell.hpp"
 #include "dvoronoi/core/pages.hpp"
+#include "dvoronoi/core/parallel.hpp"
 #include "dvoronoi/partition/detail/input_order.hpp"
 #include "dvoronoi/partition/limited_result.hpp"
 
@@ -92,8 +93,8 @@ struct PieceColumns {
     }
 };
 
-/// Writes the cells of a LimitedPartition from a team of threads: out(points, radius, team) sizes the
-/// per-agent arrays, store(agent, cell, thread) records one cell, stitch() lays the pieces and the
+/// Writes the cells of a LimitedPartition from a team of threads: the constructor sizes the per-agent
+/// arrays, store(agent, cell, thread, ahead) records one cell, stitch() lays the pieces and the
 /// neighbour CSR out in input order. Threads store distinct agents; stitch() runs after them all.
 class CellColumns {
 public:
@@ -128,20 +129,11 @@ public:
             parts_[static_cast<std::size_t>(t)].reserve(static_cast<std::size_t>(t == 0 ? n : n / team + kBlock) * 7);
     }
 
-    /// Prefetches for writing the lines agent a's results will go to.
-    void prefetch(Index a) const {
-        const auto i = static_cast<std::size_t>(a);
-        prefetch_for_write(&out_.areas[i]);
-        prefetch_for_write(&out_.perimeters[i]);
-        prefetch_for_write(out_.centroids.data() + 2 * i);
-        prefetch_for_write(&out_.candidates[i]);
-        prefetch_for_write(&out_.piece_ptr[i + 1]);
-        prefetch_for_write(&out_.indptr[i + 1]);
-        prefetch_for_write(&source_[i]);
-    }
-
-    /// Agent a's cell, computed by `thread`.
-    void store(Index a, const LimitedCell& cell, int thread) {
+    /// Agent a's cell, computed by `thread`; then the lines agent `ahead`'s results will go to are
+    /// fetched for writing (ahead < 0: none), so they are in cache when its cell is done. The
+    /// prefetches are here, in a function that writes, because GCC deletes a call to a function
+    /// that only prefetches (it counts as pure) when it does not inline it first.
+    void store(Index a, const LimitedCell& cell, int thread, Index ahead) {
         const CellMeasures m = cell.measures();
         const auto i = static_cast<std::size_t>(a);
         out_.areas[i] = m.area;
@@ -156,6 +148,15 @@ public:
         PieceColumns& mine = parts_[static_cast<std::size_t>(thread)];
         source_[i] = column_place(mine.x.size(), team_, thread);
         mine.append(a, cell.pieces);
+        if (ahead < 0) return;
+        const auto j = static_cast<std::size_t>(ahead);
+        prefetch_for_write(&out_.areas[j]);
+        prefetch_for_write(&out_.perimeters[j]);
+        prefetch_for_write(out_.centroids.data() + 2 * j);
+        prefetch_for_write(&out_.candidates[j]);
+        prefetch_for_write(&out_.piece_ptr[j + 1]);
+        prefetch_for_write(&out_.indptr[j + 1]);
+        prefetch_for_write(&source_[j]);
     }
 
     /// Counts to offsets, the threads' columns joined, each column put into input order (agent i's

@@ -4,7 +4,6 @@
 // Shared by the partition drivers (limited cells through cell_columns.hpp, exact Voronoi cells).
 #pragma once
 
-#include "dvoronoi/core/pages.hpp"
 #include "dvoronoi/core/types.hpp"
 
 #include <algorithm>
@@ -90,8 +89,7 @@ inline std::vector<Index> runs_in_input_order(std::vector<std::vector<Index>>& c
         const std::vector<Index> part = std::move(columns[t]);
         columns[0].insert(columns[0].end(), part.begin(), part.end());
     }
-    std::vector<Index> out;
-    assign_prefaulted(out, static_cast<std::size_t>(ptr.back()), Index{0});
+    std::vector<Index> out(static_cast<std::size_t>(ptr.back()));
     move_runs(
         out.data(), columns[0].data(), ptr, [&](Index i) { return static_cast<std::size_t>(places[static_cast<std::size_t>(i)]); },
         team, [](Index, const Index*, std::size_t) {});
