@@ -3,7 +3,8 @@
 // columns (partition/detail/cell_columns.hpp) and the grid index's arrays, a few percent of CPU time
 // (system time) at 1e6 agents; and an allocator that leaves arrays unfilled for the grid diagram's
 // nearest-point maps. Elsewhere (the exact partition, the feature maps' pages) mapping up front
-// measured within noise and was removed (docs/performance.md).
+// measured within noise and was removed (docs/performance.md). -DDVORONOI_NO_PAGE_MAPPING turns
+// prefault and advise_huge_pages into no-ops (tools/bench_pages.sh compares the two builds).
 #pragma once
 
 #include <cstddef>
@@ -51,7 +52,7 @@ using UninitVector = std::vector<T, DefaultInitAllocator<T>>;
 /// pages fault in as before. Measured when limited_cells touched 700 MB at 1e6 agents: page faults
 /// were about a sixth of the run, and mapping the pages up front took about a quarter off that.
 inline void prefault(const void* p, std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE) && !defined(DVORONOI_NO_PAGE_MAPPING)
     constexpr std::uintptr_t kPage = 4096;
     if (bytes < (std::size_t{1} << 20)) return;
     const auto at = reinterpret_cast<std::uintptr_t>(p);
@@ -68,7 +69,7 @@ inline void prefault(const void* p, std::size_t bytes) {
 /// outgrow it, and under a hypervisor each miss is a two-level page walk. Not for arrays filled in
 /// order: fresh huge pages map slower than small ones.
 inline void advise_huge_pages(const void* p, std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
+#if defined(__linux__) && defined(MADV_HUGEPAGE) && !defined(DVORONOI_NO_PAGE_MAPPING)
     constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
     const auto at = reinterpret_cast<std::uintptr_t>(p);
     const std::uintptr_t lo = (at + kHuge - 1) & ~(kHuge - 1), hi = (at + bytes) & ~(kHuge - 1);
