@@ -129,18 +129,136 @@ struct VoronoiScratch {
     std::vector<int> dnb;         // an agent's neighbours in the deferred agents' triangulation
 };
 
-/// The steps every agent's result is made of, over the shared inputs: the index (grid order), the
-/// radius schedule of cells/asr.hpp, the one-shot radius R, the bounds; the threads' neighbour
-/// columns and the rows by grid position.
+/// The Delaunay triangulation of the deferred agents (about 3% of a uniform swarm: a vertex beyond
+/// the one-shot radius R, near the swarm's edge, on its hull, or an uncertain clip): agent t's
+/// neighbours among them, as indices into the list it was built from. Why the agents within 2R and
+/// those neighbours give the exact cell: a neighbour q of such an agent c at distance >= 2R shares
+/// with it a Voronoi edge whose points lie at distance >= R from both, so q's cell too has a vertex
+/// at R or beyond (or none): q was deferred as well. And a positive-length Voronoi edge means a
+/// circle through c and q with every other agent strictly outside; the deferred agents being a
+/// subset, c and q are Delaunay neighbours among them too. So the loaded agents and c's neighbours
+/// in this triangulation hold all of c's neighbours, and their half-planes cut out exactly its cell.
+/// Why: one triangulation of a few percent of the agents replaces, for each deferred agent, a radius
+/// schedule whose disks (and empty-circle scans) along the swarm's edge sweep thousands of agents.
+class DeferredTriangulation {
+public:
+    explicit DeferredTriangulation(const std::vector<Vec2>& pts) {
+        dim_ = naming_range_error("points", [&] { return dt_.build(pts, /*spatial=*/true); });
+        if (dim_ == 1) {  // collinear deferred agents: their order along the line
+            line_ = dt_.line_order();
+            rank_.resize(line_.size());
+            for (std::size_t t = 0; t < line_.size(); ++t) rank_[static_cast<std::size_t>(line_[t])] = static_cast<int>(t);
+        }
+    }
+    void neighbors(int t, std::vector<int>& out) const {
+        out.clear();
+        if (dim_ == 2) {
+            dt_.star(t, out);
+        } else if (dim_ == 1) {
+            const int k = rank_[static_cast<std::size_t>(t)];
+            if (k > 0) out.push_back(line_[static_cast<std::size_t>(k - 1)]);
+            if (k + 1 < static_cast<int>(line_.size())) out.push_back(line_[static_cast<std::size_t>(k + 1)]);
+        }
+    }
+
+private:
+    Delaunay dt_;
+    int dim_ = -1;
+    std::vector<int> line_, rank_;
+};
+
+/// The steps every agent's result is made of, over the shared inputs (the index and its grid order,
+/// ASR's radius schedule and empty-circle certificate, the inner step, the one-shot radius R, the
+/// bounds), writing the rows by grid position and the threads' neighbour columns.
 struct VoronoiSteps {
     const Points& points;
     const GridIndex& index;
     const AsrSchedule& schedule;
+    const EmptyCircleCertificate& cert;
+    AsrInner inner;
     double one_shot;
     const ConvexRegion& bounds;
     int team;
-    std::vector<std::vector<Index>> columns;  // per thread
-    std::vector<VoronoiRow> by_pos;
+    std::vector<std::vector<Index>> columns{};  // per thread
+    std::vector<VoronoiRow> by_pos{};
+
+    /// Room for the rows and, per thread, about seven neighbours per agent (six in a swarm; room
+    /// never written costs address space only; the first thread's column takes the others' in the end).
+    void size_for(Index n) {
+        by_pos.assign(static_cast<std::size_t>(n), VoronoiRow{});
+        columns.resize(static_cast<std::size_t>(team));
+        for (int t = 0; t < team; ++t)
+            columns[static_cast<std::size_t>(t)].reserve(static_cast<std::size_t>(t == 0 ? n : n / team + kBlock) * 7);
+    }
+
+    /// The first pass over the agent at grid position `pos`: with `deferring`, one certified clipping
+    /// at the one-shot radius, false (put off) when it does not certify the cell; else ASR.
+    bool first_pass(VoronoiScratch& sc, Index pos, bool deferring) {
+        const auto spos = static_cast<std::size_t>(pos);
+        const Vec2 c = index.point_at(spos);
+        VoronoiRow r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
+        sc.mine.clear();
+        if (deferring) {
+            load_in_range(sc, spos, c);
+            if (!certified_exact_cell(one_shot, sc.exact, sc.clip_ws)) {
+                sc.deferred.push_back(pos);
+                return false;
+            }
+            from_clip(sc, c, r);
+        } else {
+            by_asr(sc, spos, c, index.grid_order()[spos], r);
+        }
+        finish(sc, c, spos, r);
+        return true;
+    }
+
+    /// The cell of deferred agent t (grid position deferred[t]) from the agents strictly within 2R
+    /// and its neighbours beyond them in the deferred agents' triangulation (DeferredTriangulation
+    /// says why that is exact).
+    void deferred_cell(VoronoiScratch& sc, Index t, const std::vector<Index>& deferred, const DeferredTriangulation& dt) {
+        const auto spos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(t)]);
+        const Vec2 c = index.point_at(spos);
+        VoronoiRow r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
+        sc.mine.clear();
+        load_in_range(sc, spos, c);
+        dt.neighbors(static_cast<int>(t), sc.dnb);
+        for (int v : sc.dnb) {
+            const auto qpos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(v)]);
+            const Vec2 q = index.point_at(qpos);
+            if (!(pred::within_2r(c, q, one_shot) > 0)) sc.clip_ws.add(q, index.grid_order()[qpos]);
+        }
+        // A square of 4R first (most of these cells: a vertex a little beyond R), whose corners the
+        // clip screens candidates against; then a huge one.
+        const double wide = std::ldexp(1.0, 20);
+        if (certified_candidate_cell(4.0 * one_shot, sc.exact, sc.clip_ws) ||
+            certified_candidate_cell(wide * one_shot, sc.exact, sc.clip_ws)) {
+            from_clip(sc, c, r);
+        } else {
+            // Unbounded, huge or degenerate: the exact cell of the same candidates.
+            sc.clip_ws.candidates(sc.cand);
+            candidate_cell(c, sc.cand, inner, sc.ws, sc.dws, sc.cell);
+            from_cell(sc, c, std::sqrt(sc.clip_ws.lo), r);
+        }
+        finish(sc, c, spos, r);
+    }
+
+    /// The rows and the neighbour CSR in input order (scattered reads, prefetched).
+    void lay_out(VoronoiPartition& out) {
+        const auto n = static_cast<std::size_t>(points.rows());
+        std::vector<Index> source(n);  // where agent i's neighbours start (column_place, then joined offsets)
+        gather_in_input_order(positions_of(index.grid_order()), by_pos, [&](Index i, std::size_t, const VoronoiRow& r) {
+            const auto ii = static_cast<std::size_t>(i);
+            source[ii] = r.first;
+            out.areas[ii] = r.area;
+            out.centroids(i, 0) = r.cx;
+            out.centroids(i, 1) = r.cy;
+            out.on_hull[ii] = r.hull;
+            out.radius_steps[ii] = r.steps;
+            out.agents_used[ii] = r.used;
+            out.indptr[ii + 1] = out.indptr[ii] + r.count;
+        });
+        out.indices = runs_in_input_order(columns, source, out.indptr, team);
+    }
 
     /// Loads the clip with the agents strictly within 2 one_shot of the agent at grid position spos.
     void load_in_range(VoronoiScratch& sc, std::size_t spos, const Vec2& c) const {
@@ -212,9 +330,8 @@ struct VoronoiSteps {
     }
 
     /// ASR on the agent at grid position spos (centre c, input index i), every radius step with the
-    /// inner step `inner` (Scan: Boundary Scan itself, no clipping filter).
-    void by_asr(VoronoiScratch& sc, std::size_t spos, const Vec2& c, Index i, AsrInner inner,
-                const EmptyCircleCertificate& cert, VoronoiRow& r) const {
+    /// inner step `inner` (Scan: Boundary Scan itself, no clipping filter; Auto with n <= 3).
+    void by_asr(VoronoiScratch& sc, std::size_t spos, const Vec2& c, Index i, VoronoiRow& r) const {
         const Index n = points.rows();
         const auto query = [&](double radius, std::vector<Candidate>& cs) { index.within_at(spos, radius, cs); };
         // The nearest neighbour starts the schedule: widen a query until it finds someone.
@@ -230,35 +347,6 @@ struct VoronoiSteps {
             inner == AsrInner::Auto ? &sc.clip_ws : nullptr);
         from_cell(sc, c, first, r);
     }
-};
-
-/// The deferred agents' Delaunay triangulation (see voronoi_cells' last pass): agent t's neighbours
-/// among them, as indices into the list it was built from.
-class DeferredTriangulation {
-public:
-    explicit DeferredTriangulation(const std::vector<Vec2>& pts) {
-        dim_ = naming_range_error("points", [&] { return dt_.build(pts, /*spatial=*/true); });
-        if (dim_ == 1) {  // collinear deferred agents: their order along the line
-            line_ = dt_.line_order();
-            rank_.resize(line_.size());
-            for (std::size_t t = 0; t < line_.size(); ++t) rank_[static_cast<std::size_t>(line_[t])] = static_cast<int>(t);
-        }
-    }
-    void neighbors(int t, std::vector<int>& out) const {
-        out.clear();
-        if (dim_ == 2) {
-            dt_.star(t, out);
-        } else if (dim_ == 1) {
-            const int k = rank_[static_cast<std::size_t>(t)];
-            if (k > 0) out.push_back(line_[static_cast<std::size_t>(k - 1)]);
-            if (k + 1 < static_cast<int>(line_.size())) out.push_back(line_[static_cast<std::size_t>(k + 1)]);
-        }
-    }
-
-private:
-    Delaunay dt_;
-    int dim_ = -1;
-    std::vector<int> line_, rank_;
 };
 
 /// The mean spacing of the points over their bounding box (1 when it is degenerate).
@@ -325,14 +413,10 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     const ConvexHull hull = detail::naming_range_error("points", [&] { return ConvexHull(out.points); });
     const detail::EmptyCircleCertificate cert(out.points, index, hull);
     const detail::AsrSchedule schedule(out.points, index, hull);
-    const std::vector<Index>& order = index.grid_order();
-    detail::VoronoiSteps steps{out.points, index, schedule, one_shot, bounds, team, {}, {}};
-    steps.by_pos.assign(un, detail::VoronoiRow{});
-    steps.columns.resize(static_cast<std::size_t>(team));
-    for (int t = 0; t < team; ++t)  // about six neighbours per cell: room for seven (untouched room costs address space only)
-        steps.columns[static_cast<std::size_t>(t)].reserve(static_cast<std::size_t>(t == 0 ? n : n / team + detail::kBlock) * 7);
+    detail::VoronoiSteps steps{out.points, index, schedule, cert, inner, one_shot, bounds, team};
+    steps.size_for(n);
     const auto make = [](int thread) { return detail::VoronoiScratch(thread); };
-    const auto agent_at = [&](Index pos) { return order[static_cast<std::size_t>(pos)]; };
+    const auto agent_at = [&](Index pos) { return index.grid_order()[static_cast<std::size_t>(pos)]; };
 
     // Every agent: with Auto one certified clipping at R, deferring the cells it does not certify;
     // with Scan or Evt, ASR.
@@ -340,91 +424,23 @@ inline VoronoiPartition voronoi_cells(PointsRef points, AsrInner inner = AsrInne
     std::vector<Index> deferred;  // grid positions
     detail::ProgressTracker tracker(progress, n);
     detail::for_each_block(
-        n, team, tracker, make,
-        [&](detail::VoronoiScratch& sc, Index pos) {
-            const auto spos = static_cast<std::size_t>(pos);
-            const Vec2 c = index.point_at(spos);
-            detail::VoronoiRow r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
-            sc.mine.clear();
-            if (deferring) {
-                steps.load_in_range(sc, spos, c);
-                if (!detail::certified_exact_cell(one_shot, sc.exact, sc.clip_ws)) {
-                    sc.deferred.push_back(pos);
-                    return false;
-                }
-                steps.from_clip(sc, c, r);
-            } else {
-                steps.by_asr(sc, spos, c, order[spos], inner, cert, r);
-            }
-            steps.finish(sc, c, spos, r);
-            return true;
-        },
+        n, team, tracker, make, [&](detail::VoronoiScratch& sc, Index pos) { return steps.first_pass(sc, pos, deferring); },
         agent_at, [&](detail::VoronoiScratch& sc) { deferred.insert(deferred.end(), sc.deferred.begin(), sc.deferred.end()); });
 
+    // The deferred agents, from a Delaunay triangulation of themselves.
     if (!deferred.empty()) {
-        // The deferred agents (about 3% of a uniform swarm: a vertex beyond the one-shot radius R,
-        // near the swarm's edge, on its hull, or an uncertain clip) are finished from a Delaunay
-        // triangulation of themselves. Why that is exact: a neighbour q of such an agent c at
-        // distance >= 2R shares with it a Voronoi edge whose points lie at distance >= R from both,
-        // so q's cell too has a vertex at R or beyond (or none): q was deferred as well. And a
-        // positive-length Voronoi edge means a circle through c and q with every other agent
-        // strictly outside; the deferred agents being a subset, c and q are Delaunay neighbours
-        // among them too. So the loaded agents (strictly within 2R) and c's neighbours in that
-        // triangulation hold all of c's neighbours, and their half-planes cut out exactly its cell.
-        // Why: one triangulation of a few percent of the agents replaces, for each deferred agent,
-        // a radius schedule whose disks (and empty-circle scans) along the swarm's edge sweep
-        // thousands of agents.
         std::sort(deferred.begin(), deferred.end());
         std::vector<Vec2> dpts(deferred.size());
         for (std::size_t t = 0; t < deferred.size(); ++t) dpts[t] = index.point_at(static_cast<std::size_t>(deferred[t]));
         const detail::DeferredTriangulation dt(dpts);
-        const double wide = std::ldexp(1.0, 20);  // the square the candidates' cell is clipped from, in R
         const auto nd = static_cast<Index>(deferred.size());
         detail::for_each_block(
             nd, detail::thread_team(threads, detail::block_count(nd)), tracker, make,
-            [&](detail::VoronoiScratch& sc, Index t) {
-                const auto spos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(t)]);
-                const Vec2 c = index.point_at(spos);
-                detail::VoronoiRow r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
-                sc.mine.clear();
-                // Candidates: the agents strictly within 2R, then the triangulation's neighbours beyond.
-                steps.load_in_range(sc, spos, c);
-                dt.neighbors(static_cast<int>(t), sc.dnb);
-                for (int v : sc.dnb) {
-                    const auto qpos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(v)]);
-                    const Vec2 q = index.point_at(qpos);
-                    if (!(pred::within_2r(c, q, one_shot) > 0)) sc.clip_ws.add(q, order[qpos]);
-                }
-                // A square of 4R first (most of these cells: a vertex a little beyond R), whose
-                // corners the clip screens candidates against; then a huge one.
-                if (detail::certified_candidate_cell(4.0 * one_shot, sc.exact, sc.clip_ws) ||
-                    detail::certified_candidate_cell(wide * one_shot, sc.exact, sc.clip_ws)) {
-                    steps.from_clip(sc, c, r);
-                } else {
-                    // Unbounded, huge or degenerate: the exact cell of the same candidates.
-                    sc.clip_ws.candidates(sc.cand);
-                    detail::candidate_cell(c, sc.cand, inner, sc.ws, sc.dws, sc.cell);
-                    steps.from_cell(sc, c, std::sqrt(sc.clip_ws.lo), r);
-                }
-                steps.finish(sc, c, spos, r);
-            },
+            [&](detail::VoronoiScratch& sc, Index t) { steps.deferred_cell(sc, t, deferred, dt); },
             [&](Index t) { return agent_at(deferred[static_cast<std::size_t>(t)]); });
     }
 
-    // The rows and the neighbour CSR in input order (scattered reads, prefetched).
-    std::vector<Index> source(un);  // where agent i's neighbours start (column_place, then joined offsets)
-    detail::gather_in_input_order(detail::positions_of(order), steps.by_pos, [&](Index i, std::size_t, const detail::VoronoiRow& r) {
-        const auto ii = static_cast<std::size_t>(i);
-        source[ii] = r.first;
-        out.areas[ii] = r.area;
-        out.centroids(i, 0) = r.cx;
-        out.centroids(i, 1) = r.cy;
-        out.on_hull[ii] = r.hull;
-        out.radius_steps[ii] = r.steps;
-        out.agents_used[ii] = r.used;
-        out.indptr[ii + 1] = out.indptr[ii] + r.count;
-    });
-    out.indices = detail::runs_in_input_order(steps.columns, source, out.indptr, team);
+    steps.lay_out(out);
     const auto nd = static_cast<Index>(deferred.size());
     out.computed_by.one_shot = deferring ? n - nd : 0;
     out.computed_by.deferred = nd;
