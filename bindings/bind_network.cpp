@@ -6,6 +6,7 @@
 #include "pickle.hpp"
 #include "progress.hpp"
 
+#include "dvoronoi/io/network_geojson.hpp"
 #include "dvoronoi/io/network_json.hpp"
 #include "dvoronoi/network/run.hpp"
 
@@ -133,6 +134,7 @@ void visit_fields(nw::RunBase& r, V& v) {
     v("range", r.range);
     v("loss", r.loss);
     v("seed", r.seed);
+    v("settings", r.settings);
     v("points", r.points);
     v("obstacles", r.obstacles);
     v("links", r.links);
@@ -208,6 +210,20 @@ struct Saver {
         e["received"] = np_of(c.received);
         d[k] = e;
     }
+    void operator()(const char* k, const nw::Settings& o) {
+        py::dict e;
+        e["budget"] = o.budget;
+        e["cap_adjacency"] = o.cc.cap_adjacency;
+        e["adjacency_cap"] = o.cc.adjacency_cap;
+        e["forward"] = o.cc.forward;
+        e["routing"] = o.cc.routing == nw::Routing::Gpsr ? "gpsr" : "shortest";
+        e["cc_route_discovery"] = o.cc.route_discovery;
+        e["bd07_route_discovery"] = o.bd07.route_discovery;
+        e["dv_hop_synchronous"] = o.dv_hop.synchronous;
+        e["anchors_relay"] = o.dv_hop.anchors_relay;
+        e["verify"] = o.verify;
+        d[k] = e;
+    }
     void operator()(const char* k, const nw::FlatCells& c) {
         Saver s;
         s("piece_ptr", c.piece_ptr);
@@ -273,6 +289,19 @@ struct Loader {
         const auto want = static_cast<std::size_t>(c.nodes) * c.types.size();
         if (c.sent.size() != want || c.received.size() != want)
             throw py::value_error(std::string("pickled ") + type + ": counts of inconsistent sizes");
+    }
+    void operator()(const char* k, nw::Settings& o) {
+        const py::dict e = at(k).cast<py::dict>();
+        o.budget = e["budget"].cast<std::int64_t>();
+        o.cc.cap_adjacency = e["cap_adjacency"].cast<bool>();
+        o.cc.adjacency_cap = e["adjacency_cap"].cast<int>();
+        o.cc.forward = e["forward"].cast<bool>();
+        o.cc.routing = nw::parse_routing(e["routing"].cast<std::string>());
+        o.cc.route_discovery = e["cc_route_discovery"].cast<bool>();
+        o.bd07.route_discovery = e["bd07_route_discovery"].cast<bool>();
+        o.dv_hop.synchronous = e["dv_hop_synchronous"].cast<bool>();
+        o.dv_hop.anchors_relay = e["anchors_relay"].cast<bool>();
+        o.verify = e["verify"].cast<bool>();
     }
     void operator()(const char* k, nw::FlatCells& c) {
         Loader l{at(k).cast<py::dict>(), type};
@@ -391,6 +420,11 @@ void def_base(Cls& c, const char* type) {
         .def("to_json", [](const R& r, const py::object& indent) {
             return dvoronoi::io::network_json_text(r, indent.is_none() ? -1 : indent.cast<int>());
         }, py::arg("indent") = py::none(), "The run's JSON document (io/network_json.hpp; what the CLI writes).")
+        .def("to_geojson", [](const R& r, double tolerance) {
+            return dvoronoi::io::network_geojson_text(r, tolerance);
+        }, py::arg("tolerance") = 0.0,
+           "The cells as a GeoJSON FeatureCollection (io/network_geojson.hpp; what the CLI writes); "
+           "tolerance 0 = radius / 1000.")
         .def(py::pickle([](const R& r) { return run_state(r); },
                         [type](const py::tuple& t) { return run_from_state<R>(t, type); }));
 }

@@ -4,6 +4,7 @@
 #include "common.hpp"
 
 #include "dvoronoi/io/network_csv.hpp"
+#include "dvoronoi/io/network_geojson.hpp"
 #include "dvoronoi/io/network_json.hpp"
 #include "dvoronoi/io/network_svg.hpp"
 #include "dvoronoi/network/run.hpp"
@@ -22,7 +23,7 @@ namespace {
 struct NetworkOptions {
     std::string algorithm, points, obstacles, columns, routing = "gpsr", output, svg;
     std::vector<std::string> bounds;  // XMIN YMIN XMAX YMAX, as in every subcommand (or one deprecated "a,b,c,d")
-    double range = 0.0, loss = 0.0, radius = 0.0, anchor_fraction = 0.0;
+    double range = 0.0, loss = 0.0, radius = 0.0, anchor_fraction = 0.0, tolerance = 0.0;
     std::uint64_t seed = 0;
     std::int64_t budget = 0;
     int adjacency_cap = 6;
@@ -91,10 +92,10 @@ int run_network(const NetworkOptions& o) {
         throw UsageError("--anchor-fraction: must be in [0, 1], got " + show(o.anchor_fraction));
     if (o.radius < 0.0 || !std::isfinite(o.radius)) throw UsageError("--radius: must be a positive finite number");
     if (o.adjacency_cap < 0) throw UsageError("--adjacency-cap: must be >= 0");
+    if (!std::isfinite(o.tolerance) || o.tolerance < 0.0)
+        throw UsageError("--tolerance: must be a finite number >= 0, got " + show(o.tolerance));
     const bool to_stdout = o.output.empty() || o.output == "-";
-    const std::string ext = to_stdout ? ".json" : lower_extension(o.output);
-    if (ext != ".json" && ext != ".csv")
-        throw UsageError("-o/--output: cannot tell the output format of '" + o.output + "'; use .json or .csv");
+    const Format format = to_stdout ? Format::Json : output_format(o.output, "-o/--output");
     network::Options opt;
     opt.algorithm = network::parse_algorithm(o.algorithm);
     opt.range = o.range;
@@ -132,10 +133,14 @@ int run_network(const NetworkOptions& o) {
     const network::RunBase& r = network::base(result);
 
     std::string text;
-    if (ext == ".csv") {
+    if (format == Format::Csv) {
         std::ostringstream cs;
         io::write_network_csv(cs, result);
         text = cs.str();
+    } else if (format == Format::GeoJson) {
+        std::ostringstream gs;
+        io::write_network_geojson(gs, result, o.tolerance);
+        text = gs.str() + "\n";
     } else {
         text = io::network_json_text(result) + "\n";
     }
@@ -201,7 +206,12 @@ Command add_network(CLI::App& parent) {
                   "breadth-first rounds, each node forwards each anchor's flood once)");
     sub->add_flag("--anchors-relay", o->anchors_relay, "bs: anchors forward other anchors' DV-Hop floods (the paper: they do not)");
     sub->add_option("--columns", o->columns, "X,Y: the fields of POINTS holding x and y");
-    sub->add_option("-o,--output", o->output, "output file: .json (the result) or .csv (one row per node: neighbours, area, transmissions (sent_*) and link deliveries (received_*) by type); default JSON on stdout");
+    sub->add_option("-o,--output", o->output,
+                    "output file: .json (the result), .geojson (the cells as polygons, Boundary Scan's arcs "
+                    "densified; null for a cell without a polygon) or .csv (one row per node: neighbours, area, "
+                    "transmissions (sent_*) and link deliveries (received_*) by type); default JSON on stdout");
+    sub->add_option("--tolerance", o->tolerance,
+                    "GeoJSON: largest distance between an arc and its chords (default 1e-3 of the cell radius)");
     sub->add_option("--svg", o->svg, "also draw the network (cells, links, obstacles) into this SVG file");
     sub->add_flag("-q,--quiet", o->quiet, "no summary on stderr");
     return {sub, [o] { return run_network(*o); }};

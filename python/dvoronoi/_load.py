@@ -1,11 +1,13 @@
 """``dv.load(path)``: read back a result JSON that dvoronoi (Python or the ``dvoronoi`` CLI) wrote.
 
 Every result JSON names its type in ``"kind"``. Where the file records all of a result's inputs
-(``limited_partition``: points, radius, method; ``voronoi_partition``: points, inner, bounds) the
-full result object is rebuilt by running the same exact, deterministic computation, and the rebuilt
-result's JSON is checked against the file, so what comes back is what the file says. Every other
-kind (its inputs, e.g. obstacles, distances or a simulation's options, are not in the file) loads as
-a read-only :class:`LoadedResult` holding the file's fields.
+(``limited_partition``: points, radius, method; ``voronoi_partition``: points, inner, bounds;
+``network_cc``, ``network_bd07``, ``network_bs``: points, range, loss, seed, obstacles, bounds,
+radius, anchors and the other ``options``) the full result object is rebuilt by running the same
+exact, deterministic computation, and the rebuilt result's JSON is checked against the file, so what
+comes back is what the file says. Every other kind (its inputs, e.g. obstacles or distances, are not
+in the file) loads as a read-only :class:`LoadedResult` holding the file's fields; so does a network
+file written before its ``options`` were recorded.
 """
 from __future__ import annotations
 
@@ -18,11 +20,12 @@ import numpy as np
 from ._io import PathLike
 from ._result import Result
 
+#: Network kinds: rebuilt by running the simulation again when the file records its ``options``.
+NETWORK_KINDS = ("network_cc", "network_bd07", "network_bs")
 #: Kinds rebuilt as full result objects; the others load as :class:`LoadedResult`.
-REBUILT_KINDS = ("limited_partition", "voronoi_partition")
+REBUILT_KINDS = ("limited_partition", "voronoi_partition") + NETWORK_KINDS
 #: Kinds that load as :class:`LoadedResult`.
-READ_ONLY_KINDS = ("limited_cell", "grid_voronoi", "distance_neighbors", "network_cc", "network_bd07",
-                   "network_bs", "coverage_cells", "lloyd")
+READ_ONLY_KINDS = ("limited_cell", "grid_voronoi", "distance_neighbors", "coverage_cells", "lloyd")
 
 
 def _readonly(value: Any) -> Any:
@@ -142,14 +145,32 @@ def _first_difference(a: Any, b: Any, where: str = "") -> Optional[str]:
     return None if a == b else (where or "the document")
 
 
+def _simulate_again(doc: Dict[str, Any], points: np.ndarray) -> Result:
+    """The network run a file records, run again with the inputs and options it holds."""
+    from . import network
+
+    options = dict(doc["options"])
+    budget = options.pop("budget")
+    if doc["algorithm"] == "bs":
+        options.update(radius=doc["radius"], anchors=doc["anchors"])
+    else:
+        options.update(bounds=doc["bounds"])
+    result: Result = network.simulate(doc["algorithm"], points, doc["comm_range"], loss=doc["loss"],
+                                      obstacles=np.asarray(doc["obstacles"], dtype=np.float64).reshape(-1, 4),
+                                      seed=doc["seed"], budget=budget or None, **options)
+    return result
+
+
 def _rebuild(doc: Dict[str, Any], path: str) -> Result:
     from . import limited_cells, voronoi_cells
 
     kind = doc["kind"]
     try:
         points = np.asarray(doc["points"], dtype=np.float64).reshape(-1, 2)
-        if kind == "limited_partition":
-            result: Result = limited_cells(points, doc["radius"], method=doc["method"], progress=False)
+        if kind in NETWORK_KINDS:
+            result = _simulate_again(doc, points)
+        elif kind == "limited_partition":
+            result = limited_cells(points, doc["radius"], method=doc["method"], progress=False)
         else:
             bounds = doc["bounds"]
             result = voronoi_cells(points, inner=doc["inner"],
@@ -170,12 +191,16 @@ def load(path: PathLike) -> Union[Result, LoadedResult]:
     """Read back a result that dvoronoi wrote as JSON (``to_json(path)`` or the ``dvoronoi`` CLI's ``-o``).
 
     - ``"limited_partition"`` and ``"voronoi_partition"`` come back as :class:`LimitedPartition` and
-      :class:`VoronoiPartition`, rebuilt from the points and options the file records (the exact
-      computation is deterministic) and checked against the file: a file whose results differ from
-      what its inputs give raises ValueError naming the first differing field.
-    - Every other kind (``limited_cell``, ``grid_voronoi``, ``distance_neighbors``, ``network_cc``,
-      ``network_bd07``, ``network_bs``, ``coverage_cells``, ``lloyd``) records results but not all of
-      its inputs, so it loads as a read-only :class:`LoadedResult`.
+      :class:`VoronoiPartition`, ``"network_cc"``, ``"network_bd07"`` and ``"network_bs"`` as
+      :class:`~dvoronoi.network.CcResult`, :class:`~dvoronoi.network.Bd07Result` and
+      :class:`~dvoronoi.network.BoundaryScanResult`: rebuilt from the points and options the file
+      records (the computation, a simulation included, is deterministic) and checked against the
+      file: a file whose results differ from what its inputs give raises ValueError naming the first
+      differing field.
+    - Every other kind (``limited_cell``, ``grid_voronoi``, ``distance_neighbors``,
+      ``coverage_cells``, ``lloyd``) records results but not all of its inputs, so it loads as a
+      read-only :class:`LoadedResult`; so does a network file without ``"options"`` (written by an
+      earlier version).
 
     Raises
     ------
@@ -193,6 +218,8 @@ def load(path: PathLike) -> Union[Result, LoadedResult]:
     except (UnicodeDecodeError, json.JSONDecodeError) as e:
         raise ValueError(f"{name}: not a JSON file ({e})") from None
     kind = doc.get("kind") if isinstance(doc, dict) else None
+    if kind in NETWORK_KINDS and "options" not in doc:
+        return LoadedResult(doc, name)
     if kind in REBUILT_KINDS:
         return _rebuild(doc, name)
     if kind in READ_ONLY_KINDS:

@@ -52,7 +52,6 @@ order drawn from ``seed`` (one seed, one reproducible interleaving). A run that 
 """
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -277,35 +276,12 @@ class _CellsMixin:
                            piece_neighbor=self.piece_neighbor[a:b].copy(), piece_span=self.piece_span[a:b].copy(),
                            area=float(self.areas[i]), centroid=self.centroids[i].copy())
 
-    def _ring(self, i: int, tolerance: float) -> list:
-        c = self.cell(i)
-        ring = []
-        k = len(c.vertices)
-        for j in range(k):
-            ring.append(c.vertices[j].tolist())
-            if c.piece_span[j] > 0.0:  # an arc: inscribed chords within `tolerance`
-                r = self.radius
-                step = 2.0 * math.acos(max(-1.0, 1.0 - tolerance / r)) if tolerance < r else math.pi / 2
-                m = max(1, int(math.ceil(c.piece_span[j] / step)))
-                a0 = math.atan2(c.vertices[j][1] - c.center[1], c.vertices[j][0] - c.center[0])
-                for s in range(1, m):
-                    t = a0 + c.piece_span[j] * s / m
-                    ring.append([c.center[0] + r * math.cos(t), c.center[1] + r * math.sin(t)])
-        if ring:
-            ring.append(ring[0])
-        return ring
-
     def _geojson_text(self, tolerance: Optional[float]) -> str:
-        r = getattr(self, "radius", float("nan"))
-        tol = tolerance if tolerance is not None else (r / 1000.0 if np.isfinite(r) else 1.0)
-        feats = []
-        for i in range(len(self)):  # type: ignore[arg-type]
-            ring = self._ring(i, tol)
-            feats.append({"type": "Feature",
-                          "geometry": {"type": "Polygon", "coordinates": [ring] if ring else []},
-                          "properties": {"agent": i, "area": float(self.areas[i]),
-                                         "neighbors": self.cell(i).neighbors.tolist()}})
-        return json.dumps({"type": "FeatureCollection", "features": feats})
+        """The document io/network_geojson.hpp writes (the CLI's ``-o cells.geojson``, byte for byte):
+        one Feature per node, null geometry for a cell without a polygon (an unbounded CC hull cell,
+        a node DV-Hop did not localise), properties ``agent``, ``area`` (null when infinite) and
+        ``neighbors`` (``neighbors(i)``)."""
+        return str(self._core.to_geojson(0.0 if tolerance is None else float(tolerance)))  # type: ignore[attr-defined]
 
     def plot_cells(self, ax: Any = None, network: bool = True, **kwargs: Any) -> Any:
         """The cells over the network (links and obstacles); returns the Axes."""

@@ -5,6 +5,7 @@ exact area by at most tolerance x arc length), every vertex on or inside the exa
 """
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -39,8 +40,6 @@ def test_geo_interface_is_the_geojson_export(name):
     r = cell_results()[name]
     fc = r.__geo_interface__
     assert fc["type"] == "FeatureCollection" and len(fc["features"]) == len(r)
-    import json
-
     assert fc == json.loads(r.to_geojson())  # the default tolerance, as the export
     polys = [None if f["geometry"] is None else shape(f["geometry"]) for f in fc["features"]]
     assert all(p is None or p.is_valid for p in polys)
@@ -128,3 +127,48 @@ def test_single_cells_have_the_gis_bridge():
     boxed = dv.voronoi_cell([0.0, 0.0], np.array([[1.0, 0.0], [0.0, 1.0]]), bounds=(-2, -2, 2, 2))
     assert boxed.to_shapely().area == pytest.approx(boxed.area, rel=1e-12)
     assert boxed.to_shapely().exterior.is_ccw
+
+
+def _refuse_constants(name):
+    raise ValueError(f"GeoJSON must be strict JSON, found {name}")
+
+
+def test_network_cc_cells_and_unbounded_hull_cells():
+    # Written in C++ (io/network_geojson.hpp): strict JSON, a closed counter-clockwise polygon per
+    # interior cell with its exact area, null geometry and area for an unbounded hull cell.
+    cc = dv.network.simulate("cc", P * 100, 30.0, seed=2)
+    doc = json.loads(cc.to_geojson(), parse_constant=_refuse_constants)
+    assert doc == cc.__geo_interface__ and len(doc["features"]) == len(cc)
+    for i, f in enumerate(doc["features"]):
+        props = f["properties"]
+        assert props["agent"] == i and props["neighbors"] == cc.neighbors(i).tolist()
+        if cc.on_hull[i]:
+            assert f["geometry"] is None and props["area"] is None
+            continue
+        ring = f["geometry"]["coordinates"][0]
+        assert ring[0] == ring[-1]
+        poly = shape(f["geometry"])
+        assert poly.is_valid and poly.exterior.is_ccw
+        assert poly.area == pytest.approx(cc.areas[i], rel=1e-9) and props["area"] == cc.areas[i]
+    polys = cc.to_shapely()
+    assert [p is None for p in polys] == cc.on_hull.tolist()
+
+
+@pytest.mark.parametrize("tolerance", [None, 0.5, 0.01])
+def test_network_bs_arcs_around_the_positions_used(tolerance):
+    # DV-Hop moves the cells to the estimated positions: the arcs are densified around those.
+    bs = dv.network.simulate("bs", P * 100, 30.0, anchor_fraction=0.3, seed=3)
+    assert bs.estimates is not None and not np.allclose(bs.positions[bs.localized], bs.points[bs.localized])
+    tol = bs.radius / 1000 if tolerance is None else tolerance
+    polys = bs.to_shapely(tolerance=tolerance)
+    assert [p is None for p in polys] == (~bs.localized).tolist()
+    for i, poly in enumerate(polys):
+        if poly is None:
+            continue
+        exact = float(bs.areas[i])
+        assert poly.is_valid and poly.exterior.is_ccw and poly.area <= exact + 1e-9
+        assert exact - poly.area <= tol * _arc_length(bs, i) + 1e-9
+        d = np.hypot(*(np.asarray(poly.exterior.coords) - bs.positions[i]).T)
+        assert np.all(d <= bs.radius * (1 + 1e-12))
+    with pytest.raises(ValueError, match="tolerance"):
+        bs.to_geojson(tolerance=-1.0)

@@ -1,8 +1,8 @@
 """dv.load(path): every result JSON that Python or the dvoronoi CLI writes reads back.
 
-Limited and exact partitions come back as full result objects, rebuilt from the inputs the file records
-and checked against it; the other kinds as read-only LoadedResult. Anything else is refused with an
-error naming the file.
+Limited and exact partitions and network simulations come back as full result objects, rebuilt from
+the inputs the file records and checked against it; the other kinds as read-only LoadedResult.
+Anything else is refused with an error naming the file.
 """
 from __future__ import annotations
 
@@ -98,6 +98,52 @@ def test_a_file_that_disagrees_with_its_inputs_is_refused(tmp_path):
         dv.load(path)
 
 
+NETWORK = ["points", "links", "indptr", "indices", "sent", "received", "areas", "centroids", "piece_ptr",
+           "piece_neighbor", "piece_x", "piece_y", "piece_span"]
+
+
+@pytest.mark.parametrize("algorithm,kwargs", [
+    ("cc", dict(seed=1)),
+    ("cc", dict(seed=3, loss=0.2, bounds=(0, 0, 100, 100), forward=False, routing="shortest", adjacency_cap=3)),
+    ("bd07", dict(route_discovery=False, verify=False, obstacles=[[20, 20, 60, 25]])),
+    ("bs", dict(anchor_fraction=0.3, seed=5, dv_hop="async", anchors_relay=True)),
+    ("bs", dict(radius=9.0, anchors=[0, 5, 9], budget=10**6)),
+], ids=["cc", "cc-options", "bd07-options", "bs-dv-hop", "bs-anchors"])
+def test_network_runs_come_back_as_full_results(tmp_path, algorithm, kwargs):
+    r = dv.network.simulate(algorithm, P * 100, 30.0, **kwargs)
+    r.to_json(tmp_path / "n.json")
+    s = dv.load(tmp_path / "n.json")
+    same_partition(r, s, NETWORK)
+    assert s.to_json() == r.to_json() and s.to_geojson() == r.to_geojson()
+    assert s.total_transmissions == r.total_transmissions and s.message_types == r.message_types
+    assert s.cell(len(P) // 2).vertices.tolist() == r.cell(len(P) // 2).vertices.tolist()
+    t = pickle.loads(pickle.dumps(s))
+    assert type(t) is type(r) and t.to_json() == r.to_json()
+    if algorithm == "bs":
+        assert np.array_equal(s.positions, r.positions, equal_nan=True) and s.localized.tolist() == r.localized.tolist()
+    else:
+        assert s.condition == r.condition and s.bounds == r.bounds
+
+
+def test_a_network_file_that_disagrees_with_its_run_is_refused(tmp_path):
+    doc = json.loads(dv.network.simulate("cc", P * 100, 30.0, seed=1).to_json())
+    path = tmp_path / "edited.json"
+    doc["sent"][3][0] += 1
+    path.write_text(json.dumps(doc))
+    with pytest.raises(ValueError, match=r"edited\.json.*differs at sent\[3\]\[0\]"):
+        dv.load(path)
+    doc["options"]["routing"] = "teleport"
+    path.write_text(json.dumps(doc))
+    with pytest.raises(ValueError, match=r"edited\.json.*routing"):
+        dv.load(path)
+    # A file written before the options were recorded still reads back, as a read-only result.
+    del doc["options"]
+    path.write_text(json.dumps(doc))
+    old = dv.load(path)
+    assert isinstance(old, dv.LoadedResult) and old.kind == "network_cc" and old.neighbors(5).tolist() == doc[
+        "indices"][doc["indptr"][5]:doc["indptr"][6]]
+
+
 def _read_only_checks(loaded, kind, ref_doc):
     assert isinstance(loaded, dv.LoadedResult) and loaded.kind == kind
     assert json.loads(loaded.to_json()) == ref_doc
@@ -124,9 +170,6 @@ def test_read_only_kinds_from_python(tmp_path):
     results = {
         "limited_cell": dv.limited_cell(P[0], P[1:], 0.2),
         "distance_neighbors": dv.neighbors_from_distances(d),
-        "network_cc": dv.network.simulate("cc", P * 100, 30.0, seed=1),
-        "network_bd07": dv.network.simulate("bd07", P * 100, 30.0, bounds=(0, 0, 100, 100)),
-        "network_bs": dv.network.simulate("bs", P * 100, 30.0),
         "lloyd": run_,
         "grid_voronoi": dv.grid_voronoi([{"type": "circle", "center": [30, 40], "radius": 8},
                                          {"type": "point", "position": [75, 75]}],
@@ -144,7 +187,7 @@ def test_read_only_kinds_from_python(tmp_path):
         path.write_text(text)
         loaded = dv.load(path)
         _read_only_checks(loaded, kind, json.loads(text))
-        if kind in ("network_cc", "network_bd07", "network_bs", "lloyd"):  # JSON with the agents' relation
+        if kind == "lloyd":  # JSON with the agents' relation
             assert len(loaded) == len(r)
             for i in (0, 13, 59):
                 assert loaded.neighbors(i).tolist() == r.neighbors(i).tolist()
@@ -154,7 +197,7 @@ def test_read_only_kinds_from_python(tmp_path):
 
 
 @needs_cli
-def test_read_only_kinds_from_cli(tmp_path):
+def test_other_kinds_from_cli(tmp_path):
     pts = points_file(tmp_path)
     run("lloyd", pts, "-r", 0.15, "--steps", 3, "--bounds", 0, 0, 1, 1, "-o", tmp_path / "l.json", "-q")
     loaded = dv.load(tmp_path / "l.json")
@@ -165,7 +208,7 @@ def test_read_only_kinds_from_cli(tmp_path):
     run("network", "cc", big, "--range", 30, "--seed", 1, "-o", tmp_path / "n.json", "-q")
     net = dv.load(tmp_path / "n.json")
     ref_net = dv.network.simulate("cc", P * 100, 30.0, seed=1)
-    assert net.kind == "network_cc" and net.neighbors(5).tolist() == ref_net.neighbors(5).tolist()
+    assert isinstance(net, dv.network.CcResult) and net.to_json() == ref_net.to_json()
     obstacles = tmp_path / "obstacles.json"
     obstacles.write_text(json.dumps({"area": {"box": [0, 0, 100, 100]}, "obstacles": [
         {"type": "circle", "center": [30, 40], "radius": 8}, {"type": "point", "position": [75, 75]}]}))

@@ -104,6 +104,11 @@ def test_errors_name_the_argument_and_write_nothing(network_files, tmp_path):
         assert r.returncode == 2 and "--bounds" in r.stderr and not out.exists(), bounds
     r = run("network", "bd07", p, "--range", 20, "--budget", 10, "-o", out)
     assert r.returncode == 1 and "budget" in r.stderr and not out.exists()
+    geo = tmp_path / "never.geojson"
+    r = run("network", "bs", p, "--range", 20, "--tolerance", -1, "-o", geo)
+    assert r.returncode == 2 and "--tolerance" in r.stderr and not geo.exists()
+    r = run("network", "bs", p, "--range", 20, "-o", tmp_path / "never.txt")
+    assert r.returncode == 2 and "-o/--output" in r.stderr and ".geojson" in r.stderr
 
 
 @pytest.mark.parametrize("cli_args, kwargs", [
@@ -132,5 +137,13 @@ def test_cli_and_python_write_the_same_document(network_files, tmp_path, cli_arg
     assert out.read_text() == py.to_json() + "\n"
     doc = json.loads(out.read_text())
     assert doc["kind"] == f"network_{cli_args[0]}" and doc["total_transmissions"] == py.total_transmissions
+    # dv.load runs the recorded simulation again: the full result, the same document.
     loaded = dv.load(out)
-    assert loaded.kind == doc["kind"] and loaded.to_json() == json.dumps(doc)
+    assert type(loaded) is type(py) and loaded.to_json() == py.to_json()
+    # The cells' GeoJSON has one writer too (io/network_geojson.hpp).
+    geo = tmp_path / "cli.geojson"
+    r = run("network", cli_args[0], p, *[o if a == "OBS" else a for a in cli_args[1:]], "-o", geo, "-q")
+    assert r.returncode == 0, r.stderr
+    py.to_geojson(tmp_path / "py.geojson")
+    assert (tmp_path / "py.geojson").read_text() == geo.read_text() == py.to_geojson() + "\n"
+    assert json.loads(geo.read_text())["type"] == "FeatureCollection"

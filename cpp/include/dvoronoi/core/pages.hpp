@@ -1,6 +1,10 @@
 // Fresh memory, mapped in bulk: a fresh page costs a fault and a zeroing (and on a VM that hands freed
-// memory back to its host, a host fault). At 1e6 agents the drivers' results alone are 300 MB, so
-// how their pages are mapped is a measurable part of a run.
+// memory back to its host, a host fault). Used where it measurably pays: limited_cells' output
+// columns (partition/detail/cell_columns.hpp) and the grid index's arrays, a few percent of CPU time
+// (system time) at 1e6 agents; and an allocator that leaves arrays unfilled for the grid diagram's
+// nearest-point maps. Elsewhere (the exact partition, the feature maps' pages) mapping up front
+// measured within noise and was removed (docs/performance.md). -DDVORONOI_NO_PAGE_MAPPING turns
+// prefault and advise_huge_pages into no-ops (tools/bench_pages.sh compares the two builds).
 #pragma once
 
 #include <cstddef>
@@ -48,7 +52,7 @@ using UninitVector = std::vector<T, DefaultInitAllocator<T>>;
 /// pages fault in as before. Measured when limited_cells touched 700 MB at 1e6 agents: page faults
 /// were about a sixth of the run, and mapping the pages up front took about a quarter off that.
 inline void prefault(const void* p, std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE) && !defined(DVORONOI_NO_PAGE_MAPPING)
     constexpr std::uintptr_t kPage = 4096;
     if (bytes < (std::size_t{1} << 20)) return;
     const auto at = reinterpret_cast<std::uintptr_t>(p);
@@ -65,7 +69,7 @@ inline void prefault(const void* p, std::size_t bytes) {
 /// outgrow it, and under a hypervisor each miss is a two-level page walk. Not for arrays filled in
 /// order: fresh huge pages map slower than small ones.
 inline void advise_huge_pages(const void* p, std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
+#if defined(__linux__) && defined(MADV_HUGEPAGE) && !defined(DVORONOI_NO_PAGE_MAPPING)
     constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
     const auto at = reinterpret_cast<std::uintptr_t>(p);
     const std::uintptr_t lo = (at + kHuge - 1) & ~(kHuge - 1), hi = (at + bytes) & ~(kHuge - 1);
@@ -74,24 +78,6 @@ inline void advise_huge_pages(const void* p, std::size_t bytes) {
     (void)p;
     (void)bytes;
 #endif
-}
-
-/// v.assign(n, value) on prefaulted pages.
-template <class T>
-void assign_prefaulted(std::vector<T>& v, std::size_t n, const T& value = T()) {
-    v.clear();
-    v.reserve(n);
-    prefault(v.data(), n * sizeof(T));
-    v.assign(n, value);
-}
-
-/// The same on huge pages, for an array accessed in scattered order (see advise_huge_pages).
-template <class T>
-void assign_scattered(std::vector<T>& v, std::size_t n, const T& value = T()) {
-    v.clear();
-    v.reserve(n);
-    advise_huge_pages(v.data(), n * sizeof(T));
-    assign_prefaulted(v, n, value);  // keeps the storage reserved above
 }
 
 /// prefault for several buffers at once, each split over up to `team` threads: page faults are

@@ -16,6 +16,8 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #ifdef _OPENMP
@@ -128,6 +130,55 @@ inline int thread_team(int threads, Index blocks) {
     (void)threads;
 #endif
     return static_cast<int>(std::min<Index>(wanted, std::max<Index>(blocks, 1)));
+}
+
+/// Blocks of kBlock agents that cover n agents.
+inline Index block_count(Index n) { return (n + kBlock - 1) / kBlock; }
+
+/// The per-agent loop of the parallel drivers: positions 0..n-1 in blocks of kBlock, handed to the
+/// `team` OpenMP threads as each becomes free. Each thread makes its scratch by make(thread) and runs
+/// work(scratch, pos) for the positions of its blocks; a work that returns bool returns false for a
+/// position it puts off (not counted as done in the progress). A throw at `pos` goes to
+/// tracker.fail(pos, agent_at(pos)) and the blocks after the first failure are skipped. After the
+/// loop each thread hands its scratch to leave(scratch), one thread at a time; then the failure of
+/// the lowest position (or the progress callback's) is rethrown. Results written per position do
+/// not depend on the team.
+template <class Make, class Work, class AgentAt, class Leave>
+void for_each_block(Index n, int team, ProgressTracker& tracker, Make&& make, Work&& work, AgentAt&& agent_at,
+                    Leave&& leave) {
+    const Index nblocks = block_count(n);
+#pragma omp parallel num_threads(team)
+    {
+        auto scratch = make(thread_id());
+#pragma omp for schedule(dynamic, 1)
+        for (Index b = 0; b < nblocks; ++b) {
+            const Index lo = b * kBlock, hi = std::min(n, lo + kBlock);
+            if (tracker.skip(lo)) continue;
+            Index put_off = 0;
+            Index pos = lo;
+            try {
+                for (; pos < hi; ++pos) {
+                    if constexpr (std::is_void_v<decltype(work(scratch, pos))>)
+                        work(scratch, pos);
+                    else if (!work(scratch, pos))
+                        ++put_off;
+                }
+            } catch (...) {
+                tracker.fail(pos, agent_at(pos));
+            }
+            tracker.block_done(hi - lo - put_off);
+        }
+#pragma omp critical(dvoronoi_for_each_block)
+        leave(scratch);
+    }
+    tracker.rethrow_if_failed();
+}
+
+/// The same with nothing to hand over at the end.
+template <class Make, class Work, class AgentAt>
+void for_each_block(Index n, int team, ProgressTracker& tracker, Make&& make, Work&& work, AgentAt&& agent_at) {
+    for_each_block(n, team, tracker, std::forward<Make>(make), std::forward<Work>(work),
+                   std::forward<AgentAt>(agent_at), [](auto&) {});
 }
 
 }  // namespace detail

@@ -293,18 +293,15 @@ inline void column_passes(const OccupancyGrid& g, FeatureMap& f, int workers) {
     });
 }
 
-/// A map of g's size whose values the passes are still to write: its pages mapped in bulk by
-/// `workers` threads (core/pages.hpp), not filled (a serial fill would cap the passes' speed-up).
-inline FeatureMap feature_map_for(const OccupancyGrid& g, int workers = 1) {
+/// A map of g's size whose values the passes are still to write: not filled (UninitVector; a serial
+/// fill would cap the passes' speed-up), its pages faulted in by the passes that write them.
+inline FeatureMap feature_map_for(const OccupancyGrid& g) {
     FeatureMap f;
     f.rows = g.rows;
     f.cols = g.cols;
     f.vgap.resize(g.size());
     f.fx.resize(g.size());
     f.fy.resize(g.size());
-    const std::size_t bytes = g.size() * sizeof(std::int16_t);
-    ::dvoronoi::detail::prefault_together({{f.vgap.data(), bytes}, {f.fx.data(), bytes}, {f.fy.data(), bytes}},
-                                          std::max(1, workers));
     return f;
 }
 
@@ -313,7 +310,7 @@ inline FeatureMap feature_map_for(const OccupancyGrid& g, int workers = 1) {
 /// \note O(rows x cols); 6 bytes per pixel.
 inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
     check_grid(g);
-    FeatureMap f = feature_map_for(g, workers);
+    FeatureMap f = feature_map_for(g);
     column_passes(g, f, workers);
     const int k_rows = std::max(1, std::min(workers, g.rows));
     run_chunks(k_rows, g.rows, 16, [] { return detail::RowEnvelope(); },

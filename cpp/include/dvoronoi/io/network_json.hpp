@@ -3,6 +3,10 @@
 // text. Keys in this order:
 //
 //   {"kind": "network_cc" | "network_bd07" | "network_bs", "algorithm", "comm_range", "loss", "seed",
+//    "options": the run's other options (network::Settings), named as dvoronoi.network.simulate's
+//      arguments: cc {"budget", "cap_adjacency", "adjacency_cap", "forward", "routing",
+//      "route_discovery", "verify"}, bd07 {"budget", "route_discovery", "verify"}, bs {"budget",
+//      "dv_hop": "sync" | "async", "anchors_relay"} (budget 0: the default, 10^9),
 //    "points": [[x, y], ...], "links": [[i, j], ...] (i < j), "blocked_links",
 //    "obstacles": [[x0, y0, x1, y1], ...],
 //    cc:   "indptr", "indices" (ascending), "neighbors_ccw" (CC's order, same indptr), "on_hull",
@@ -85,12 +89,34 @@ ojson optional_json(const std::optional<T>& v) {
     return ojson(*v);
 }
 
+/// The options of the run that its algorithm reads (see the file comment).
+inline ojson options_json(const network::Settings& s, network::Algorithm a) {
+    ojson j;
+    j["budget"] = s.budget;
+    if (a == network::Algorithm::Cc) {
+        j["cap_adjacency"] = s.cc.cap_adjacency;
+        j["adjacency_cap"] = s.cc.adjacency_cap;
+        j["forward"] = s.cc.forward;
+        j["routing"] = s.cc.routing == network::Routing::Gpsr ? "gpsr" : "shortest";
+        j["route_discovery"] = s.cc.route_discovery;
+        j["verify"] = s.verify;
+    } else if (a == network::Algorithm::Bd07) {
+        j["route_discovery"] = s.bd07.route_discovery;
+        j["verify"] = s.verify;
+    } else {
+        j["dv_hop"] = s.dv_hop.synchronous ? "sync" : "async";
+        j["anchors_relay"] = s.dv_hop.anchors_relay;
+    }
+    return j;
+}
+
 inline void head(ojson& j, const network::RunBase& r, network::Algorithm a) {
     j["kind"] = std::string("network_") + network::algorithm_name(a);
     j["algorithm"] = network::algorithm_name(a);
     j["comm_range"] = r.range;
     j["loss"] = r.loss;
     j["seed"] = r.seed;
+    j["options"] = options_json(r.settings, a);
     j["points"] = xy_rows(r.points);
     ojson links = ojson::array();
     for (const auto& l : r.links) links.push_back(ojson::array({l[0], l[1]}));

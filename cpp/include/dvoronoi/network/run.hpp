@@ -74,10 +74,21 @@ struct FlatCells {
     Points centroids;           ///< NaN for an unbounded cell
 };
 
+/// The options that shaped a run besides those a result holds as fields (range, loss, seed,
+/// obstacles, bounds, radius, anchors): recorded so that a saved run can be run again (dv.load).
+struct Settings {
+    std::int64_t budget = 0;  ///< RunOptions::budget (0 = 10^9)
+    CcOptions cc;
+    Bd07Options bd07;
+    DvHopOptions dv_hop;
+    bool verify = true;
+};
+
 /// What every algorithm reports: its inputs, the graph, the counts and the neighbour relation.
 struct RunBase {
     double range = 0.0, loss = 0.0;
     std::uint64_t seed = 0;
+    Settings settings;                          ///< the other options of the run
     Points points;                              ///< the nodes, as given
     std::vector<Segment> obstacles;
     std::vector<std::array<Index, 2>> links;    ///< pairs i < j, ascending
@@ -247,6 +258,7 @@ inline void fill_base(RunBase& r, const Network& net, const Options& o) {
     r.range = o.range;
     r.loss = o.run.loss;
     r.seed = o.run.seed;
+    r.settings = Settings{o.run.budget, o.cc, o.bd07, o.dv_hop, o.verify};
     r.points = net.points;
     r.obstacles = net.obstacles;
     r.blocked_links = net.blocked_links;
