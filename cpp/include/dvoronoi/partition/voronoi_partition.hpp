@@ -199,7 +199,7 @@ struct VoronoiSteps {
         VoronoiRow r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
         sc.mine.clear();
         if (deferring) {
-            load_in_range(sc, spos, c);
+            load_in_range(sc, spos, c, pos % kBlock == 0);
             if (!certified_exact_cell(one_shot, sc.exact, sc.clip_ws)) {
                 sc.deferred.push_back(pos);
                 return false;
@@ -220,7 +220,7 @@ struct VoronoiSteps {
         const Vec2 c = index.point_at(spos);
         VoronoiRow r{0.0, 0.0, 0.0, 0, 0, 0, 0, 0};
         sc.mine.clear();
-        load_in_range(sc, spos, c);
+        load_in_range(sc, spos, c, t % kBlock == 0);
         dt.neighbors(static_cast<int>(t), sc.dnb);
         for (int v : sc.dnb) {
             const auto qpos = static_cast<std::size_t>(deferred[static_cast<std::size_t>(v)]);
@@ -261,8 +261,13 @@ struct VoronoiSteps {
     }
 
     /// Loads the clip with the agents strictly within 2 one_shot of the agent at grid position spos.
-    void load_in_range(VoronoiScratch& sc, std::size_t spos, const Vec2& c) const {
-        sc.clip_ws.start(c, near_first_sq(one_shot, sc.clip_ws.m));
+    /// The near-first radius comes from the previous agent's count, which at the first agent of a
+    /// block (`block_start`) would be whatever agent this thread did last: there the agent's own
+    /// count is taken, so the clipping order, and the rounding of areas, is the same for any thread
+    /// count and schedule (a block's agents run in order on one thread).
+    void load_in_range(VoronoiScratch& sc, std::size_t spos, const Vec2& c, bool block_start) const {
+        const std::size_t previous = block_start ? static_cast<std::size_t>(index.count_within_at(spos, one_shot)) : sc.clip_ws.m;
+        sc.clip_ws.start(c, near_first_sq(one_shot, previous));
         index.for_each_batch_within_at(spos, one_shot, [&](auto... batch) { sc.clip_ws.add_batch(batch...); });
     }
 
