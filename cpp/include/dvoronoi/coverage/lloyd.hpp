@@ -213,27 +213,11 @@ inline void require_moment_radius(double radius) {
 /// (so they do not depend on the team). The first failure in agent order is rethrown after the loop.
 template <class F>
 void for_each_agent(Index count, int threads, const ProgressFn& progress, F&& f) {
-    const Index block = kBlock;
-    const Index nblocks = (count + block - 1) / block;
-    const int team = thread_team(threads, nblocks);
+    const int team = thread_team(threads, block_count(count));
     ProgressTracker tracker(progress, count);
-#pragma omp parallel num_threads(team)
-    {
-        CoverageWorkspace w;
-#pragma omp for schedule(dynamic, 1)
-        for (Index b = 0; b < nblocks; ++b) {
-            const Index lo = b * block, hi = std::min(count, lo + block);
-            if (tracker.skip(lo)) continue;
-            Index i = lo;
-            try {
-                for (; i < hi; ++i) f(i, w);
-            } catch (...) {
-                tracker.fail(i, i);
-            }
-            tracker.block_done(hi - lo);
-        }
-    }
-    tracker.rethrow_if_failed();
+    for_each_block(
+        count, team, tracker, [](int) { return CoverageWorkspace(); }, [&](CoverageWorkspace& w, Index i) { f(i, w); },
+        [](Index i) { return i; });
     tracker.report_all();
 }
 

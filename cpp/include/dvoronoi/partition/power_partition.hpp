@@ -48,6 +48,67 @@ inline void require_distinct_weighted(const Points& pts, const std::vector<doubl
                           bi, bj);
 }
 
+/// One thread's workspace for heterogeneous cells, and what it computed.
+struct PowerScratch {
+    explicit PowerScratch(int t) : thread(t) {}
+    int thread;
+    std::vector<Candidate> cand;
+    std::vector<double> cand_r;
+    LimitedCell cell;
+    PowerWorkspace ws;
+    PowerChordWorkspace chord_ws;
+    PowerClipWorkspace clip_ws;
+    AlgorithmCounts ran;
+};
+
+/// The heterogeneous cell of the agent at grid position `pos` (radius r) into s.cell by `method`.
+/// `radius_at` holds the radii in grid order, `radii` in input order.
+inline void power_cell_at(const GridIndex& index, const std::vector<double>& radius_at,
+                          const std::vector<double>& radii, double rmax, std::size_t pos, Method method,
+                          PowerScratch& s) {
+    const double r = radius_at[pos];
+    const Vec2 c = index.point_at(pos);
+    const Index self = index.grid_order()[pos];
+    // Agents that can shape the cell are closer than r + R_j <= r + R_max; the query radius is half
+    // the range, widened so that rounding never drops one (the exact classification of every route
+    // discards the extras).
+    const double half_range = 0.5 * (r + rmax) * (1.0 + 0x1p-40);
+    if (method == Method::Auto) {
+        // The certified clipping (agents with the same position and radius were refused before),
+        // the exact clipping where it gives up.
+        s.clip_ws.start(c, r);
+        const Index* order0 = index.grid_order().data();
+        index.for_each_batch_within_at(pos, half_range, [&](const double* xs, const double* ys, const Index* ids,
+                                                            const std::uint32_t* sel, std::size_t count) {
+            const double* rs = radius_at.data() + (ids - order0);  // the batch's grid positions
+            s.clip_ws.add_batch(xs, ys, ids, sel, count, [&](std::uint32_t t) { return rs[t]; });
+        });
+        if (certified_power_clip_loaded(s.cell, s.clip_ws)) {
+            ++s.ran.clip;
+            return;
+        }
+        s.cand.clear();
+        s.cand_r.clear();
+        for (std::size_t t = 0; t < s.clip_ws.m; ++t) {
+            s.cand.push_back({Vec2(s.clip_ws.px[t], s.clip_ws.py[t]), s.clip_ws.id[t]});
+            s.cand_r.push_back(s.clip_ws.pr[t]);
+        }
+        power_cell(c, r, s.cand, s.cand_r, s.cell, s.ws, self);
+        ++s.ran.power;
+        return;
+    }
+    index.within_at(pos, half_range, s.cand);
+    s.cand_r.clear();
+    for (const Candidate& q : s.cand) s.cand_r.push_back(radii[static_cast<std::size_t>(q.id)]);
+    if (method == Method::Scan) {
+        power_boundary_scan(c, r, s.cand, s.cand_r, s.cell, s.chord_ws, self);
+        ++s.ran.scan;
+    } else {
+        power_rcvc(c, r, s.cand, s.cand_r, s.cell, s.chord_ws, self);
+        ++s.ran.chords;
+    }
+}
+
 }  // namespace detail
 
 /// Every agent's cell of a heterogeneous team: W_i = {q in B(p_i, R_i) : power_i(q) <= power_j(q) for
@@ -81,162 +142,43 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     const bool equal = std::all_of(radii.begin(), radii.end(), [&](double R) { return R == radii.front(); });
     if (n == 0 || equal) return limited_cells(points, n == 0 ? 1.0 : radii.front(), method, threads, progress);
 
+    const int team = detail::thread_team(threads, detail::block_count(n));
     LimitedPartition out;
     out.method = method;
-    out.points = points;
+    detail::CellColumns columns(out, points, team);
     out.radii = radii;
     const double rmax = *std::max_element(radii.begin(), radii.end());
     out.radius = rmax;
-    const Index block = detail::kBlock;
-    const Index nblocks = (n + block - 1) / block;
-    const int team = detail::thread_team(threads, nblocks);
-    const GridIndex index(out.points, rmax, team);  // cells of R_max: a query scans little beyond its disk
-    // Coinciding positions share a grid cell (O(n) expected); only when some exist are the radii
-    // compared (O(n log n)).
+
+    // Index the agents (cells of R_max: a query scans little beyond its disk). Coinciding positions
+    // share a grid cell (O(n) expected); only when some exist are the radii compared (O(n log n)).
+    const GridIndex index(out.points, rmax, team);
     if (index.first_duplicate().first >= 0) detail::require_distinct_weighted(out.points, out.radii);
     const std::vector<Index>& order = index.grid_order();
-    // Each thread appends its cells' pieces to its own list; agent i's run is (thread, offset).
-    std::vector<std::vector<Piece>> lists(static_cast<std::size_t>(team));
-    std::vector<std::pair<int, std::size_t>> run_of(static_cast<std::size_t>(n));
-    const auto un = static_cast<std::size_t>(n);
-    out.areas.assign(un, 0.0);
-    out.perimeters.assign(un, 0.0);
-    out.centroids.resize(n, 2);
-    out.candidates.assign(un, 0);
-    out.piece_ptr.assign(un + 1, 0);  // counts, summed below
-    out.indptr.assign(un + 1, 0);     // the same
-    detail::ProgressTracker tracker(progress, n);
-    Index by_filter = 0, by_clipping = 0, by_scan = 0, by_chords = 0;
     // The radii in grid order: the fast path reads its candidates' radii next to their positions.
-    std::vector<double> radius_at(un);
-    for (std::size_t pos = 0; pos < un; ++pos) radius_at[pos] = radii[static_cast<std::size_t>(order[pos])];
-    const Index* order0 = order.data();
+    std::vector<double> radius_at(static_cast<std::size_t>(n));
+    for (std::size_t pos = 0; pos < radius_at.size(); ++pos) radius_at[pos] = radii[static_cast<std::size_t>(order[pos])];
 
-#pragma omp parallel num_threads(team) reduction(+ : by_filter, by_clipping, by_scan, by_chords)
-    {
-        std::vector<detail::Candidate> cand;
-        std::vector<double> cand_r;
-        const int me = detail::thread_id();
-        std::vector<Piece>& mine = lists[static_cast<std::size_t>(me)];
-        LimitedCell cell;
-        detail::PowerWorkspace ws;
-        detail::PowerChordWorkspace chord_ws;
-        detail::PowerClipWorkspace clip_ws;
-#pragma omp for schedule(dynamic, 1)
-        for (Index b = 0; b < nblocks; ++b) {
-            const Index lo = b * block, hi = std::min(n, lo + block);
-            if (tracker.skip(lo)) continue;
-            Index pos = lo;
-            try {
-                for (; pos < hi; ++pos) {
-                    const auto pp = static_cast<std::size_t>(pos);
-                    const auto i = static_cast<std::size_t>(order[pp]);
-                    const double r = radius_at[pp];
-                    if (pos + detail::kWriteAhead < n) {  // this agent's results go to scattered places
-                        const auto a = static_cast<std::size_t>(order[pp + detail::kWriteAhead]);
-                        detail::prefetch_for_write(&out.areas[a]);
-                        detail::prefetch_for_write(&out.perimeters[a]);
-                        detail::prefetch_for_write(out.centroids.data() + 2 * a);
-                        detail::prefetch_for_write(&out.candidates[a]);
-                        detail::prefetch_for_write(&out.piece_ptr[a + 1]);
-                        detail::prefetch_for_write(&run_of[a]);
-                    }
-                    // Agents that can shape the cell are closer than r + R_j <= r + R_max; the query
-                    // radius is half the range, widened so that rounding never drops one (the exact
-                    // classification of every route discards the extras).
-                    const double half_range = 0.5 * (r + rmax) * (1.0 + 0x1p-40);
-                    const Vec2 c = index.point_at(pp);
-                    const auto self = static_cast<Index>(i);
-                    if (method == Method::Auto) {
-                        // The certified clipping (agents with the same position and radius were
-                        // refused above), the exact clipping where it gives up.
-                        clip_ws.start(c, r);
-                        index.for_each_batch_within_at(pp, half_range, [&](const double* xs, const double* ys, const Index* ids,
-                                                                           const std::uint32_t* sel, std::size_t count) {
-                            const double* rs = radius_at.data() + (ids - order0);  // the batch's grid positions
-                            clip_ws.add_batch(xs, ys, ids, sel, count, [&](std::uint32_t t) { return rs[t]; });
-                        });
-                        if (detail::certified_power_clip_loaded(cell, clip_ws)) {
-                            ++by_filter;
-                        } else {
-                            cand.clear();
-                            cand_r.clear();
-                            for (std::size_t t = 0; t < clip_ws.m; ++t) {
-                                cand.push_back({Vec2(clip_ws.px[t], clip_ws.py[t]), clip_ws.id[t]});
-                                cand_r.push_back(clip_ws.pr[t]);
-                            }
-                            detail::power_cell(c, r, cand, cand_r, cell, ws, self);
-                            ++by_clipping;
-                        }
-                    } else {
-                        index.within_at(pp, half_range, cand);
-                        cand_r.clear();
-                        for (const detail::Candidate& q : cand) cand_r.push_back(radii[static_cast<std::size_t>(q.id)]);
-                        if (method == Method::Scan) {
-                            detail::power_boundary_scan(c, r, cand, cand_r, cell, chord_ws, self);
-                            ++by_scan;
-                        } else {
-                            detail::power_rcvc(c, r, cand, cand_r, cell, chord_ws, self);
-                            ++by_chords;
-                        }
-                    }
-                    const CellMeasures& m = cell.measures();
-                    out.areas[i] = m.area;
-                    out.perimeters[i] = m.perimeter;
-                    out.centroids(static_cast<Index>(i), 0) = m.centroid.x();
-                    out.centroids(static_cast<Index>(i), 1) = m.centroid.y();
-                    out.candidates[i] = cell.candidates;
-                    run_of[i] = {me, mine.size()};
-                    mine.insert(mine.end(), cell.pieces.begin(), cell.pieces.end());
-                    out.piece_ptr[i + 1] = static_cast<Index>(cell.pieces.size());
-                    Index edges = 0;  // one per neighbour: a chord bounds a convex cell once
-                    for (const Piece& p : cell.pieces) edges += p.is_arc() ? 0 : 1;
-                    out.indptr[i + 1] = edges;
-                }
-            } catch (...) {
-                tracker.fail(pos, order[static_cast<std::size_t>(pos)]);
-            }
-            tracker.block_done(hi - lo);
-        }
-    }
-    tracker.rethrow_if_failed();
-    out.computed_by.clip = by_filter;
-    out.computed_by.power = by_clipping;
-    out.computed_by.scan = by_scan;
-    out.computed_by.chords = by_chords;
+    // Every agent's cell, stored as it is computed (see partition/detail/cell_columns.hpp).
+    detail::ProgressTracker tracker(progress, n);
+    detail::for_each_block(
+        n, team, tracker, [](int thread) { return detail::PowerScratch(thread); },
+        [&](detail::PowerScratch& s, Index pos) {
+            const auto pp = static_cast<std::size_t>(pos);
+            detail::power_cell_at(index, radius_at, radii, rmax, pp, method, s);
+            const Index ahead = pos + detail::kWriteAhead < n ? order[pp + detail::kWriteAhead] : -1;
+            columns.store(order[pp], s.cell, s.thread, ahead);
+        },
+        [&](Index pos) { return order[static_cast<std::size_t>(pos)]; },
+        [&](const detail::PowerScratch& s) {
+            out.computed_by.clip += s.ran.clip;
+            out.computed_by.power += s.ran.power;
+            out.computed_by.scan += s.ran.scan;
+            out.computed_by.chords += s.ran.chords;
+        });
 
-    // Counts to offsets; then each agent's run to its place in input order, and its neighbours
-    // sorted, in parallel (runs are read scattered over the threads' lists: a few agents ahead are
-    // prefetched so that the misses overlap).
-    for (std::size_t i = 0; i < un; ++i) {
-        out.piece_ptr[i + 1] += out.piece_ptr[i];
-        out.indptr[i + 1] += out.indptr[i];
-    }
-    const auto total = static_cast<std::size_t>(out.piece_ptr.back());
-    out.piece_x.resize(total);
-    out.piece_y.resize(total);
-    out.piece_span.resize(total);
-    out.piece_neighbor.resize(total);
-    out.indices.resize(static_cast<std::size_t>(out.indptr.back()));
-#pragma omp parallel for num_threads(team) schedule(static)
-    for (Index ii = 0; ii < n; ++ii) {
-        const auto i = static_cast<std::size_t>(ii);
-        if (i + detail::kAhead < un) {
-            const auto [ta, aa] = run_of[i + detail::kAhead];
-            if (aa < lists[static_cast<std::size_t>(ta)].size()) detail::prefetch(&lists[static_cast<std::size_t>(ta)][aa]);
-        }
-        const auto [t, at] = run_of[i];
-        const auto to = static_cast<std::size_t>(out.piece_ptr[i]);
-        const std::size_t len = static_cast<std::size_t>(out.piece_ptr[i + 1]) - to;
-        for (std::size_t q = 0; q < len; ++q) {
-            const Piece& p = lists[static_cast<std::size_t>(t)][at + q];
-            out.piece_x[to + q] = p.start.x();
-            out.piece_y[to + q] = p.start.y();
-            out.piece_span[to + q] = p.arc_span;
-            out.piece_neighbor[to + q] = p.neighbor;
-        }
-        detail::sorted_edge_neighbors(out.piece_neighbor.data() + to, len, out.indices.data() + out.indptr[i]);
-    }
+    // The pieces and the neighbour CSR in input order.
+    columns.stitch();
     tracker.report_all();
     return out;
 }
