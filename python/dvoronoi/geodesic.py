@@ -388,15 +388,19 @@ class GeodesicLloydResult(GeodesicCells):
         return doc
 
     def animate(self, path: Optional[PathLike] = None, fps: int = 10, dpi: int = 100,
-                figsize: Optional[Tuple[float, float]] = None):
+                figsize: Optional[Tuple[float, float]] = None, progress: Any = None):
         """Animate the run: the cells and agents at every recorded frame (recomputed), the cost in the
-        title. `path` ending in ``.gif`` (Pillow) or ``.mp4`` (ffmpeg); written only when complete."""
+        title. `path` ending in ``.gif`` (Pillow) or ``.mp4`` (ffmpeg), written as
+        :func:`dvoronoi.plotting.save_animation` writes (only when complete, the mode of a new file;
+        `progress` as for :func:`dvoronoi.plotting.animation_output`)."""
         import matplotlib.pyplot as plt
         from matplotlib import animation
 
+        from . import plotting
         from .coverage import _check_count
 
         fps = _check_count(fps, "fps", 1)
+        output = plotting.animation_output(path, fps, progress) if path is not None else None  # errors before drawing
         H, W = self.grid.shape
         fig, ax = plt.subplots(figsize=figsize or (6.0, max(2.0, 6.0 * H / W)), dpi=dpi)
 
@@ -410,28 +414,8 @@ class GeodesicLloydResult(GeodesicCells):
             return ()
 
         anim = animation.FuncAnimation(fig, draw, frames=len(self.trajectory), blit=False)
-        if path is not None:
-            import tempfile
-
-            suffix = os.path.splitext(os.fspath(path))[1].lower()
-            if suffix == ".gif":
-                writer: Any = animation.PillowWriter(fps=fps)
-            elif suffix == ".mp4":
-                writer = animation.FFMpegWriter(fps=fps)
-            else:
-                raise ValueError(f"path must end in .gif or .mp4, got {os.fspath(path)!r}")
-            folder = os.path.dirname(os.path.abspath(os.fspath(path)))
-            fd, tmp = tempfile.mkstemp(suffix=suffix, dir=folder)
-            os.close(fd)
-            try:
-                anim.save(tmp, writer=writer, dpi=dpi)
-                os.replace(tmp, path)
-            except BaseException:
-                if os.path.exists(tmp):
-                    os.unlink(tmp)
-                raise
-            finally:
-                plt.close(fig)
+        if output is not None:
+            plotting.save_animation(anim, fig, path, len(self.trajectory), output, dpi=dpi, progress=progress)
         return anim
 
     def __repr__(self) -> str:

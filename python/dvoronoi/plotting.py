@@ -765,6 +765,78 @@ def _output_mode() -> int:
     return 0o666 & ~mask
 
 
+def _writer(path: Any, fps: int) -> Any:
+    """The matplotlib writer for `path`: Pillow for ``.gif``, ffmpeg for ``.mp4``."""
+    from matplotlib import animation
+
+    suffix = os.path.splitext(os.fspath(path))[1].lower()
+    if suffix == ".gif":
+        return animation.PillowWriter(fps=fps)
+    if suffix == ".mp4":
+        if not animation.FFMpegWriter.isAvailable():
+            raise RuntimeError("writing .mp4 needs ffmpeg on the PATH; write a .gif instead")
+        return animation.FFMpegWriter(fps=fps)
+    raise ValueError(f"path must end in .gif or .mp4, got {os.fspath(path)!r}")
+
+
+def animation_output(path: Any, fps: int, progress: Any) -> Tuple[Any, Any]:
+    """What writing an animation to `path` needs, checked before any drawing: the writer (``.gif``:
+    Pillow, ``.mp4``: ffmpeg) and the progress bar's class (None for no bar). `progress`: None shows a
+    tqdm bar over the frames when tqdm is installed; True always (tqdm needed), False never; a
+    callable is called as ``progress(done_frames, frames)`` instead."""
+    writer = _writer(path, fps)
+    bar_class = None if callable(progress) or progress is False else tqdm_class(required=progress is True)
+    return writer, bar_class
+
+
+def save_animation(anim: Any, fig: Any, path: Any, frames: int, output: Tuple[Any, Any], dpi: int = 100,
+                   progress: Any = None) -> None:
+    """Writes `anim` (`frames` frames) to `path` with `output` (animation_output's) so that the file
+    appears only when complete, with the mode of any new file (0644 under umask 022); then closes
+    `fig`."""
+    import tempfile
+
+    import matplotlib.pyplot as plt
+
+    writer, bar_class = output
+    folder = os.path.dirname(os.path.abspath(os.fspath(path)))
+    suffix = os.path.splitext(os.fspath(path))[1].lower()
+    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(os.fspath(path)) + ".", suffix=suffix, dir=folder)
+    os.close(fd)
+    bar = bar_class(total=frames, unit="frames", desc="animate") if bar_class is not None else None
+
+    def report(i: int, total: int) -> None:  # matplotlib counts frames from 0
+        if bar is not None:
+            bar.update(i + 1 - bar.n)
+        else:
+            progress(i + 1, total)
+
+    try:
+        anim.save(tmp, writer=writer, dpi=dpi,
+                  progress_callback=report if bar is not None or callable(progress) else None)
+        os.chmod(tmp, _output_mode())  # mkstemp makes 0600; give it what any new file gets
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    finally:
+        if bar is not None:
+            bar.close()
+        plt.close(fig)
+
+
+def coverage_frame(result: Any, k: int) -> Any:
+    """The clipped cells of a Lloyd run's recorded frame k (each agent with its own radius)."""
+    from . import _core
+    from .coverage import CoverageCells
+
+    radii = np.asarray(result.radii, dtype=float) if hasattr(result, "radii") else None
+    arrays = _core.coverage_cells(np.asarray(result.trajectory[k], dtype=float), float(result.radius),
+                                  result.bounds, radii=radii)
+    return CoverageCells(arrays, result.bounds)
+
+
 def animate(result: Any, path: Any = None, fps: int = 10, cells: bool = True, dpi: int = 100,
             figsize: Tuple[float, float] = (6.0, 6.0), progress: Any = None, density: bool = True,
             trails: bool = True):
@@ -780,30 +852,13 @@ def animate(result: Any, path: Any = None, fps: int = 10, cells: bool = True, dp
     ``matplotlib.animation.FuncAnimation``.
     """
     require_matplotlib("animate()")
-    import tempfile
-
     import matplotlib.pyplot as plt
     from matplotlib import animation
 
-    from . import _args, _core
-    from .coverage import CoverageCells
+    from . import _args
 
     fps = _args.integer(fps, "fps", 1, _args.MAX_COUNT)
-    writer: Any = None
-    suffix = None
-    if path is not None:
-        suffix = os.path.splitext(os.fspath(path))[1].lower()
-        if suffix == ".gif":
-            writer = animation.PillowWriter(fps=fps)
-        elif suffix == ".mp4":
-            if not animation.FFMpegWriter.isAvailable():
-                raise RuntimeError("writing .mp4 needs ffmpeg on the PATH; write a .gif instead")
-            writer = animation.FFMpegWriter(fps=fps)
-        else:
-            raise ValueError(f"path must end in .gif or .mp4, got {os.fspath(path)!r}")
-    bar_class = None
-    if path is not None and not callable(progress) and progress is not False:
-        bar_class = tqdm_class(required=progress is True)
+    output = animation_output(path, fps, progress) if path is not None else None  # errors before drawing
     traj = np.asarray(result.trajectory, dtype=float)
     fig, ax = plt.subplots(figsize=figsize, dpi=dpi)
     lo = traj.reshape(-1, 2).min(axis=0) - result.radius
@@ -821,9 +876,8 @@ def animate(result: Any, path: Any = None, fps: int = 10, cells: bool = True, dp
         if image is not None:
             _density_artist(ax, image, box, "Greys")
         if cells:
-            arrays = _core.coverage_cells(traj[k], result.radius, result.bounds)
             extra: Dict[str, Any] = {"alpha": 0.25} if image is not None else {}
-            plot_coverage(CoverageCells(arrays, result.bounds), ax=ax, clip=tuple(box), **extra)
+            plot_coverage(coverage_frame(result, k), ax=ax, clip=tuple(box), **extra)
         else:
             ax.scatter(traj[k, :, 0], traj[k, :, 1], s=size["point_size"], c="k")
         if trails and k > 0:
@@ -834,30 +888,6 @@ def animate(result: Any, path: Any = None, fps: int = 10, cells: bool = True, dp
         return ()
 
     anim = animation.FuncAnimation(fig, draw, frames=len(traj), blit=False)
-    if path is not None:
-        folder = os.path.dirname(os.path.abspath(os.fspath(path)))
-        fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(os.fspath(path)) + ".", suffix=suffix,
-                                   dir=folder)
-        os.close(fd)
-        bar = bar_class(total=len(traj), unit="frames", desc="animate") if bar_class is not None else None
-
-        def report(i: int, frames: int) -> None:  # matplotlib counts frames from 0
-            if bar is not None:
-                bar.update(i + 1 - bar.n)
-            else:
-                progress(i + 1, frames)
-
-        try:
-            anim.save(tmp, writer=writer, dpi=dpi,
-                      progress_callback=report if bar is not None or callable(progress) else None)
-            os.chmod(tmp, _output_mode())  # mkstemp makes 0600; give it what any new file gets
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
-        finally:
-            if bar is not None:
-                bar.close()
-            plt.close(fig)
+    if output is not None:
+        save_animation(anim, fig, path, len(traj), output, dpi=dpi, progress=progress)
     return anim

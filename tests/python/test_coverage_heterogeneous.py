@@ -340,3 +340,16 @@ def test_cli_columns_xyr_runs_the_same_steps(tmp_path):
     assert sorted(p.name for p in (tmp_path / "svg").iterdir()) == ["step_000000.svg", "step_000007.svg"]
     both = cli("lloyd", path, "--columns", "x,y,r", "-r", "0.1", "--steps", "1")
     assert both.returncode != 0 and "--radius" in both.stderr
+
+
+def test_animation_frames_draw_each_robot_with_its_own_radius():
+    # The frames of animate() are recomputed from the trajectory: the last frame's cells are the
+    # run's final cells (with one radius for all they would be the largest robot's disks).
+    pytest.importorskip("matplotlib")
+    from dvoronoi import plotting
+
+    points, radii = team(3, 12, lo=0.08, hi=0.3)
+    run = dv.coverage.lloyd(points, radii, steps=4, bounds=(0, 0, 1, 1), workers=1, progress=False)
+    last = plotting.coverage_frame(run, len(run.trajectory) - 1)
+    assert np.array_equal(last.radii, run.radii)
+    assert np.allclose(last.areas, run.areas, rtol=0, atol=1e-12)

@@ -6,6 +6,7 @@ graph of the sources and the convex corners of occupied pixels (shapely decides 
 from __future__ import annotations
 
 import json
+import os
 import pickle
 
 import numpy as np
@@ -384,3 +385,21 @@ def test_cli_lloyd_on_a_map_equals_python(tmp_path):
     bad = write_points(tmp_path / "bad.txt", [(2.0 + 0.1, -1.0 + 0.1)])  # the corner pixel is a wall
     res = run("lloyd", bad, "-r", 3.0, "--map", path, "--resolution", 0.25, "--origin", 2.0, -1.0)
     assert res.returncode == 2 and "points[0]" in res.stderr and "occupied" in res.stderr
+
+
+def test_animation_is_written_whole_with_a_new_file_mode(tmp_path):
+    pytest.importorskip("matplotlib")
+    occ = om.building(48, seed=3)
+    run = dv.coverage.lloyd(random_agents(occ, 4, 3), 12.0, steps=2, environment=occ, workers=1)
+    old = os.umask(0o022)
+    try:
+        seen = []
+        run.animate(tmp_path / "run.gif", fps=5, dpi=40, progress=lambda done, total: seen.append((done, total)))
+    finally:
+        os.umask(old)
+    assert seen == [(k, len(run.trajectory)) for k in range(1, len(run.trajectory) + 1)]
+    assert oct(os.stat(tmp_path / "run.gif").st_mode & 0o777) == oct(0o644)
+    assert (tmp_path / "run.gif").read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+    assert [p.name for p in tmp_path.iterdir()] == ["run.gif"]  # no temporary file left
+    with pytest.raises(ValueError, match=r"\.gif or \.mp4"):
+        run.animate(tmp_path / "run.png")
