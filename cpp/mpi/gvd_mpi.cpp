@@ -312,15 +312,18 @@ int run_map(const Args& a, int rank, int size) {
     gvd::FeatureMap& f = m.features;
     m.mask = gvd::PixelMask(H, W);
     m.boxed = gvd::PixelMask(H, W);
-    gvd::detail::column_pass(m.grid, f, 0, W);
     // Bands as medial_diagram splits rows over threads; with more ranks than rows some are empty.
     auto band = [&](int k) { return static_cast<std::int32_t>(static_cast<std::int64_t>(H) * k / size); };
     const std::int32_t r0 = band(rank), r1 = band(rank + 1);
     std::vector<std::int16_t> nearest;  // fx, fy of the band's diagram pixels, row-major
     if (r0 < r1) {
-        // marking reads the nearest points of rows r0-1 .. r1: the row pass covers one halo row each side
-        gvd::detail::RowEnvelope env;
-        for (std::int32_t r = std::max(0, r0 - 1); r < std::min(H, r1 + 1); ++r) gvd::detail::row_pass(m.grid, f, r, env);
+        // marking reads the nearest points of rows r0-1 .. r1: the passes cover the bands of rows that
+        // hold them (a halo row each side), their starts read from the edges of all bands
+        const gvd::detail::BandEdges edges(m.grid, 1);
+        gvd::detail::BandWorker passes;
+        const std::int32_t B = gvd::detail::BandEdges::kRows;
+        for (std::int32_t b = std::max(0, r0 - 1) / B; b * B < std::min(H, r1 + 1); ++b)
+            passes(m.grid, f, edges, b * B, std::min(H, (b + 1) * B));
         m.bits = gvd::OccupancyBits(m.grid);  // the box rule reads walls anywhere near the band's nearest points
         gvd::detail::RowMarker(m).mark(r0, r1);
         for (std::int32_t r = r0; r < r1; ++r)

@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include <random>
+
 using namespace dvoronoi::gvd;
 
 namespace {
@@ -27,6 +29,47 @@ TEST_CASE("nearest points equal the brute force, with the tie rule, for any work
     for (const auto& g : maps) {
         const FeatureMap b = brute_force_features(g);
         for (int workers : {1, 2, 3}) require_same_features(g, feature_transform(g, workers), b);
+    }
+}
+
+TEST_CASE("maps of many bands: the column offsets and nearest points do not depend on where bands start") {
+    // Bands of BandEdges::kRows rows each start pass 1 from their edges: columns with no occupied pixel
+    // at all, occupied only just above or below a band's edge, or occupied in every row.
+    const std::int32_t B = detail::BandEdges::kRows;
+    std::mt19937 rng(7);
+    for (int m = 0; m < 40; ++m) {
+        const std::int32_t H = B + 1 + static_cast<std::int32_t>(rng() % static_cast<unsigned>(4 * B));
+        const std::int32_t W = 1 + static_cast<std::int32_t>(rng() % 37);
+        OccupancyGrid g(H, W);
+        for (std::int32_t c = 0; c < W; ++c) {
+            switch (rng() % 5) {
+                case 0: break;  // a free column
+                case 1: for (std::int32_t r = 0; r < H; ++r) g.occupied[g.at(r, c)] = 1; break;
+                case 2:  // pixels at band edges
+                    for (std::int32_t r = B - 1; r < H; r += B) g.occupied[g.at(r, c)] = rng() % 2;
+                    for (std::int32_t r = B; r < H; r += B) g.occupied[g.at(r, c)] = rng() % 2;
+                    break;
+                default:  // sparse pixels anywhere
+                    for (std::int32_t r = 0; r < H; ++r) g.occupied[g.at(r, c)] = rng() % 23 == 0;
+            }
+        }
+        const FeatureMap b = brute_force_features(g);
+        for (int workers : {1, 2, 3}) {
+            const FeatureMap f = feature_transform(g, workers);
+            require_same_features(g, f, b);
+            for (std::int32_t c = 0; c < W; ++c)
+                for (std::int32_t r = 0; r < H; ++r) {
+                    // the signed offset to the nearest occupied pixel of the column (the frame rows
+                    // -1 and H are occupied; ties: below)
+                    std::int32_t up = r + 1, down = H - r;
+                    for (std::int32_t q = r; q >= 0; --q)
+                        if (g.occ(q, c)) { up = r - q; break; }
+                    for (std::int32_t q = r; q < H; ++q)
+                        if (g.occ(q, c)) { down = q - r; break; }
+                    INFO("map " << m << " pixel (" << r << ", " << c << ") workers " << workers);
+                    REQUIRE(f.vgap[f.at(r, c)] == (down <= up ? down : -up));
+                }
+        }
     }
 }
 

@@ -14,7 +14,11 @@
 //     x is min(V(x), min_e (2x+1-2e)^2 + O(e)), and a lower envelope of parabolas answers a whole run
 //     in linear time. Edges outside the run cannot win (the run's end edges have offset 0 and are
 //     nearer). The envelope is built with exact integer cross-multiplications (no division).
-// Rows are split over worker threads (pass 1 by columns); the result is identical for any count.
+// Both passes run band by band (bands of 32 rows): a band's pass 1 starts from the nearest occupied
+// rows above and below it (BandEdges, one read of the map), and its pass 2 reads the band while it is
+// still in cache. Pass 1 over whole columns streamed the map twice and the offsets back and forth:
+// memory-bound, it did not speed up with a second worker. Bands go to the worker threads as they
+// become free; the result is identical for any count.
 #pragma once
 
 #include "dvoronoi/core/pages.hpp"
@@ -26,6 +30,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace dvoronoi::gvd {
 
@@ -59,34 +67,6 @@ struct Candidate2 {
         return y < o.y;
     }
 };
-
-/// Pass 1 over columns [c0, c1): vgap of every pixel.
-inline void column_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t c0, std::int32_t c1) {
-    const std::int32_t H = g.rows;
-    const std::size_t W = static_cast<std::size_t>(g.cols);
-    const std::size_t n = static_cast<std::size_t>(c1 - c0);
-    // top to bottom: rows to the nearest occupied pixel above (the frame row -1 is occupied)
-    std::vector<std::int16_t> run(n, 0);
-    for (std::int32_t r = 0; r < H; ++r) {
-        const std::uint8_t* o = &g.occupied[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0)];
-        std::int16_t* v = &f.vgap[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0)];
-        for (std::size_t k = 0; k < n; ++k) {
-            run[k] = o[k] ? std::int16_t(0) : static_cast<std::int16_t>(run[k] + 1);
-            v[k] = run[k];
-        }
-    }
-    // bottom to top: rows to the nearest occupied pixel below; keep the nearer side (ties: below)
-    std::fill(run.begin(), run.end(), std::int16_t(0));
-    for (std::int32_t r = H - 1; r >= 0; --r) {
-        const std::uint8_t* o = &g.occupied[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0)];
-        std::int16_t* v = &f.vgap[static_cast<std::size_t>(r) * W + static_cast<std::size_t>(c0)];
-        for (std::size_t k = 0; k < n; ++k) {
-            run[k] = o[k] ? std::int16_t(0) : static_cast<std::int16_t>(run[k] + 1);
-            const std::int16_t up = v[k];
-            v[k] = run[k] <= up ? run[k] : static_cast<std::int16_t>(-up);
-        }
-    }
-}
 
 /// The nearest point's y (doubled) in column c's square at vertical offset k, from pixel centre Y.
 inline std::int32_t feature_y(std::int32_t Y, std::int32_t k) {
@@ -289,17 +269,115 @@ inline void row_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t r, RowE
     }
 }
 
-}  // namespace detail
+/// Pass 1's state at the edges of bands of kRows rows: for band b and column c, the last occupied row
+/// above the band (-1: the frame) and the first occupied row below it (rows: the frame).
+struct BandEdges {
+    static constexpr std::int32_t kRows = 32;  // a band's rows and their offsets stay in L2; < 255 (bytes below)
+    std::int32_t bands = 0, cols = 0;
+    std::vector<std::int16_t> above, below;  // bands x cols
 
-/// Pass 1 over all columns with up to `workers` threads (into `f`, already sized).
-inline void column_passes(const OccupancyGrid& g, FeatureMap& f, int workers) {
-    const int k_cols = std::max(1, std::min(workers, g.cols / 64 > 0 ? g.cols / 64 : 1));
-    run_team(k_cols, [&](int k) {
-        const auto c0 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.cols) * k / k_cols);
-        const auto c1 = static_cast<std::int32_t>(static_cast<std::int64_t>(g.cols) * (k + 1) / k_cols);
-        detail::column_pass(g, f, c0, c1);
-    });
+    BandEdges(const OccupancyGrid& g, int workers) : bands((g.rows + kRows - 1) / kRows), cols(g.cols) {
+        const std::size_t W = static_cast<std::size_t>(cols), n = static_cast<std::size_t>(bands) * W;
+        // each band's own last and first occupied rows, as 1 + the row's index in the band (0: none
+        // for last, 255: none for first): bytes, so sixteen columns go in one vector operation
+        std::vector<std::uint8_t> last(n, 0), first(n, 255);
+        run_chunks(workers, bands, 4, [] { return 0; }, [&](int&, std::int32_t b0, std::int32_t b1) {
+            for (std::int32_t b = b0; b < b1; ++b) {
+                std::uint8_t* lb = &last[static_cast<std::size_t>(b) * W];
+                std::uint8_t* fb = &first[static_cast<std::size_t>(b) * W];
+                for (std::int32_t r = b * kRows; r < std::min(g.rows, (b + 1) * kRows); ++r)
+                    note_row(&g.occupied[g.at(r, 0)], static_cast<std::uint8_t>(r - b * kRows + 1), W, lb, fb);
+            }
+        });
+        // then, per band, the nearest of the earlier bands' last rows and of the later bands' first rows
+        above.resize(n);
+        below.resize(n);
+        std::vector<std::int16_t> run(W, -1);
+        for (std::int32_t b = 0; b < bands; ++b) {
+            const std::size_t at = static_cast<std::size_t>(b) * W;
+            const auto r0 = static_cast<std::int16_t>(b * kRows - 1);
+            for (std::size_t k = 0; k < W; ++k) {
+                above[at + k] = run[k];
+                run[k] = last[at + k] != 0 ? static_cast<std::int16_t>(r0 + last[at + k]) : run[k];
+            }
+        }
+        std::fill(run.begin(), run.end(), static_cast<std::int16_t>(g.rows));
+        for (std::int32_t b = bands - 1; b >= 0; --b) {
+            const std::size_t at = static_cast<std::size_t>(b) * W;
+            const auto r0 = static_cast<std::int16_t>(b * kRows - 1);
+            for (std::size_t k = 0; k < W; ++k) {
+                below[at + k] = run[k];
+                run[k] = first[at + k] != 255 ? static_cast<std::int16_t>(r0 + first[at + k]) : run[k];
+            }
+        }
+    }
+
+private:
+    /// Row `idx` (1-based in its band) of a band: into last / first where its pixels are occupied.
+    static void note_row(const std::uint8_t* o, std::uint8_t idx, std::size_t n, std::uint8_t* last, std::uint8_t* first) {
+        std::size_t k = 0;
+#if defined(__SSE2__)
+        // sixteen columns at a time (GCC leaves the byte loop scalar: byte pointers may alias anything)
+        const __m128i zero = _mm_setzero_si128(), at = _mm_set1_epi8(static_cast<char>(idx));
+        for (; k + 16 <= n; k += 16) {
+            const __m128i free = _mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(o + k)), zero);
+            __m128i* l = reinterpret_cast<__m128i*>(last + k);
+            __m128i* f = reinterpret_cast<__m128i*>(first + k);
+            _mm_storeu_si128(l, _mm_max_epu8(_mm_loadu_si128(l), _mm_andnot_si128(free, at)));  // occupied: idx, else 0
+            _mm_storeu_si128(f, _mm_min_epu8(_mm_loadu_si128(f), _mm_or_si128(free, at)));      // occupied: idx, else 255
+        }
+#endif
+        for (; k < n; ++k)
+            if (o[k] != 0) {
+                last[k] = std::max(last[k], idx);
+                first[k] = std::min(first[k], idx);
+            }
+    }
+};
+
+/// Pass 1 over the rows [r0, r1) of band b: two sweeps, started from the band's edges.
+inline void band_column_pass(const OccupancyGrid& g, FeatureMap& f, const BandEdges& e, std::int32_t b,
+                             std::int32_t r0, std::int32_t r1, std::vector<std::int16_t>& run) {
+    const std::size_t W = static_cast<std::size_t>(g.cols);
+    const std::int16_t* above = &e.above[static_cast<std::size_t>(b) * W];
+    const std::int16_t* below = &e.below[static_cast<std::size_t>(b) * W];
+    run.resize(W);
+    // top to bottom: rows since the nearest occupied pixel above (in row r0 - 1: r0 - 1 - above)
+    for (std::size_t k = 0; k < W; ++k) run[k] = static_cast<std::int16_t>(r0 - 1 - above[k]);
+    for (std::int32_t r = r0; r < r1; ++r) {
+        const std::uint8_t* o = &g.occupied[g.at(r, 0)];
+        std::int16_t* v = &f.vgap[f.at(r, 0)];
+        for (std::size_t k = 0; k < W; ++k) {
+            run[k] = o[k] ? std::int16_t(0) : static_cast<std::int16_t>(run[k] + 1);
+            v[k] = run[k];
+        }
+    }
+    // bottom to top: rows to the nearest occupied pixel below; keep the nearer side (ties: below)
+    for (std::size_t k = 0; k < W; ++k) run[k] = static_cast<std::int16_t>(below[k] - r1);
+    for (std::int32_t r = r1 - 1; r >= r0; --r) {
+        const std::uint8_t* o = &g.occupied[g.at(r, 0)];
+        std::int16_t* v = &f.vgap[f.at(r, 0)];
+        for (std::size_t k = 0; k < W; ++k) {
+            run[k] = o[k] ? std::int16_t(0) : static_cast<std::int16_t>(run[k] + 1);
+            const std::int16_t up = v[k];
+            v[k] = run[k] <= up ? run[k] : static_cast<std::int16_t>(-up);
+        }
+    }
 }
+
+/// Both passes over the rows [r0, r1) of one band (r0 its first row): pass 1 leaves the band's
+/// offsets in cache for pass 2.
+struct BandWorker {
+    RowEnvelope env;
+    std::vector<std::int16_t> run;
+    void operator()(const OccupancyGrid& g, FeatureMap& f, const BandEdges& e, std::int32_t r0, std::int32_t r1) {
+        const std::int32_t b = r0 / BandEdges::kRows;
+        band_column_pass(g, f, e, b, r0, r1, run);
+        for (std::int32_t r = r0; r < r1; ++r) row_pass(g, f, r, env);
+    }
+};
+
+}  // namespace detail
 
 /// A map of g's size whose values the passes are still to write: not filled (UninitVector; a serial
 /// fill would cap the passes' speed-up), its pages faulted in by the passes that write them.
@@ -319,12 +397,10 @@ inline FeatureMap feature_map_for(const OccupancyGrid& g) {
 inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
     check_grid(g);
     FeatureMap f = feature_map_for(g);
-    column_passes(g, f, workers);
-    const int k_rows = std::max(1, std::min(workers, g.rows));
-    run_chunks(k_rows, g.rows, 16, [] { return detail::RowEnvelope(); },
-               [&](detail::RowEnvelope& env, std::int32_t r0, std::int32_t r1) {
-                   for (std::int32_t r = r0; r < r1; ++r) detail::row_pass(g, f, r, env);
-               });
+    const int k = std::max(1, std::min(workers, (g.rows + detail::BandEdges::kRows - 1) / detail::BandEdges::kRows));
+    const detail::BandEdges edges(g, k);
+    run_chunks(k, g.rows, detail::BandEdges::kRows, [] { return detail::BandWorker(); },
+               [&](detail::BandWorker& w, std::int32_t r0, std::int32_t r1) { w(g, f, edges, r0, r1); });
     return f;
 }
 
