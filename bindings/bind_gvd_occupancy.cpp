@@ -4,6 +4,7 @@
 // Heavy work runs with the GIL released.
 #include "arrays.hpp"
 
+#include "dvoronoi/core/pages.hpp"
 #include "dvoronoi/gvd/grid_path.hpp"
 #include "dvoronoi/gvd/medial_brute_force.hpp"
 #include "dvoronoi/gvd/medial_update.hpp"
@@ -35,6 +36,8 @@ gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, 
     g.origin = Vec2(ox, oy);
     // A copy, not a zero-fill and a loop: the build of a large map is a few milliseconds. Any nonzero
     // byte is occupied; bool arrays (the Python side's) hold 0 and 1 already.
+    g.occupied.reserve(static_cast<std::size_t>(occ.size()));
+    dvoronoi::detail::advise_huge_pages(g.occupied.data(), g.occupied.capacity());  // before the first touch
     g.occupied.assign(occ.data(), occ.data() + occ.size());
     std::uint8_t bits = 0;  // an OR over the bytes (vectorised): above 1 when a byte is neither 0 nor 1
     for (std::uint8_t v : g.occupied) bits |= v;

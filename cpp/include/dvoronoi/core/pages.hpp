@@ -1,9 +1,10 @@
 // Fresh memory, mapped in bulk: a fresh page costs a fault and a zeroing (and on a VM that hands freed
 // memory back to its host, a host fault). Used where it measurably pays: limited_cells' output
 // columns (partition/detail/cell_columns.hpp) and the grid index's arrays, a few percent of CPU time
-// (system time) at 1e6 agents; and an allocator that leaves arrays unfilled for the grid diagram's
-// nearest-point maps. Elsewhere (the exact partition, the feature maps' pages) mapping up front
-// measured within noise and was removed (docs/performance.md). -DDVORONOI_NO_PAGE_MAPPING turns
+// (system time) at 1e6 agents; and an allocator that leaves arrays unfilled, on huge pages, for the
+// grid diagram's nearest-point maps (a 2048^2 build took 6,500 page faults, a third of its time when
+// its memory was fresh). Elsewhere (the exact partition) mapping up front measured within noise and
+// was removed (docs/performance.md). -DDVORONOI_NO_PAGE_MAPPING turns
 // prefault and advise_huge_pages into no-ops (tools/bench_pages.sh compares the two builds).
 #pragma once
 
@@ -33,6 +34,18 @@ struct DefaultInitAllocator : std::allocator<T> {
         using other = DefaultInitAllocator<U>;
     };
     using std::allocator<T>::allocator;
+    /// Arrays of 4 MB or more start on a 2 MB boundary, so that huge pages (advise_huge_pages) can
+    /// cover all of them: malloc's large blocks start 16 bytes into a 4 KB page, which leaves up to
+    /// 2 MB at each end in 4 KB pages.
+    static constexpr std::size_t kHugeAlign = std::size_t{1} << 21;
+    T* allocate(std::size_t n) {
+        if (n * sizeof(T) < 2 * kHugeAlign) return std::allocator<T>::allocate(n);
+        return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{kHugeAlign}));
+    }
+    void deallocate(T* p, std::size_t n) noexcept {
+        if (n * sizeof(T) < 2 * kHugeAlign) return std::allocator<T>::deallocate(p, n);
+        ::operator delete(p, std::align_val_t{kHugeAlign});
+    }
     template <class U>
     void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value) {
         ::new (static_cast<void*>(p)) U;
@@ -66,8 +79,9 @@ inline void prefault(const void* p, std::size_t bytes) {
 
 /// Asks for huge pages under [p, p + bytes) (its whole 2 MB pages). For arrays accessed in scattered
 /// order: with 4 KB pages such an access misses the TLB at nearly every agent once the arrays
-/// outgrow it, and under a hypervisor each miss is a two-level page walk. Not for arrays filled in
-/// order: fresh huge pages map slower than small ones.
+/// outgrow it, and under a hypervisor each miss is a two-level page walk. For arrays filled in
+/// order, measure: limited_cells' output columns mapped slower on fresh huge pages, the grid
+/// diagram's nearest-point maps (filled by several passes) faster.
 inline void advise_huge_pages(const void* p, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE) && !defined(DVORONOI_NO_PAGE_MAPPING)
     constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
