@@ -14,6 +14,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstring>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -36,9 +37,9 @@ gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, 
     g.origin = Vec2(ox, oy);
     // A copy, not a zero-fill and a loop: the build of a large map is a few milliseconds. Any nonzero
     // byte is occupied; bool arrays (the Python side's) hold 0 and 1 already.
-    g.occupied.reserve(static_cast<std::size_t>(occ.size()));
-    dvoronoi::detail::advise_huge_pages(g.occupied.data(), g.occupied.capacity());  // before the first touch
-    g.occupied.assign(occ.data(), occ.data() + occ.size());
+    g.occupied.resize(static_cast<std::size_t>(occ.size()));  // not filled (UninitVector)
+    dvoronoi::detail::advise_huge_pages(g.occupied.data(), g.occupied.size());  // before the first touch
+    std::memcpy(g.occupied.data(), occ.data(), g.occupied.size());
     std::uint8_t bits = 0;  // an OR over the bytes (vectorised): above 1 when a byte is neither 0 nor 1
     for (std::uint8_t v : g.occupied) bits |= v;
     if (bits > 1)
@@ -46,7 +47,8 @@ gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, 
     return g;
 }
 
-py::array_t<bool> bool_image(const std::vector<std::uint8_t>& v, std::int32_t rows, std::int32_t cols) {
+template <class Bytes>
+py::array_t<bool> bool_image(const Bytes& v, std::int32_t rows, std::int32_t cols) {
     py::array_t<bool> a({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
     bool* out = a.mutable_data();
     for (std::size_t i = 0; i < v.size(); ++i) out[i] = v[i] != 0;

@@ -60,7 +60,7 @@ int run_lloyd_map(const LloydMapRequest& r) {
         for (const double R : file.radii) ranges.push_back(R / g.resolution);
         limit = ranges.empty() ? 1.0 : *std::max_element(ranges.begin(), ranges.end());
     }
-    coverage::GeodesicLloyd lloyd(g.occupied, g.rows, g.cols, std::move(agents), limit, {}, r.gain, workers, 12, ranges);
+    coverage::GeodesicLloyd lloyd({g.occupied.begin(), g.occupied.end()}, g.rows, g.cols, std::move(agents), limit, {}, r.gain, workers, 12, ranges);
     const double area2 = std::pow(g.resolution, 4);  // cost: pixel units -> map units
     auto map_points = [&](const std::vector<coverage::PixelPoint>& pts) {
         nlohmann::json a = nlohmann::json::array();

@@ -39,7 +39,7 @@ TEST_CASE("after any sequence of additions and removals the diagram is the full 
                     for (int c = c0; c < std::min(g.cols, c0 + w); ++c) px.push_back(g.at(r, c));
                 set_pixels(m, px, kind == 0);
             } else {  // scattered flips in both directions at once
-                std::vector<std::uint8_t> occ = m.grid.occupied;
+                std::vector<std::uint8_t> occ(m.grid.occupied.begin(), m.grid.occupied.end());
                 const unsigned flips = 1 + rng() % 30;
                 for (unsigned k = 0; k < flips; ++k) occ[rng() % occ.size()] ^= 1;
                 update_occupancy(m, occ);

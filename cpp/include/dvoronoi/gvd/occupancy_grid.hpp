@@ -11,6 +11,7 @@
 // exact integers (4 x the squared distance in pixel units).
 #pragma once
 
+#include "dvoronoi/core/pages.hpp"
 #include "dvoronoi/core/types.hpp"
 #include "dvoronoi/core/parallel.hpp"
 
@@ -32,7 +33,9 @@ inline constexpr std::int32_t kMaxMapSide = 16383;
 
 struct OccupancyGrid {
     std::int32_t rows = 0, cols = 0;
-    std::vector<std::uint8_t> occupied;  ///< rows x cols, row-major, row 0 at the top; 1 = occupied
+    /// rows x cols, row-major, row 0 at the top; 1 = occupied. UninitVector: a large map's bytes start
+    /// on a 2 MB boundary for huge pages, and a copy into it needs no zero-fill first.
+    ::dvoronoi::detail::UninitVector<std::uint8_t> occupied;
     double resolution = 1.0;             ///< map units per pixel
     Vec2 origin = Vec2(0.0, 0.0);        ///< map coordinates of the lower-left corner of pixel (rows-1, 0)
 
