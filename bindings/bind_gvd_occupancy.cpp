@@ -28,22 +28,28 @@ namespace {
 using OccArray = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>;
 using IndexArray = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
 
-gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, double oy) {
+gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, double oy, int workers = 1) {
     if (occ.ndim() != 2) throw py::value_error("occupancy must be a 2-d array, got " + std::to_string(occ.ndim()) + " dimensions");
     gvd::OccupancyGrid g;
     g.rows = static_cast<std::int32_t>(occ.shape(0));
     g.cols = static_cast<std::int32_t>(occ.shape(1));
     g.resolution = resolution;
     g.origin = Vec2(ox, oy);
-    // A copy, not a zero-fill and a loop: the build of a large map is a few milliseconds. Any nonzero
-    // byte is occupied; bool arrays (the Python side's) hold 0 and 1 already.
-    g.occupied.resize(static_cast<std::size_t>(occ.size()));  // not filled (UninitVector)
-    dvoronoi::detail::advise_huge_pages(g.occupied.data(), g.occupied.size());  // before the first touch
-    std::memcpy(g.occupied.data(), occ.data(), g.occupied.size());
-    std::uint8_t bits = 0;  // an OR over the bytes (vectorised): above 1 when a byte is neither 0 nor 1
-    for (std::uint8_t v : g.occupied) bits |= v;
-    if (bits > 1)
-        for (std::uint8_t& v : g.occupied) v = v != 0;
+    // A copy into unfilled memory (its pages faulted in by the copying threads), not a zero-fill and
+    // a loop. Any nonzero byte is occupied; bool arrays (the Python side's) hold 0 and 1 already.
+    const std::size_t n = static_cast<std::size_t>(occ.size());
+    g.occupied.resize(n);
+    dvoronoi::detail::advise_huge_pages(g.occupied.data(), n);  // before the first touch
+    const int team = std::max(1, std::min(workers, static_cast<int>(n >> 20)));  // threads for maps of 1 MB and more
+    dvoronoi::run_team(team, [&](int t) {
+        const std::size_t lo = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(team);
+        const std::size_t hi = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(team);
+        std::memcpy(g.occupied.data() + lo, occ.data() + lo, hi - lo);
+        std::uint8_t b = 0;  // an OR over the bytes (vectorised): above 1 when a byte is neither 0 nor 1
+        for (std::size_t i = lo; i < hi; ++i) b |= g.occupied[i];
+        if (b > 1)
+            for (std::size_t i = lo; i < hi; ++i) g.occupied[i] = g.occupied[i] != 0;
+    });
     return g;
 }
 
@@ -93,7 +99,9 @@ void bind_gvd_occupancy(py::module_& m) {
         .def_property_readonly("mask", [](const gvd::MedialDiagram& d) {
             py::array_t<bool> a({static_cast<py::ssize_t>(d.grid.rows), static_cast<py::ssize_t>(d.grid.cols)});
             static_assert(sizeof(bool) == 1, "numpy bools are bytes");
-            d.mask.to_bytes(reinterpret_cast<std::uint8_t*>(a.mutable_data()));
+            auto* out = reinterpret_cast<std::uint8_t*>(a.mutable_data());
+            py::gil_scoped_release release;
+            d.mask.to_bytes(out, d.options.workers);
             return a;
         })
         .def_property_readonly("occupancy", [](const gvd::MedialDiagram& d) { return bool_image(d.grid.occupied, d.grid.rows, d.grid.cols); })
@@ -177,7 +185,7 @@ void bind_gvd_occupancy(py::module_& m) {
 
     m.def("_medial_build", [](const OccArray& occ, double resolution, double ox, double oy, double min_separation,
                               double prune_length, int workers) {
-        gvd::OccupancyGrid g = grid_from(occ, resolution, ox, oy);
+        gvd::OccupancyGrid g = grid_from(occ, resolution, ox, oy, workers);
         gvd::MedialOptions o;
         o.min_separation = min_separation;
         o.prune_length = prune_length;

@@ -122,6 +122,19 @@ def test_medial_equals_brute_force_on_real_shaped_maps(name):
     assert gv.diagram_mask.any()
 
 
+def test_large_maps_are_read_in_and_out_alike_by_any_number_of_threads():
+    # from 1 MB on, the map's copy into the core and the diagram's mask out of it are split over
+    # the workers; any nonzero byte is occupied
+    occ = occupancy_maps.building(1100, 3)
+    raw = np.where(occ, (1 + np.arange(occ.size) % 255).reshape(occ.shape), 0).astype(np.uint8)
+    one = _core._medial_build(np.ascontiguousarray(occ).view(np.uint8), 1.0, 0.0, 0.0, 1.5, 8.0, 1)
+    assert 0 < one.count == one.mask.sum()
+    for workers in (2, 3):
+        core = _core._medial_build(raw, 1.0, 0.0, 0.0, 1.5, 8.0, workers)
+        assert np.array_equal(core.occupancy, occ)
+        assert np.array_equal(core.mask, one.mask)
+
+
 def test_corridors_between_parts_of_one_wall_have_centrelines():
     # one wall (a comb): every corridor lies between two teeth of the same connected wall
     H, W = 40, 80

@@ -241,9 +241,18 @@ public:
         }
         return n;
     }
-    /// Row-major 0/1 bytes into `out` (rows x cols), eight pixels at a time.
-    void to_bytes(std::uint8_t* out) const {
-        for (std::int32_t r = 0; r < rows_; ++r) {
+    /// Row-major 0/1 bytes into `out` (rows x cols), eight pixels at a time, rows split over
+    /// `workers` threads (a large map's output is mostly fresh pages to fault in).
+    void to_bytes(std::uint8_t* out, int workers = 1) const {
+        const int team = std::max(1, std::min(workers, rows_ / 64));
+        run_team(team, [&](int t) {
+            to_bytes(out, static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * t / team),
+                     static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * (t + 1) / team));
+        });
+    }
+    /// Rows [r0, r1) of to_bytes.
+    void to_bytes(std::uint8_t* out, std::int32_t r0, std::int32_t r1) const {
+        for (std::int32_t r = r0; r < r1; ++r) {
             const std::uint64_t* w = row_words(r);
             std::uint8_t* o = out + static_cast<std::size_t>(r) * static_cast<std::size_t>(cols_);
             std::int32_t c = 0;
