@@ -397,17 +397,28 @@ inline FeatureMap feature_map_for(const OccupancyGrid& g) {
     return f;
 }
 
-/// The nearest-point transform of `g` with `workers` threads (same result for any count).
+/// The nearest-point transform of `g` with `workers` threads (same result for any count); after each
+/// band's passes, its thread calls after_band(r0, r1) for the band's rows [r0, r1) (while they are in
+/// cache).
 /// \throws InputError for a grid check_grid rejects.
 /// \note O(rows x cols); 6 bytes per pixel.
-inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
+template <class AfterBand>
+FeatureMap feature_transform(const OccupancyGrid& g, int workers, AfterBand&& after_band) {
     check_grid(g);
     FeatureMap f = feature_map_for(g);
     const int k = std::max(1, std::min(workers, (g.rows + detail::BandEdges::kRows - 1) / detail::BandEdges::kRows));
     const detail::BandEdges edges(g, k);
     run_chunks(k, g.rows, detail::BandEdges::kRows, [] { return detail::BandWorker(); },
-               [&](detail::BandWorker& w, std::int32_t r0, std::int32_t r1) { w(g, f, edges, r0, r1); });
+               [&](detail::BandWorker& w, std::int32_t r0, std::int32_t r1) {
+                   w(g, f, edges, r0, r1);
+                   after_band(r0, r1);
+               });
     return f;
+}
+
+/// The nearest-point transform of `g` with `workers` threads (same result for any count).
+inline FeatureMap feature_transform(const OccupancyGrid& g, int workers = 1) {
+    return feature_transform(g, workers, [](std::int32_t, std::int32_t) {});
 }
 
 }  // namespace dvoronoi::gvd

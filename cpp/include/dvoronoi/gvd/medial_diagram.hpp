@@ -386,12 +386,16 @@ private:
 /// \throws InputError for a bad grid or options.
 /// \note O(rows x cols) plus a box search (<= (prune_length + 2)^2) for the few pairs that separate.
 inline MedialDiagram medial_diagram(OccupancyGrid grid, const MedialOptions& options = {}) {
+    check_grid(grid);
     check_medial_options(options);
     MedialDiagram m;
-    m.features = feature_transform(grid, options.workers);
+    // the bits of each band's rows while the feature passes have them in cache (square row j = H-1-r)
+    m.bits = OccupancyBits(grid.rows, grid.cols);
+    m.features = feature_transform(grid, options.workers, [&m, &grid](std::int32_t r0, std::int32_t r1) {
+        m.bits.fill_rows(grid, grid.rows - r1, grid.rows - r0);
+    });
     m.grid = std::move(grid);
     m.options = options;
-    m.bits = OccupancyBits(m.grid, options.workers);
     m.mask = PixelMask(m.grid.rows, m.grid.cols);
     m.boxed = PixelMask(m.grid.rows, m.grid.cols);
     // (Marking each row while pass 2 still has its neighbours in cache was measured: no faster, as

@@ -90,14 +90,17 @@ struct SquaresHolding {
 class OccupancyBits {
 public:
     OccupancyBits() = default;
-    /// The bits of `g`, its rows split over `workers` threads (rows never share a word).
-    explicit OccupancyBits(const OccupancyGrid& g, int workers = 1)
-        : rows_(g.rows), cols_(g.cols), stride_((static_cast<std::size_t>(g.cols) + 2 + 63) / 64 + 1),
-          w_(stride_ * (static_cast<std::size_t>(g.rows) + 2), 0) {
+    /// Bits for a rows x cols map with only the outside set; fill_rows sets the map's.
+    OccupancyBits(std::int32_t rows, std::int32_t cols)
+        : rows_(rows), cols_(cols), stride_((static_cast<std::size_t>(cols) + 2 + 63) / 64 + 1),
+          w_(stride_ * (static_cast<std::size_t>(rows) + 2), 0) {
         for (std::size_t k = 0; k < stride_; ++k) {  // the outside rows
             w_[k] = ~std::uint64_t{0};
             w_[(static_cast<std::size_t>(rows_) + 1) * stride_ + k] = ~std::uint64_t{0};
         }
+    }
+    /// The bits of `g`, its rows split over `workers` threads (rows never share a word).
+    explicit OccupancyBits(const OccupancyGrid& g, int workers = 1) : OccupancyBits(g.rows, g.cols) {
         const int team = std::max(1, std::min(workers, rows_));
         run_team(team, [&](int t) {
             fill_rows(g, static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * t / team),
@@ -127,8 +130,7 @@ public:
         return row(s.j0, s.c0, n) != 0 || row(s.j1, s.c0, n) != 0;
     }
 
-private:
-    /// Square rows j in [j0, j1) from the occupancy bytes.
+    /// Square rows j in [j0, j1) from the occupancy bytes (threads may fill different rows at once).
     void fill_rows(const OccupancyGrid& g, std::int32_t j0, std::int32_t j1) {
         for (std::int32_t j = j0; j < j1; ++j) {
             const std::uint8_t* o = &g.occupied[g.at(rows_ - 1 - j, 0)];
@@ -155,6 +157,7 @@ private:
         }
     }
 
+private:
     std::int32_t rows_ = 0, cols_ = 0;
     std::size_t stride_ = 0;
     std::vector<std::uint64_t> w_;
