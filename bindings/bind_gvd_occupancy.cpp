@@ -40,14 +40,16 @@ gvd::OccupancyGrid grid_from(const OccArray& occ, double resolution, double ox, 
     const std::size_t n = static_cast<std::size_t>(occ.size());
     g.occupied.resize(n);
     dvoronoi::detail::advise_huge_pages(g.occupied.data(), n);  // before the first touch
-    const int team = std::max(1, std::min(workers, static_cast<int>(n >> 20)));  // threads for maps of 1 MB and more
-    dvoronoi::run_team(team, [&](int t) {
-        const std::size_t lo = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(team);
-        const std::size_t hi = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(team);
+    const std::size_t W = std::max<std::size_t>(1, static_cast<std::size_t>(g.cols));
+    const auto rows_a_chunk = static_cast<std::int32_t>(std::max<std::size_t>(1, (std::size_t{1} << 20) / W));  // ~1 MB
+    dvoronoi::run_chunks(n > (std::size_t{1} << 20) ? workers : 1, g.rows, rows_a_chunk, [] { return 0; },
+                         [&](int&, std::int32_t r0, std::int32_t r1) {
+        const std::size_t lo = static_cast<std::size_t>(r0) * W, hi = std::min(n, static_cast<std::size_t>(r1) * W);
+        if (lo >= hi) return;  // a map of no columns
         std::memcpy(g.occupied.data() + lo, occ.data() + lo, hi - lo);
-        std::uint8_t b = 0;  // an OR over the bytes (vectorised): above 1 when a byte is neither 0 nor 1
-        for (std::size_t i = lo; i < hi; ++i) b |= g.occupied[i];
-        if (b > 1)
+        std::uint8_t any = 0;  // an OR over the bytes (vectorised): above 1 when a byte is neither 0 nor 1
+        for (std::size_t i = lo; i < hi; ++i) any |= g.occupied[i];
+        if (any > 1)
             for (std::size_t i = lo; i < hi; ++i) g.occupied[i] = g.occupied[i] != 0;
     });
     return g;

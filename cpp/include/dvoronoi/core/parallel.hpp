@@ -1,7 +1,8 @@
 // Shared machinery of the parallel drivers: the OpenMP team size, the progress callback and the
 // tracker that reports progress and carries failures out of a parallel region (limited and exact
-// cells, distances, coverage); and a team of std::threads for workers that wait for each other's
-// messages (the grid diagram's cooperative slices), which OpenMP cannot promise to start together:
+// cells, distances, coverage), and chunks of rows handed to an OpenMP team (the occupancy grids'
+// passes); and a team of std::threads for workers that wait for each other's messages (the grid
+// diagram's cooperative slices), which OpenMP cannot promise to start together:
 // a region may get fewer threads than asked (nested regions, OMP_DYNAMIC, thread limits), and a
 // worker waiting for a message from one that never started would hang.
 #pragma once
@@ -205,11 +206,20 @@ void run_team(int count, Fn&& fn) {
 template <class Make, class Fn>
 void run_chunks(int workers, std::int32_t count, std::int32_t chunk, Make&& make, Fn&& fn) {
     std::atomic<std::int32_t> next{0};
-    run_team(workers, [&](int) {
+    auto take_chunks = [&] {
         auto state = make();
         for (std::int32_t lo; (lo = next.fetch_add(chunk, std::memory_order_relaxed)) < count;)
             fn(state, lo, std::min(count, lo + chunk));
-    });
+    };
+#ifdef _OPENMP
+    // Chunks wait for no partner, so an OpenMP team serves with however many threads it gives; its
+    // threads stay between regions (a grid diagram build runs several: a std::thread start each
+    // would cost tens of microseconds).
+#pragma omp parallel num_threads(std::max(1, workers)) if (workers > 1)
+    take_chunks();
+#else
+    run_team(workers, [&](int) { take_chunks(); });
+#endif
 }
 
 }  // namespace dvoronoi

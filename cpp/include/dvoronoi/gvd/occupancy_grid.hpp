@@ -247,11 +247,8 @@ public:
     /// Row-major 0/1 bytes into `out` (rows x cols), eight pixels at a time, rows split over
     /// `workers` threads (a large map's output is mostly fresh pages to fault in).
     void to_bytes(std::uint8_t* out, int workers = 1) const {
-        const int team = std::max(1, std::min(workers, rows_ / 64));
-        run_team(team, [&](int t) {
-            to_bytes(out, static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * t / team),
-                     static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * (t + 1) / team));
-        });
+        run_chunks(std::min(workers, rows_ / 64 + 1), rows_, 64, [] { return 0; },
+                   [&](int&, std::int32_t r0, std::int32_t r1) { to_bytes(out, r0, r1); });
     }
     /// Rows [r0, r1) of to_bytes.
     void to_bytes(std::uint8_t* out, std::int32_t r0, std::int32_t r1) const {
