@@ -44,15 +44,15 @@ struct UpdateStats {
 
 namespace detail {
 
-/// First x in row r with fx >= lo (fx is non-decreasing along a row).
-inline std::int32_t first_at_least(const FeatureMap& f, std::int32_t r, std::int32_t lo) {
-    const std::int16_t* fx = &f.fx[f.at(r, 0)];
-    return static_cast<std::int32_t>(std::lower_bound(fx, fx + f.cols, lo) - fx);
-}
+/// Changed cells bucketed by row: row rows[k] has the ascending columns cols[start[k] .. start[k+1]).
+struct RowCells {
+    std::vector<std::int32_t> rows, cols;
+    std::vector<std::size_t> start{0};
+};
 
 class Updater {
 public:
-    explicit Updater(MedialDiagram& m) : m_(m), g_(m.grid), f_(m.features) {}
+    explicit Updater(MedialDiagram& m) : m_(m), g_(m.grid), f_(m.features), touched_(m.grid.rows, m.grid.cols) {}
 
     /// Sets the listed pixels (linear indices) to `occupied`; pixels already so are skipped.
     void apply(const std::vector<std::size_t>& pixels, bool occupied) {
@@ -63,19 +63,25 @@ public:
         todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
         if (todo.empty()) return;
         stats.changed_pixels += todo.size();
-        touched_.reserve(touched_.size() + 16 * todo.size());  // a blob's nearest points change around it
+        const std::int32_t W = g_.cols;
+        std::vector<std::pair<std::int32_t, std::int32_t>> cr;  // (column, row) of the changes
+        cr.reserve(todo.size());
         for (std::size_t i : todo) {
             g_.occupied[i] = occupied ? 1 : 0;
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(g_.cols));
-            m_.bits.put(g_.rows - 1 - r, static_cast<std::int32_t>(i % static_cast<std::size_t>(g_.cols)), occupied);
+            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
+            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
+            m_.bits.put(g_.rows - 1 - r, c, occupied);
             changed_.push_back(i);
-            touched_.push_back(i);
+            touched_.set(r, c, true);
+            cr.push_back({c, r});
         }
-        const auto rows_changed = update_columns(todo, occupied);
-        if (occupied) {
-            for (const auto& rc : rows_changed) add_row(rc.first, rc.second);
-        } else {
-            for (const auto& rc : rows_changed) remove_row(rc.first, rc.second);
+        std::sort(cr.begin(), cr.end());
+        const RowCells rc = by_row(occupied ? add_columns(cr) : remove_columns(cr));
+        for (std::size_t k = 0; k < rc.rows.size(); ++k) {
+            const std::int32_t* cols = rc.cols.data() + rc.start[k];
+            const std::size_t n = rc.start[k + 1] - rc.start[k];
+            if (occupied) add_row(rc.rows[k], cols, n);
+            else recompute_runs(rc.rows[k], cols, n);
         }
     }
 
@@ -84,53 +90,12 @@ public:
     /// row segment as a build marks them.
     void refresh_mask() {
         if (changed_.empty()) return;
-        const std::int32_t H = g_.rows, W = g_.cols;
-        PixelMask redo(H, W);  // touched pixels and their 4-neighbours (they share a pair)
-        for (std::size_t i : touched_) redo.set(i, true);
-        redo = redo.dilated4();
-        // Pixels whose nearest point lies near a change (the box rule): changed pixels grouped in
-        // tiles, each tile's box grown by that margin, searched in the rows within the map's
-        // largest clearance of it.
-        // a grown box lies within prune_length + sqrt(2) + 1 pixels of either nearest point
-        const std::int32_t margin = static_cast<std::int32_t>(std::ceil(m_.options.prune_length)) + 3;
-        constexpr std::int32_t kTile = 32;
-        const std::size_t tw = static_cast<std::size_t>((W + kTile - 1) / kTile);
-        std::vector<std::size_t> tiles;
-        for (std::size_t i : changed_) {
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
-            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
-            tiles.push_back(static_cast<std::size_t>(r / kTile) * tw + static_cast<std::size_t>(c / kTile));
-        }
-        std::sort(tiles.begin(), tiles.end());
-        tiles.erase(std::unique(tiles.begin(), tiles.end()), tiles.end());
-        const std::int64_t reach = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(max_sq())) / 2.0)) + margin + 1;
-        std::vector<std::size_t> changed = changed_;
-        std::sort(changed.begin(), changed.end());
-        for (std::size_t t : tiles) {
-            const std::int32_t r0 = static_cast<std::int32_t>(t / tw) * kTile, c0 = static_cast<std::int32_t>(t % tw) * kTile;
-            const std::int32_t r1 = std::min(H, r0 + kTile) - 1, c1 = std::min(W, c0 + kTile) - 1;
-            // nearest points (doubled) in [xlo, xhi] x [ylo, yhi]
-            const std::int32_t xlo = 2 * (c0 - margin), xhi = 2 * (c1 + 1 + margin);
-            const std::int32_t ylo = 2 * (H - 1 - r1 - margin), yhi = 2 * (H - r0 + margin);
-            if (!unchanged_walls_meet(changed, xlo, xhi, ylo, yhi)) continue;
-            // Only pixels of box-judged pairs (m.boxed) can change without a touched neighbour, and
-            // a pixel is within the largest clearance of its nearest point.
-            const auto ra = static_cast<std::int32_t>(std::max<std::int64_t>(0, r0 - reach));
-            const auto rb = static_cast<std::int32_t>(std::min<std::int64_t>(H - 1, r1 + reach));
-            const auto ca = static_cast<std::int32_t>(std::max<std::int64_t>(0, c0 - reach));
-            const auto cb = static_cast<std::int32_t>(std::min<std::int64_t>(W - 1, c1 + reach));
-            for (std::int32_t r = ra; r <= rb; ++r) {
-                const std::size_t base = f_.at(r, 0);
-                for (std::int32_t x = m_.boxed.find(r, ca, true, cb + 1); x <= cb; x = m_.boxed.find(r, x + 1, true, cb + 1)) {
-                    const std::size_t i = base + static_cast<std::size_t>(x);
-                    const std::int32_t fx = f_.fx[i], fy = f_.fy[i];
-                    if (fx >= xlo && fx <= xhi && fy >= ylo && fy <= yhi && !g_.occupied[i]) redo.set(r, x, true);
-                }
-            }
-        }
+        if (m_.max_sq >= 0) m_.max_sq = std::max(m_.max_sq, touched_sq_);
+        PixelMask redo = touched_.dilated4();  // touched pixels and their 4-neighbours (they share a pair)
+        find_boxed(redo);
         RowMarker marker(m_);
-        for (std::int32_t r = 0; r < H; ++r)  // runs of set bits
-            for (std::int32_t a = redo.find(r, 0, true); a < W; a = redo.find(r, a, true)) {
+        for (std::int32_t r = 0; r < g_.rows; ++r)  // runs of set bits
+            for (std::int32_t a = redo.find(r, 0, true); a < g_.cols; a = redo.find(r, a, true)) {
                 const std::int32_t b = redo.find(r, a, false);
                 stats.mask_checks += static_cast<std::uint64_t>(b - a);
                 marker.mark_segment(r, a, b - 1);
@@ -141,6 +106,86 @@ public:
     UpdateStats stats;
 
 private:
+    /// Adds to `redo` the pixels of box-judged pairs (m.boxed: the only pixels whose membership a
+    /// change of occupancy can alter without a touched neighbour) whose nearest point lies near a
+    /// change: changed pixels grouped in tiles, each tile's box grown by the margin below. A pixel is
+    /// within the map's largest clearance of its nearest point, so the pixels searched lie within that
+    /// reach of a tile; the tiles' search squares overlap, so their union is scanned once, and a
+    /// pixel's nearest point is looked up in a coarse grid of cells holding the grown boxes (a cell
+    /// over a box's edge adds pixels to recheck, never drops one).
+    void find_boxed(PixelMask& redo) {
+        const std::int32_t H = g_.rows, W = g_.cols;
+        // a grown box lies within prune_length + sqrt(2) + 1 pixels of either nearest point
+        const std::int32_t margin = static_cast<std::int32_t>(std::ceil(m_.options.prune_length)) + 3;
+        constexpr std::int32_t kTile = 32, kCell = 3;  // cells of 8 x 8 pixels
+        const std::size_t tw = static_cast<std::size_t>((W + kTile - 1) / kTile);
+        std::vector<std::size_t> tiles;
+        for (std::size_t i : changed_) {
+            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
+            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
+            tiles.push_back(static_cast<std::size_t>(r / kTile) * tw + static_cast<std::size_t>(c / kTile));
+        }
+        std::sort(tiles.begin(), tiles.end());
+        tiles.erase(std::unique(tiles.begin(), tiles.end()), tiles.end());
+        std::vector<std::size_t> changed = changed_;
+        std::sort(changed.begin(), changed.end());
+        // nearest points' pixel coordinates (x, y) = (fx / 2, fy / 2) lie in [0, W] x [0, H]
+        const std::int32_t zw = (W >> kCell) + 1;
+        std::vector<std::uint8_t> zone;
+        struct Square { std::int32_t ra, rb, ca, cb; };  // the pixels to search for one tile
+        std::vector<Square> squares;
+        std::int64_t reach = -1;
+        for (std::size_t t : tiles) {
+            const std::int32_t r0 = static_cast<std::int32_t>(t / tw) * kTile, c0 = static_cast<std::int32_t>(t % tw) * kTile;
+            const std::int32_t r1 = std::min(H, r0 + kTile) - 1, c1 = std::min(W, c0 + kTile) - 1;
+            // nearest points (doubled) in [xlo, xhi] x [ylo, yhi]
+            const std::int32_t xlo = 2 * (c0 - margin), xhi = 2 * (c1 + 1 + margin);
+            const std::int32_t ylo = 2 * (H - 1 - r1 - margin), yhi = 2 * (H - r0 + margin);
+            if (!unchanged_walls_meet(changed, xlo, xhi, ylo, yhi)) continue;
+            if (reach < 0) {
+                reach = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(max_sq())) / 2.0)) + margin + 1;
+                zone.assign(static_cast<std::size_t>(zw) * static_cast<std::size_t>((H >> kCell) + 1), 0);
+            }
+            const std::int32_t x0 = std::max(0, xlo / 2) >> kCell, x1 = std::min(W, xhi / 2) >> kCell;
+            const std::int32_t y0 = std::max(0, ylo / 2) >> kCell, y1 = std::min(H, yhi / 2) >> kCell;
+            for (std::int32_t y = y0; y <= y1; ++y)
+                std::fill_n(&zone[static_cast<std::size_t>(y) * static_cast<std::size_t>(zw) + static_cast<std::size_t>(x0)], x1 - x0 + 1, std::uint8_t{1});
+            squares.push_back({static_cast<std::int32_t>(std::max<std::int64_t>(0, r0 - reach)),
+                               static_cast<std::int32_t>(std::min<std::int64_t>(H - 1, r1 + reach)),
+                               static_cast<std::int32_t>(std::max<std::int64_t>(0, c0 - reach)),
+                               static_cast<std::int32_t>(std::min<std::int64_t>(W - 1, c1 + reach))});
+        }
+        // The rows between two consecutive square edges share one union of column intervals.
+        std::vector<std::int32_t> edges;
+        for (const Square& q : squares) {
+            edges.push_back(q.ra);
+            edges.push_back(q.rb + 1);
+        }
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        std::vector<std::pair<std::int32_t, std::int32_t>> spans;
+        for (std::size_t e = 0; e + 1 < edges.size(); ++e) {
+            spans.clear();
+            for (const Square& q : squares)
+                if (q.ra <= edges[e] && edges[e] <= q.rb) spans.push_back({q.ca, q.cb});
+            std::sort(spans.begin(), spans.end());
+            for (std::size_t k = 0; k < spans.size();) {
+                const std::int32_t ca = spans[k].first;
+                std::int32_t cb = spans[k].second;
+                for (++k; k < spans.size() && spans[k].first <= cb + 1; ++k) cb = std::max(cb, spans[k].second);
+                for (std::int32_t r = edges[e]; r < edges[e + 1]; ++r) {
+                    const std::size_t base = f_.at(r, 0);
+                    for (std::int32_t x = m_.boxed.find(r, ca, true, cb + 1); x <= cb; x = m_.boxed.find(r, x + 1, true, cb + 1)) {
+                        const std::size_t i = base + static_cast<std::size_t>(x);
+                        const std::size_t cell = static_cast<std::size_t>(f_.fy[i] >> (kCell + 1)) * static_cast<std::size_t>(zw) +
+                                                 static_cast<std::size_t>(f_.fx[i] >> (kCell + 1));
+                        if (zone[cell]) redo.set(r, x, true);
+                    }
+                }
+            }
+        }
+    }
+
     /// Does an occupied square that is not a changed pixel (or the outside) meet the zone
     /// [xlo, xhi] x [ylo, yhi] (doubled units)? If not, a pixel whose nearest point lies in the zone
     /// has it on a changed square only, so the update gave it that point (or took it away): the pixel
@@ -167,79 +212,95 @@ private:
 
     /// Largest squared clearance (doubled units) now, an upper bound kept by the diagram.
     std::int64_t max_sq() {
-        if (m_.max_sq < 0) m_.max_sq = largest_sq(f_, 0, f_.rows);  // the first update finds it
-        for (std::size_t i : touched_) {
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(g_.cols));
-            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(g_.cols));
-            m_.max_sq = std::max(m_.max_sq, f_.sq(r, c));
-        }
+        if (m_.max_sq < 0) m_.max_sq = largest_sq(f_, 0, f_.rows);  // the first update that needs it finds it
         return m_.max_sq;
     }
 
-    /// Pass 1 in the changed columns; returns (row, sorted changed columns) for every row that changed.
-    std::vector<std::pair<std::int32_t, std::vector<std::int32_t>>> update_columns(const std::vector<std::size_t>& todo,
-                                                                                   bool occupied) {
-        const std::int32_t H = g_.rows, W = g_.cols;
-        std::vector<std::pair<std::int32_t, std::int32_t>> cr;  // (column, row) of the changes
-        for (std::size_t i : todo)
-            cr.push_back({static_cast<std::int32_t>(i % static_cast<std::size_t>(W)), static_cast<std::int32_t>(i / static_cast<std::size_t>(W))});
-        std::sort(cr.begin(), cr.end());
-        auto is_new = [&](std::int32_t r, std::int32_t c) {
-            return std::binary_search(cr.begin(), cr.end(), std::make_pair(c, r));
-        };
-        // an occupied pixel that bounds a column's range: occupied before and after
-        auto stays_occupied = [&](std::int32_t r, std::int32_t c) {
-            return r < 0 || r >= H || (g_.occ(r, c) && !(occupied && is_new(r, c)));
-        };
+    /// Pass 1 after removals: between the nearest pixels of a column that stay occupied (or the
+    /// outside) every pixel is free, so its offsets to both are known without a pass.
+    std::vector<std::pair<std::int32_t, std::int32_t>> remove_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
+        const std::int32_t H = g_.rows;
         std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
-        std::vector<std::int16_t> up;
-        std::size_t k = 0;
-        while (k < cr.size()) {
-            const std::int32_t c = cr[k].first;
-            std::int32_t done_to = -1;  // rows <= done_to are done in this column
-            for (; k < cr.size() && cr[k].first == c; ++k) {
-                const std::int32_t r0 = cr[k].second;
-                if (r0 <= done_to) continue;
-                std::int32_t lo = r0 - 1, hi = r0 + 1;
-                while (!stays_occupied(lo, c)) --lo;
-                while (!stays_occupied(hi, c)) ++hi;
-                // rows lo+1 .. hi-1 between two pixels occupied before and after (or the outside)
-                const std::int32_t n = hi - lo - 1;
-                up.assign(static_cast<std::size_t>(n), 0);
-                std::int16_t run = 0;
-                for (std::int32_t r = lo + 1; r < hi; ++r) {
-                    run = g_.occ(r, c) ? std::int16_t(0) : static_cast<std::int16_t>(run + 1);
-                    up[static_cast<std::size_t>(r - lo - 1)] = run;
+        std::int32_t col = -1, done_to = -1;  // rows <= done_to of column col are done
+        for (const auto& [c, r0] : cr) {
+            if (c == col && r0 <= done_to) continue;
+            col = c;
+            std::int32_t lo = r0 - 1, hi = r0 + 1;
+            while (lo >= 0 && !g_.occ(lo, c)) --lo;
+            while (hi < H && !g_.occ(hi, c)) ++hi;
+            for (std::int32_t r = lo + 1; r < hi; ++r) {
+                const std::int32_t up = r - lo, down = hi - r;  // ties: below, as in column_pass
+                const auto v = static_cast<std::int16_t>(down <= up ? down : -up);
+                std::int16_t& cur = f_.vgap[f_.at(r, c)];
+                if (cur != v) {
+                    cur = v;
+                    cells.push_back({r, c});
                 }
-                run = 0;
-                for (std::int32_t r = hi - 1; r > lo; --r) {
-                    run = g_.occ(r, c) ? std::int16_t(0) : static_cast<std::int16_t>(run + 1);
-                    const std::int16_t u = up[static_cast<std::size_t>(r - lo - 1)];
-                    const std::int16_t v = run <= u ? run : static_cast<std::int16_t>(-u);
-                    std::int16_t& cur = f_.vgap[f_.at(r, c)];
-                    if (cur != v) {
-                        cur = v;
-                        cells.push_back({r, c});
-                    }
-                }
-                stats.column_cells += static_cast<std::uint64_t>(n);
-                done_to = hi - 1;
             }
+            stats.column_cells += static_cast<std::uint64_t>(hi - lo - 1);
+            done_to = hi - 1;
         }
-        // by row, columns ascending: the cells come column by column with rows ascending, so a stable
-        // bucketing by row keeps each row's columns in order
-        std::vector<std::size_t> start(static_cast<std::size_t>(H) + 1, 0);
-        for (const auto& rc : cells) ++start[static_cast<std::size_t>(rc.first) + 1];
-        std::vector<std::pair<std::int32_t, std::vector<std::int32_t>>> rows;
-        std::vector<std::size_t> slot(static_cast<std::size_t>(H), 0);
-        for (std::int32_t r = 0; r < H; ++r)
-            if (start[static_cast<std::size_t>(r) + 1] != 0) {
-                slot[static_cast<std::size_t>(r)] = rows.size();
-                rows.push_back({r, {}});
-                rows.back().second.reserve(start[static_cast<std::size_t>(r) + 1]);
+        return cells;
+    }
+
+    /// Pass 1 after additions: offsets only shrink, so from each run of new pixels of a column the
+    /// walk goes outward while the run is nearer than the offset a pixel has (ties: below). It stops
+    /// at the first pixel that keeps its offset: the run's distance grows by one a row and the kept
+    /// side's shrinks by one, so no pixel beyond changes either.
+    std::vector<std::pair<std::int32_t, std::int32_t>> add_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
+        const std::int32_t H = g_.rows;
+        std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
+        auto put = [&](std::int32_t r, std::int32_t c, std::int32_t v) {
+            std::int16_t& cur = f_.vgap[f_.at(r, c)];
+            if (cur == v) return;
+            cur = static_cast<std::int16_t>(v);
+            cells.push_back({r, c});
+        };
+        for (std::size_t k = 0; k < cr.size();) {
+            const std::int32_t c = cr[k].first, a = cr[k].second;
+            std::size_t e = k + 1;
+            while (e < cr.size() && cr[e].first == c && cr[e].second == cr[e - 1].second + 1) ++e;
+            const std::int32_t b = cr[e - 1].second;  // new pixels a .. b of column c
+            for (std::int32_t r = a; r <= b; ++r) put(r, c, 0);
+            std::int32_t r = a - 1;
+            for (; r >= 0 && !g_.occ(r, c); --r) {  // above the run: the run is below, at a - r
+                const std::int32_t v = f_.vgap[f_.at(r, c)];
+                if (v < 0 && -v < a - r) break;
+                put(r, c, a - r);
             }
-        for (const auto& rc : cells) rows[slot[static_cast<std::size_t>(rc.first)]].second.push_back(rc.second);
-        return rows;
+            std::int32_t s = b + 1;
+            for (; s < H && !g_.occ(s, c); ++s) {  // below the run: the run is above, at s - b
+                const std::int32_t v = f_.vgap[f_.at(s, c)];
+                if (v > 0 && v <= s - b) break;
+                put(s, c, b - s);
+            }
+            stats.column_cells += static_cast<std::uint64_t>(s - r - 1);
+            k = e;
+        }
+        return cells;
+    }
+
+    /// (row, column) cells, column by column, to rows with ascending unique columns: a stable bucketing
+    /// by row keeps each row's columns in order.
+    RowCells by_row(const std::vector<std::pair<std::int32_t, std::int32_t>>& cells) const {
+        const std::int32_t H = g_.rows;
+        std::vector<std::size_t> at(static_cast<std::size_t>(H) + 1, 0);
+        for (const auto& rc : cells) ++at[static_cast<std::size_t>(rc.first) + 1];
+        for (std::int32_t r = 0; r < H; ++r) at[static_cast<std::size_t>(r) + 1] += at[static_cast<std::size_t>(r)];
+        std::vector<std::int32_t> flat(cells.size());
+        std::vector<std::size_t> fill(at.begin(), at.end() - 1);
+        for (const auto& rc : cells) flat[fill[static_cast<std::size_t>(rc.first)]++] = rc.second;
+        RowCells out;
+        for (std::int32_t r = 0; r < H; ++r) {
+            const std::size_t a = at[static_cast<std::size_t>(r)], b = at[static_cast<std::size_t>(r) + 1];
+            if (a == b) continue;
+            out.rows.push_back(r);
+            // a cell reached from the runs above and below it comes twice
+            const auto end = std::unique(flat.begin() + static_cast<std::ptrdiff_t>(a), flat.begin() + static_cast<std::ptrdiff_t>(b));
+            out.cols.insert(out.cols.end(), flat.begin() + static_cast<std::ptrdiff_t>(a), end);
+            out.start.push_back(out.cols.size());
+        }
+        return out;
     }
 
     void set_feature(std::int32_t r, std::int32_t x, std::int32_t fx, std::int32_t fy) {
@@ -247,7 +308,8 @@ private:
         if (f_.fx[i] == fx && f_.fy[i] == fy) return;
         f_.fx[i] = static_cast<std::int16_t>(fx);
         f_.fy[i] = static_cast<std::int16_t>(fy);
-        touched_.push_back(i);
+        touched_.set(r, x, true);
+        touched_sq_ = std::max(touched_sq_, f_.sq(r, x));
         ++stats.feature_changes;
     }
 
@@ -256,73 +318,66 @@ private:
         return {f_.sq(r, x), f_.fx[i], f_.fy[i]};
     }
 
-    /// Removals in row r with changed columns `cols`: recompute the pixels whose nearest point is gone.
-    void remove_row(std::int32_t r, const std::vector<std::int32_t>& cols) {
-        const std::int32_t W = g_.cols;
-        const std::size_t base = f_.at(r, 0);
-        std::vector<std::int32_t>& redo = redo_;  // kept between rows: no allocation a row
-        redo.clear();
-        // One interval of nearest x per run of adjacent changed columns: the runs of a row are often
-        // far apart (blobs whose columns' changes reach the same row), and the pixels between their
-        // intervals have nearest points on columns that did not change.
-        std::int32_t from = 0;  // x ascends with the runs (nearest x does along a row)
-        for (std::size_t a = 0; a < cols.size();) {
-            std::size_t b = a;
-            while (b + 1 < cols.size() && cols[b + 1] == cols[b] + 1) ++b;
-            const std::int32_t xlo = 2 * cols[a], xhi = 2 * cols[b] + 2;
-            std::int32_t x = std::max(from, first_at_least(f_, r, xlo));
-            for (; x < W && f_.fx[base + static_cast<std::size_t>(x)] <= xhi; ++x) {
-                const std::size_t i = base + static_cast<std::size_t>(x);
-                if (g_.occupied[i]) continue;  // still occupied: its own centre
-                if (!m_.bits.holds_point(f_.fx[i], f_.fy[i])) redo.push_back(x);
+    /// Row r with changed columns `cols` (n, ascending): pass 2 again over the free runs that hold a
+    /// changed column or end next to one (a pixel's nearest point lies in its run or on the occupied
+    /// pixels bounding it), as a build runs it; changed occupied pixels are their own nearest points.
+    void recompute_runs(std::int32_t r, const std::int32_t* cols, std::size_t n) {
+        const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
+        const std::uint8_t* o = &g_.occupied[g_.at(r, 0)];
+        std::int32_t done = -1;  // columns <= done are recomputed
+        auto run_through = [&](std::int32_t c) {  // the free run holding column c
+            std::int32_t s = c;
+            while (s > 0 && !o[s - 1]) --s;
+            const void* next = std::memchr(o + c, 1, static_cast<std::size_t>(W - c));
+            const std::int32_t t = next ? static_cast<std::int32_t>(static_cast<const std::uint8_t*>(next) - o) - 1 : W - 1;
+            recompute_run(r, s, t);
+            done = t;
+        };
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::int32_t c = cols[k];
+            if (c <= done) continue;
+            if (!o[c]) {
+                run_through(c);
+                continue;
             }
-            from = x;
-            a = b + 1;
-        }
-        // one window per group of pixels with no occupied pixel between them
-        const std::uint8_t* o = &g_.occupied[base];
-        std::size_t a = 0;
-        while (a < redo.size()) {
-            std::size_t b = a + 1;
-            while (b < redo.size() && !std::memchr(o + redo[b - 1] + 1, 1, static_cast<std::size_t>(redo[b] - redo[b - 1] - 1))) ++b;
-            std::int64_t U = 0;
-            for (std::size_t q = a; q < b; ++q) {
-                const std::int64_t k = std::abs(static_cast<std::int32_t>(f_.vgap[base + static_cast<std::size_t>(redo[q])]));
-                U = std::max(U, (2 * k - 1) * (2 * k - 1));
-            }
-            // A square of column c is at least |X - 2e| away for its nearer edge e, so columns more than
-            // sqrt(U)/2 + 1 from every pixel cannot beat the pixels' own columns; nor can columns
-            // beyond an occupied pixel of the row (its edge is nearer, at distance 0 in the row).
-            const auto R = static_cast<std::int32_t>(std::sqrt(static_cast<double>(U)) / 2.0) + 2;
-            std::int32_t ca = redo[a] - 1;
-            while (ca >= 0 && !o[ca] && redo[a] - ca < R) --ca;
-            std::int32_t cb = redo[b - 1] + 1;
-            while (cb < W && !o[cb] && cb - redo[b - 1] < R) ++cb;
-            env_.build(g_, f_, r, ca, cb);
-            for (std::size_t q = a; q < b; ++q) {
-                const Candidate2 n = env_.query(redo[q]);
-                set_feature(r, redo[q], n.x, n.y);
-            }
-            a = b;
+            set_feature(r, c, 2 * c + 1, Y);
+            if (c > 0 && !o[c - 1] && c - 1 > done) run_through(c - 1);
+            done = c;
+            if (c + 1 < W && !o[c + 1]) run_through(c + 1);
         }
     }
 
-    /// Additions in row r with changed columns `cols`.
-    void add_row(std::int32_t r, const std::vector<std::int32_t>& cols) {
+    /// Pass 2 over the free run [s, t] of row r; the pixels whose nearest point differs take the new one.
+    void recompute_run(std::int32_t r, std::int32_t s, std::int32_t t) {
+        if (run_x_.size() < static_cast<std::size_t>(g_.cols)) {
+            run_x_.resize(static_cast<std::size_t>(g_.cols));
+            run_y_.resize(static_cast<std::size_t>(g_.cols));
+        }
+        env_.build_run(g_, f_, r, s, t);
+        env_.fill_run(s, t, run_x_.data(), run_y_.data());
+        const std::int16_t* fx = &f_.fx[f_.at(r, 0)];
+        const std::int16_t* fy = &f_.fy[f_.at(r, 0)];
+        for (std::int32_t x = s; x <= t; ++x)
+            if (run_x_[static_cast<std::size_t>(x)] != fx[x] || run_y_[static_cast<std::size_t>(x)] != fy[x])
+                set_feature(r, x, run_x_[static_cast<std::size_t>(x)], run_y_[static_cast<std::size_t>(x)]);
+    }
+
+    /// Additions in row r with changed columns `cols` (n, ascending).
+    void add_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
         const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
-        for (std::int32_t c : cols)  // newly occupied pixels: their own centres
-            if (g_.occ(r, c)) set_feature(r, c, 2 * c + 1, Y);
+        for (std::size_t k = 0; k < n; ++k)  // newly occupied pixels: their own centres
+            if (g_.occ(r, cols[k])) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
         std::size_t a = 0;
-        while (a < cols.size()) {
+        while (a < n) {
             std::size_t b = a;
-            while (b + 1 < cols.size() && cols[b + 1] == cols[b] + 1) ++b;
+            while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
             const std::int32_t ca = cols[a], cb = cols[b];
             env_.build(g_, f_, r, ca, cb);
             auto offer = [&](std::int32_t x) {  // true when x took the run's square
                 if (g_.occ(r, x)) return false;
-                const Candidate2 n = env_.query(x);
-                if (n < current(r, x)) {
-                    set_feature(r, x, n.x, n.y);
+                const Candidate2 nc = env_.query(x);
+                if (nc < current(r, x)) {
+                    set_feature(r, x, nc.x, nc.y);
                     return true;
                 }
                 return false;
@@ -340,9 +395,10 @@ private:
     OccupancyGrid& g_;
     FeatureMap& f_;
     RowEnvelope env_;
-    std::vector<std::int32_t> redo_;    // remove_row: the row's pixels to recompute
-    std::vector<std::size_t> changed_;  // pixels whose occupancy flipped
-    std::vector<std::size_t> touched_;  // pixels whose occupancy or nearest point changed
+    std::vector<std::int16_t> run_x_, run_y_;  // recompute_run: a run's nearest points, by column
+    std::vector<std::size_t> changed_;         // pixels whose occupancy flipped
+    PixelMask touched_;                        // pixels whose occupancy or nearest point changed
+    std::int64_t touched_sq_ = 0;              // their largest squared clearance now
 };
 
 }  // namespace detail
