@@ -310,16 +310,18 @@ private:
     void set_feature(std::int32_t r, std::int32_t x, std::int32_t fx, std::int32_t fy) {
         const std::size_t i = f_.at(r, x);
         if (f_.fx[i] == fx && f_.fy[i] == fy) return;
-        f_.fx[i] = static_cast<std::int16_t>(fx);
-        f_.fy[i] = static_cast<std::int16_t>(fy);
-        touched_.set(r, x, true);
-        touched_sq_ = std::max(touched_sq_, f_.sq(r, x));
-        ++stats.feature_changes;
+        const std::int64_t dx = fx - (2 * x + 1), dy = fy - (2 * (g_.rows - 1 - r) + 1);
+        store(r, x, {dx * dx + dy * dy, fx, fy});
     }
 
-    Candidate2 current(std::int32_t r, std::int32_t x) const {
+    /// Pixel (r, x) takes the nearest point n (a different one), n.sq away.
+    void store(std::int32_t r, std::int32_t x, const Candidate2& n) {
         const std::size_t i = f_.at(r, x);
-        return {f_.sq(r, x), f_.fx[i], f_.fy[i]};
+        f_.fx[i] = static_cast<std::int16_t>(n.x);
+        f_.fy[i] = static_cast<std::int16_t>(n.y);
+        touched_.set(r, x, true);
+        touched_sq_ = std::max(touched_sq_, n.sq);
+        ++stats.feature_changes;
     }
 
     /// Removals in row r with changed columns `cols` (n, ascending; all free now). A pixel needs a
@@ -358,7 +360,7 @@ private:
                 env_.build(g_, f_, r, ca, cb);
                 for (std::int32_t x = x1; x < x2; ++x) {
                     const Candidate2 nc = env_.query(x);
-                    set_feature(r, x, nc.x, nc.y);
+                    if (nc.x != fx[x] || nc.y != fy[x]) store(r, x, nc);
                 }
                 built = -1;
                 continue;
@@ -381,8 +383,12 @@ private:
     /// Additions in row r with changed columns `cols` (n, ascending).
     void add_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
         const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
+        const std::size_t base = f_.at(r, 0);
+        const std::uint8_t* o = &g_.occupied[base];
+        const std::int16_t* fx = &f_.fx[base];
+        const std::int16_t* fy = &f_.fy[base];
         for (std::size_t k = 0; k < n; ++k)  // newly occupied pixels: their own centres
-            if (g_.occ(r, cols[k])) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
+            if (o[cols[k]]) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
         std::size_t a = 0;
         while (a < n) {
             std::size_t b = a;
@@ -390,19 +396,20 @@ private:
             const std::int32_t ca = cols[a], cb = cols[b];
             env_.build(g_, f_, r, ca, cb);
             auto offer = [&](std::int32_t x) {  // true when x took the run's square
-                if (g_.occ(r, x)) return false;
+                if (o[x]) return false;
                 const Candidate2 nc = env_.query(x);
-                if (nc < current(r, x)) {
-                    set_feature(r, x, nc.x, nc.y);
+                const std::int64_t dx = fx[x] - (2 * x + 1), dy = fy[x] - Y;
+                if (nc < Candidate2{dx * dx + dy * dy, fx[x], fy[x]}) {
+                    store(r, x, nc);
                     return true;
                 }
                 return false;
             };
             for (std::int32_t x = ca - 1; x >= 0; --x)
-                if (!offer(x) && f_.fx[f_.at(r, x)] < 2 * ca) break;
+                if (!offer(x) && fx[x] < 2 * ca) break;
             for (std::int32_t x = ca; x <= cb; ++x) offer(x);
             for (std::int32_t x = cb + 1; x < W; ++x)
-                if (!offer(x) && f_.fx[f_.at(r, x)] > 2 * cb + 2) break;
+                if (!offer(x) && fx[x] > 2 * cb + 2) break;
             a = b + 1;
         }
     }
