@@ -60,32 +60,32 @@ public:
 
     /// Sets the listed pixels (linear indices) to `occupied`; pixels already so are skipped.
     void apply(const std::vector<std::size_t>& pixels, bool occupied) {
-        std::vector<std::size_t> todo;
-        for (std::size_t i : pixels)
-            if ((g_.occupied[i] != 0) != occupied) todo.push_back(i);
-        std::sort(todo.begin(), todo.end());
-        todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
-        if (todo.empty()) return;
-        stats.changed_pixels += todo.size();
-        const std::int32_t W = g_.cols;
-        std::vector<std::pair<std::int32_t, std::int32_t>> cr;  // (column, row) of the changes
-        cr.reserve(todo.size());
-        for (std::size_t i : todo) {
+        const auto W = static_cast<std::uint32_t>(g_.cols);
+        std::vector<std::pair<std::int32_t, std::int32_t>> rc;  // (row, column) of the changes, as given
+        for (std::size_t i : pixels) {
+            if ((g_.occupied[i] != 0) == occupied) continue;  // already so, or listed twice
             g_.occupied[i] = occupied ? 1 : 0;
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
-            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
+            const auto k = static_cast<std::uint32_t>(i);  // < 2^28: 32-bit division
+            const auto r = static_cast<std::int32_t>(k / W), c = static_cast<std::int32_t>(k % W);
             m_.bits.put(g_.rows - 1 - r, c, occupied);
-            changed_.push_back(i);
             touched_.set(r, c, true);
-            cr.push_back({c, r});
+            rc.push_back({r, c});
         }
-        std::sort(cr.begin(), cr.end());
-        const RowCells rc = by_row(occupied ? add_columns(cr) : remove_columns(cr));
-        for (std::size_t k = 0; k < rc.rows.size(); ++k) {
-            const std::int32_t* cols = rc.cols.data() + rc.start[k];
-            const std::size_t n = rc.start[k + 1] - rc.start[k];
-            if (occupied) add_row(rc.rows[k], cols, n);
-            else remove_row(rc.rows[k], cols, n);
+        if (rc.empty()) return;
+        stats.changed_pixels += rc.size();
+        // (column, row) order for the column pass and (row, column) order for find_boxed, each by two
+        // stable bucketings (sorts of the lists cost more than the column pass)
+        std::vector<std::pair<std::int32_t, std::int32_t>> by_c = bucketed(bucketed(rc, 0, g_.rows), 1, g_.cols);
+        for (auto& p : by_c) std::swap(p.first, p.second);
+        const bool sorted = changed_.empty();
+        for (const auto& [r, c] : bucketed(bucketed(rc, 1, g_.cols), 0, g_.rows)) changed_.push_back(g_.at(r, c));
+        if (!sorted) std::sort(changed_.begin(), changed_.end());  // removals, then additions
+        const RowCells cells = by_row(occupied ? add_columns(by_c) : remove_columns(by_c));
+        for (std::size_t k = 0; k < cells.rows.size(); ++k) {
+            const std::int32_t* cols = cells.cols.data() + cells.start[k];
+            const std::size_t n = cells.start[k + 1] - cells.start[k];
+            if (occupied) add_row(cells.rows[k], cols, n);
+            else remove_row(cells.rows[k], cols, n);
         }
     }
 
@@ -123,29 +123,26 @@ private:
         const std::int32_t margin = static_cast<std::int32_t>(std::ceil(m_.options.prune_length)) + 3;
         constexpr std::int32_t kTile = 32, kCell = 3;  // cells of 8 x 8 pixels
         const std::size_t tw = static_cast<std::size_t>((W + kTile - 1) / kTile);
-        std::vector<std::size_t> tiles;
+        std::vector<std::uint8_t> has_change(tw * static_cast<std::size_t>((H + kTile - 1) / kTile), 0);
         for (std::size_t i : changed_) {
             const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
             const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
-            tiles.push_back(static_cast<std::size_t>(r / kTile) * tw + static_cast<std::size_t>(c / kTile));
+            has_change[static_cast<std::size_t>(r / kTile) * tw + static_cast<std::size_t>(c / kTile)] = 1;
         }
-        std::sort(tiles.begin(), tiles.end());
-        tiles.erase(std::unique(tiles.begin(), tiles.end()), tiles.end());
-        std::vector<std::size_t> changed = changed_;
-        std::sort(changed.begin(), changed.end());
         // nearest points' pixel coordinates (x, y) = (fx / 2, fy / 2) lie in [0, W] x [0, H]
         const std::int32_t zw = (W >> kCell) + 1;
         std::vector<std::uint8_t> zone;
         struct Square { std::int32_t ra, rb, ca, cb; };  // the pixels to search for one tile
         std::vector<Square> squares;
         std::int64_t reach = -1;
-        for (std::size_t t : tiles) {
+        for (std::size_t t = 0; t < has_change.size(); ++t) {
+            if (!has_change[t]) continue;
             const std::int32_t r0 = static_cast<std::int32_t>(t / tw) * kTile, c0 = static_cast<std::int32_t>(t % tw) * kTile;
             const std::int32_t r1 = std::min(H, r0 + kTile) - 1, c1 = std::min(W, c0 + kTile) - 1;
             // nearest points (doubled) in [xlo, xhi] x [ylo, yhi]
             const std::int32_t xlo = 2 * (c0 - margin), xhi = 2 * (c1 + 1 + margin);
             const std::int32_t ylo = 2 * (H - 1 - r1 - margin), yhi = 2 * (H - r0 + margin);
-            if (!unchanged_walls_meet(changed, xlo, xhi, ylo, yhi)) continue;
+            if (!unchanged_walls_meet(xlo, xhi, ylo, yhi)) continue;
             if (reach < 0) {
                 reach = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(max_sq())) / 2.0)) + margin + 1;
                 zone.assign(static_cast<std::size_t>(zw) * static_cast<std::size_t>((H >> kCell) + 1), 0);
@@ -195,8 +192,7 @@ private:
     /// has it on a changed square only, so the update gave it that point (or took it away): the pixel
     /// was touched and is rechecked anyway. A blob put into open space (the common update) skips the
     /// search for pixels whose nearest point lies near it.
-    bool unchanged_walls_meet(const std::vector<std::size_t>& changed, std::int32_t xlo, std::int32_t xhi,
-                              std::int32_t ylo, std::int32_t yhi) const {
+    bool unchanged_walls_meet(std::int32_t xlo, std::int32_t xhi, std::int32_t ylo, std::int32_t yhi) const {
         const std::int32_t H = g_.rows, W = g_.cols;
         // square column c covers [2c, 2c + 2]: it meets [xlo, xhi] (even bounds) for xlo/2 - 1 <= c <= xhi/2;
         // columns and rows -1 and cols / rows are the outside (occupied in the bits)
@@ -208,7 +204,7 @@ private:
                 for (std::uint64_t w = m_.bits.row(j, c, n); w != 0; w &= w - 1) {
                     const std::int32_t cc = c + lowest_bit(w), r = H - 1 - j;
                     if (cc < 0 || cc >= W || r < 0 || r >= H) return true;
-                    if (!std::binary_search(changed.begin(), changed.end(), g_.at(r, cc))) return true;
+                    if (!std::binary_search(changed_.begin(), changed_.end(), g_.at(r, cc))) return true;
                 }
             }
         return false;
@@ -221,7 +217,9 @@ private:
     }
 
     /// Pass 1 after removals: between the nearest pixels of a column that stay occupied (or the
-    /// outside) every pixel is free, so its offsets to both are known without a pass.
+    /// outside) every pixel is free, so its offsets to both are known without a pass. Those pixels are
+    /// found by jumping along the old offsets: a free pixel's offset says how far its column was
+    /// free (and a pixel with none was occupied: it stays so or was freed).
     std::vector<std::pair<std::int32_t, std::int32_t>> remove_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
         const std::int32_t H = g_.rows;
         std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
@@ -229,15 +227,20 @@ private:
         for (const auto& [c, r0] : cr) {
             if (c == col && r0 <= done_to) continue;
             col = c;
+            auto v = [&](std::int32_t r) -> std::int32_t { return f_.vgap[f_.at(r, c)]; };
             std::int32_t lo = r0 - 1, hi = r0 + 1;
-            while (lo >= 0 && !g_.occ(lo, c)) --lo;
-            while (hi < H && !g_.occ(hi, c)) ++hi;
+            // above: offset k > 0 (below nearer or as near) leaves rows r-1 .. r-k+1 free; k < 0 points
+            // at the occupied pixel above
+            while (lo >= 0 && !g_.occ(lo, c)) lo -= v(lo) > 0 ? v(lo) : (v(lo) < 0 ? -v(lo) : 1);
+            // below: k > 0 points at the occupied pixel below; k < 0 (above strictly nearer) leaves
+            // rows r+1 .. r-k free
+            while (hi < H && !g_.occ(hi, c)) hi += v(hi) > 0 ? v(hi) : (v(hi) < 0 ? 1 - v(hi) : 1);
             for (std::int32_t r = lo + 1; r < hi; ++r) {
                 const std::int32_t up = r - lo, down = hi - r;  // ties: below, as in column_pass
-                const auto v = static_cast<std::int16_t>(down <= up ? down : -up);
+                const auto nv = static_cast<std::int16_t>(down <= up ? down : -up);
                 std::int16_t& cur = f_.vgap[f_.at(r, c)];
-                if (cur != v) {
-                    cur = v;
+                if (cur != nv) {
+                    cur = nv;
                     cells.push_back({r, c});
                 }
             }
@@ -250,7 +253,8 @@ private:
     /// Pass 1 after additions: offsets only shrink, so from each run of new pixels of a column the
     /// walk goes outward while the run is nearer than the offset a pixel has (ties: below). It stops
     /// at the first pixel that keeps its offset: the run's distance grows by one a row and the kept
-    /// side's shrinks by one, so no pixel beyond changes either.
+    /// side's shrinks by one, so no pixel beyond changes either. A column's new pixels get offset 0
+    /// first, so the walks read the offsets only (0: occupied).
     std::vector<std::pair<std::int32_t, std::int32_t>> add_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
         const std::int32_t H = g_.rows;
         std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
@@ -262,26 +266,39 @@ private:
         };
         for (std::size_t k = 0; k < cr.size();) {
             const std::int32_t c = cr[k].first, a = cr[k].second;
+            if (k == 0 || cr[k - 1].first != c)  // a new column (cells go out column by column)
+                for (std::size_t q = k; q < cr.size() && cr[q].first == c; ++q) put(cr[q].second, c, 0);
             std::size_t e = k + 1;
             while (e < cr.size() && cr[e].first == c && cr[e].second == cr[e - 1].second + 1) ++e;
             const std::int32_t b = cr[e - 1].second;  // new pixels a .. b of column c
-            for (std::int32_t r = a; r <= b; ++r) put(r, c, 0);
             std::int32_t r = a - 1;
-            for (; r >= 0 && !g_.occ(r, c); --r) {  // above the run: the run is below, at a - r
+            for (; r >= 0; --r) {  // above the run: the run is below, at a - r
                 const std::int32_t v = f_.vgap[f_.at(r, c)];
-                if (v < 0 && -v < a - r) break;
+                if (v == 0 || (v < 0 && -v < a - r)) break;
                 put(r, c, a - r);
             }
             std::int32_t s = b + 1;
-            for (; s < H && !g_.occ(s, c); ++s) {  // below the run: the run is above, at s - b
+            for (; s < H; ++s) {  // below the run: the run is above, at s - b
                 const std::int32_t v = f_.vgap[f_.at(s, c)];
-                if (v > 0 && v <= s - b) break;
+                if (v == 0 || (v > 0 && v <= s - b)) break;
                 put(s, c, b - s);
             }
             stats.column_cells += static_cast<std::uint64_t>(s - r - 1);
             k = e;
         }
         return cells;
+    }
+
+    /// `items` (pairs) stably bucketed by their `key`-th member, which lies in [0, n).
+    static std::vector<std::pair<std::int32_t, std::int32_t>> bucketed(const std::vector<std::pair<std::int32_t, std::int32_t>>& items,
+                                                                       int key, std::int32_t n) {
+        auto k = [key](const std::pair<std::int32_t, std::int32_t>& p) { return static_cast<std::size_t>(key == 0 ? p.first : p.second); };
+        std::vector<std::size_t> at(static_cast<std::size_t>(n) + 1, 0);
+        for (const auto& p : items) ++at[k(p) + 1];
+        for (std::size_t b = 1; b < at.size(); ++b) at[b] += at[b - 1];
+        std::vector<std::pair<std::int32_t, std::int32_t>> out(items.size());
+        for (const auto& p : items) out[at[k(p)]++] = p;
+        return out;
     }
 
     /// (row, column) cells, column by column, to rows with ascending unique columns: a stable bucketing
@@ -419,7 +436,7 @@ private:
     FeatureMap& f_;
     RowEnvelope env_;
     std::vector<std::int16_t> run_x_, run_y_;  // remove_row: nearest points of a run, by column
-    std::vector<std::size_t> changed_;         // pixels whose occupancy flipped
+    std::vector<std::size_t> changed_;         // pixels whose occupancy flipped, ascending
     PixelMask touched_;                        // pixels whose occupancy or nearest point changed
     std::int64_t touched_sq_ = 0;              // their largest squared clearance now
 };
