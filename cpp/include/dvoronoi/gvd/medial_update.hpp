@@ -345,10 +345,15 @@ private:
     /// new nearest point only if its old one lies on no occupied square any more: on a changed
     /// column's old pass-1 square, so its x lies in a run of changed columns' span, and nearest x only
     /// grows along a row: one interval of pixels a run, found by binary search, inside the free run
-    /// [s, t] that holds the changed columns. The interval is recomputed from the row's squares either
-    /// in a window that the pixels' own columns bound (their own squares are at distance <= V, so no
-    /// farther column can win) or, when the window is not much smaller than the run, by pass 2 over
-    /// the whole run as a build runs it (a column costs less there).
+    /// [s, t] that holds the changed columns. The interval's new points are found among the columns of
+    /// a window, or, when the window is not much smaller than the run, by pass 2 over the whole run as
+    /// a build runs it (a column costs less there). Two bounds make the window:
+    ///  - the pixels' own squares are at most 2k - 1 away (doubled units) and a column d pixels away
+    ///    is at least 2d - 1 away, so columns more than k away cannot win (ties included); nor can
+    ///    columns beyond an occupied pixel of the row (its edge is at distance 0 in the row);
+    ///  - nearest x grows along the row, so the new points' x lies between the final points of the
+    ///    pixels just left and right of the interval: only the columns whose squares reach that span
+    ///    can hold them (the pixel on the right is final unless a later run of the row recomputes it).
     void remove_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
         const std::int32_t W = g_.cols, j = g_.rows - 1 - r;
         const std::size_t base = f_.at(r, 0);
@@ -368,11 +373,11 @@ private:
             from = x2;
             if (x1 == x2) continue;
             const auto [s, t] = m_.bits.free_run(j, c);
-            // The pixels' own squares are at most 2k - 1 away (doubled units) and a column d pixels
-            // away is at least 2d - 1 away, so columns more than k away cannot win (ties included);
-            // nor can columns beyond an occupied pixel of the row (its edge is at distance 0 in the row).
             const std::int32_t R = std::max(k, 1) + 1;
-            const std::int32_t ca = std::max(s - 1, x1 - R), cb = std::min(t + 1, x2 - 1 + R);
+            const std::int32_t lo = x1 > 0 ? fx[x1 - 1] : 0;  // the new points' x lies in [lo, hi]
+            const std::int32_t hi = x2 < W && (a == n || fx[x2] < 2 * cols[a]) ? fx[x2] : 2 * W;
+            // columns whose squares [2e, 2e + 2] meet [lo, hi]
+            const std::int32_t ca = std::max({s - 1, x1 - R, (lo + 1) / 2 - 1}), cb = std::min({t + 1, x2 - 1 + R, hi / 2});
             if (built != s && kWindowCost * (cb - ca + 1) < kRunCost * (t - s + 1)) {
                 env_.build(g_, f_, r, ca, cb);
                 for (std::int32_t x = x1; x < x2; ++x) {
