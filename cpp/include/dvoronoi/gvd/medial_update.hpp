@@ -55,6 +55,7 @@ public:
     // A column costs about three times as much in RowEnvelope::build as in build_run (measured in
     // instructions on three 2048 x 2048 maps); fill_run then reads only the pixels asked for.
     static constexpr std::int32_t kWindowCost = 3, kRunCost = 1;
+    static constexpr std::size_t kAhead = 2;  // rows whose first cache lines are fetched ahead
 
     explicit Updater(MedialDiagram& m) : m_(m), g_(m.grid), f_(m.features), touched_(m.grid.rows, m.grid.cols) {}
 
@@ -84,6 +85,15 @@ public:
         for (std::size_t k = 0; k < cells.rows.size(); ++k) {
             const std::int32_t* cols = cells.cols.data() + cells.start[k];
             const std::size_t n = cells.start[k + 1] - cells.start[k];
+            if (k + kAhead < cells.rows.size()) {  // rows lie 2 W bytes apart: no hardware prefetch
+                const std::size_t q = k + kAhead;
+                for (const std::size_t e : {cells.start[q], cells.start[q + 1] - 1}) {
+                    const std::size_t i = f_.at(cells.rows[q], cells.cols[e]);
+                    ::dvoronoi::detail::prefetch(&f_.vgap[i]);
+                    ::dvoronoi::detail::prefetch(&f_.fx[i]);
+                    ::dvoronoi::detail::prefetch(&f_.fy[i]);
+                }
+            }
             if (occupied) add_row(cells.rows[k], cols, n);
             else remove_row(cells.rows[k], cols, n);
         }
@@ -341,6 +351,28 @@ private:
         ++stats.feature_changes;
     }
 
+    /// The first x in [from, W) with fx[x] >= v (fx non-decreasing), searched outward from `guess`:
+    /// the answer is usually near it, and a binary search over the whole row reads a cache line a step.
+    static std::int32_t first_at_least(const std::int16_t* fx, std::int32_t from, std::int32_t W, std::int32_t v, std::int32_t guess) {
+        if (from >= W) return W;
+        std::int32_t lo = std::max(from, std::min(guess, W - 1)), hi = lo;  // the answer lies in (lo, hi]
+        if (fx[lo] >= v) {
+            for (std::int32_t step = 1; lo > from && fx[lo - 1] >= v; step *= 2) {
+                hi = lo;
+                lo = std::max(from, lo - step);
+                if (fx[lo] < v) break;
+            }
+            if (fx[lo] >= v) return lo;
+        } else {
+            for (std::int32_t step = 1; fx[hi] < v; step *= 2) {
+                lo = hi;
+                if (hi == W - 1) return W;
+                hi = std::min(W - 1, hi + step);
+            }
+        }
+        return static_cast<std::int32_t>(std::lower_bound(fx + lo + 1, fx + hi, v) - fx);
+    }
+
     /// Removals in row r with changed columns `cols` (n, ascending; all free now). A pixel needs a
     /// new nearest point only if its old one lies on no occupied square any more: on a changed
     /// column's old pass-1 square, so its x lies in a run of changed columns' span, and nearest x only
@@ -366,7 +398,7 @@ private:
             while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
             const std::int32_t c = cols[a], xhi = 2 * cols[b] + 2;
             a = b + 1;
-            const std::int32_t x1 = static_cast<std::int32_t>(std::lower_bound(fx + from, fx + W, 2 * c) - fx);
+            const std::int32_t x1 = first_at_least(fx, from, W, 2 * c, c);
             std::int32_t x2 = x1;  // pixels x1 .. x2 - 1
             std::int32_t k = 0;    // their largest vertical offset
             for (; x2 < W && fx[x2] <= xhi; ++x2) k = std::max<std::int32_t>(k, std::abs(static_cast<std::int32_t>(vg[x2])));
@@ -406,11 +438,11 @@ private:
     void add_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
         const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
         const std::size_t base = f_.at(r, 0);
-        const std::uint8_t* o = &g_.occupied[base];
+        const std::int16_t* vg = &f_.vgap[base];  // 0: occupied (the occupancy row is not read)
         const std::int16_t* fx = &f_.fx[base];
         const std::int16_t* fy = &f_.fy[base];
         for (std::size_t k = 0; k < n; ++k)  // newly occupied pixels: their own centres
-            if (o[cols[k]]) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
+            if (vg[cols[k]] == 0) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
         std::size_t a = 0;
         while (a < n) {
             std::size_t b = a;
@@ -418,7 +450,7 @@ private:
             const std::int32_t ca = cols[a], cb = cols[b];
             env_.build(g_, f_, r, ca, cb);
             auto offer = [&](std::int32_t x) {  // true when x took the run's square
-                if (o[x]) return false;
+                if (vg[x] == 0) return false;
                 const Candidate2 nc = env_.query(x);
                 const std::int64_t dx = fx[x] - (2 * x + 1), dy = fy[x] - Y;
                 if (nc < Candidate2{dx * dx + dy * dy, fx[x], fy[x]}) {
