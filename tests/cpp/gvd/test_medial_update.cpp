@@ -16,7 +16,11 @@ void require_same_as_full_build(const MedialDiagram& m) {
     REQUIRE(m.features.fy == full.features.fy);
     REQUIRE(m.mask == full.mask);
     REQUIRE(m.boxed == full.boxed);  // the pixels an update rechecks near a change
-    REQUIRE((m.max_sq < 0 || m.max_sq >= detail::largest_sq(full.features, 0, full.features.rows)));
+    if (!m.block_sq.empty()) {  // the bounds of each block's clearance that updates keep
+        const std::vector<std::int32_t> now = detail::block_clearances(full.features);
+        REQUIRE(m.block_sq.size() == now.size());
+        for (std::size_t b = 0; b < now.size(); ++b) REQUIRE(m.block_sq[b] >= now[b]);
+    }
 }
 
 }  // namespace
@@ -142,6 +146,23 @@ TEST_CASE("blobs side by side, on the map's edge and across corridors: the diagr
             INFO("prune " << prune << ", map " << variant << ": a row flipped and a blob added at once");
             require_same_as_full_build(m);
         }
+    }
+}
+
+TEST_CASE("block_clearances: the largest squared clearance of each 32 x 32 block") {
+    for (unsigned seed = 0; seed < 40; ++seed) {
+        const OccupancyGrid g = seed % 5 == 0 ? scenes::rooms() : scenes::clutter(seed, 100);
+        const FeatureMap f = feature_transform(g);
+        const std::vector<std::int32_t> got = detail::block_clearances(f);
+        const std::int32_t bw = (g.cols + 31) / 32;
+        std::vector<std::int32_t> want(static_cast<std::size_t>(bw * ((g.rows + 31) / 32)), 0);
+        for (int r = 0; r < g.rows; ++r)
+            for (int c = 0; c < g.cols; ++c) {
+                std::int32_t& w = want[static_cast<std::size_t>(r / 32 * bw + c / 32)];
+                w = std::max(w, static_cast<std::int32_t>(f.sq(r, c)));
+            }
+        INFO("seed " << seed << ": " << g.rows << " x " << g.cols);
+        REQUIRE(got == want);
     }
 }
 

@@ -3,15 +3,17 @@
 // change can affect is recomputed.
 //
 // An update runs in two exact steps, removals first, then additions:
-//  1. Columns: the vertical nearest squares (pass 1) are recomputed between the nearest pixels of the
-//     column that stay occupied; the rows where a column's value changed are recorded.
+//  1. Columns: the vertical nearest squares (pass 1) change only between the nearest pixels of the
+//     column that stay occupied: after removals they are recomputed there (closed form: every pixel
+//     between is free); after additions a walk out of each run of new pixels stops at the first
+//     pixel that keeps its offset. The rows where a column's value changed are recorded.
 //  2. Nearest points. A pixel's nearest point comes from its row's pass-1 squares, so only rows with
 //     a changed column can change, and in them:
 //     - removals: a pixel needs a new nearest point only if its old one lies on no occupied square any
 //       more; that square was its column's pass-1 square, so the point's x lies in the changed columns'
 //       span, and nearest points' x only grows along a row: the candidates are one interval, found by
-//       binary search. They are recomputed from the row's squares in a window that the pixel's own
-//       column bounds (its own square is at distance <= V, so no farther column can win).
+//       a search from the column. They are recomputed in a window of columns (bounded by their own
+//       vertical distances and by their neighbours' nearest points) or by pass 2 over their free run.
 //     - additions: squares only come closer; a pixel takes a changed column's square when it beats (or
 //       ties with a smaller x) the one it has. Scanning outward from a run of changed columns stops at
 //       the first pixel that keeps a nearest point lying beyond the run: parabolas of translates
@@ -20,8 +22,9 @@
 //     a box spanned by two nearest points at most prune_length apart (grown by one pixel). Rechecked:
 //     pixels whose nearest point or occupancy changed, their neighbours, and pixels of box-judged
 //     pairs (MedialDiagram::boxed) whose nearest point lies within prune_length + 3 pixels of a
-//     changed pixel (searched within the largest clearance of the map; skipped where no unchanged
-//     wall is that near). They are re-marked in row segments, vectorised as a build marks rows.
+//     changed pixel (searched in the blocks of pixels whose largest clearance reaches that far,
+//     MedialDiagram::block_sq; skipped where no unchanged wall is that near). They are re-marked in
+//     row segments, vectorised as a build marks rows.
 #pragma once
 
 #include "dvoronoi/gvd/medial_diagram.hpp"
@@ -31,6 +34,10 @@
 #include <cstdint>
 #include <cstring>
 #include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace dvoronoi::gvd {
 
@@ -43,6 +50,49 @@ struct UpdateStats {
 };
 
 namespace detail {
+
+inline constexpr std::int32_t kBlock = MedialDiagram::kBlock;
+
+/// The largest squared clearance (doubled units) of each kBlock x kBlock block of pixels, blocks in
+/// row-major order. Offsets from a pixel's centre to its nearest point fit 16 bits (sides <= 16383),
+/// so SSE2's pmaddwd gives dx^2 + dy^2 for eight pixels at once (< 2^31).
+inline std::vector<std::int32_t> block_clearances(const FeatureMap& f) {
+    const std::int32_t bw = (f.cols + kBlock - 1) / kBlock;
+    std::vector<std::int32_t> out(static_cast<std::size_t>(bw) * static_cast<std::size_t>((f.rows + kBlock - 1) / kBlock), 0);
+    for (std::int32_t r = 0; r < f.rows; ++r) {
+        const std::int16_t* x = &f.fx[f.at(r, 0)];
+        const std::int16_t* y = &f.fy[f.at(r, 0)];
+        const std::int32_t Y = 2 * (f.rows - 1 - r) + 1;
+        std::int32_t* o = &out[static_cast<std::size_t>(r / kBlock * bw)];
+        for (std::int32_t c0 = 0; c0 < f.cols; c0 += kBlock) {
+            const std::int32_t end = std::min(f.cols, c0 + kBlock);
+            std::int32_t best = 0, c = c0;
+#if defined(__SSE2__)
+            __m128i most = _mm_setzero_si128();
+            const __m128i cy = _mm_set1_epi16(static_cast<std::int16_t>(Y));
+            for (; c + 8 <= end; c += 8) {
+                const __m128i cx = _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * c + 1)), _mm_setr_epi16(0, 2, 4, 6, 8, 10, 12, 14));
+                const __m128i dx = _mm_sub_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(x + c)), cx);
+                const __m128i dy = _mm_sub_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(y + c)), cy);
+                const __m128i lo = _mm_unpacklo_epi16(dx, dy), hi = _mm_unpackhi_epi16(dx, dy);
+                for (const __m128i d2 : {_mm_madd_epi16(lo, lo), _mm_madd_epi16(hi, hi)}) {
+                    const __m128i gt = _mm_cmpgt_epi32(d2, most);  // SSE2 has no pmaxsd
+                    most = _mm_or_si128(_mm_and_si128(gt, d2), _mm_andnot_si128(gt, most));
+                }
+            }
+            alignas(16) std::int32_t lanes[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(lanes), most);
+            best = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+#endif
+            for (; c < end; ++c) {
+                const std::int32_t dx = x[c] - (2 * c + 1), dy = y[c] - Y;
+                best = std::max(best, dx * dx + dy * dy);
+            }
+            o[c0 / kBlock] = std::max(o[c0 / kBlock], best);
+        }
+    }
+    return out;
+}
 
 /// Changed cells bucketed by row: row rows[k] has the ascending columns cols[start[k] .. start[k+1]).
 struct RowCells {
@@ -104,7 +154,6 @@ public:
     /// row segment as a build marks them.
     void refresh_mask() {
         if (changed_.empty()) return;
-        if (m_.max_sq >= 0) m_.max_sq = std::max(m_.max_sq, touched_sq_);
         PixelMask redo = touched_.dilated4();  // touched pixels and their 4-neighbours (they share a pair)
         find_boxed(redo);
         RowMarker marker(m_);
@@ -122,69 +171,68 @@ public:
 private:
     /// Adds to `redo` the pixels of box-judged pairs (m.boxed: the only pixels whose membership a
     /// change of occupancy can alter without a touched neighbour) whose nearest point lies near a
-    /// change: changed pixels grouped in tiles, each tile's box grown by the margin below. A pixel is
-    /// within the map's largest clearance of its nearest point, so the pixels searched lie within that
-    /// reach of a tile; the tiles' search squares overlap, so their union is scanned once, and a
-    /// pixel's nearest point is looked up in a coarse grid of cells holding the grown boxes (a cell
-    /// over a box's edge adds pixels to recheck, never drops one).
+    /// change: changed pixels grouped in blocks, each block's box grown by the margin below (a zone).
+    /// A pixel is no farther from its nearest point than its clearance, so only the blocks no farther
+    /// from a zone than their largest clearance (MedialDiagram::block_sq) are searched, and a pixel's
+    /// nearest point is looked up in a coarse grid of cells holding the zones (a cell over a zone's
+    /// edge adds pixels to recheck, never drops one).
     void find_boxed(PixelMask& redo) {
         const std::int32_t H = g_.rows, W = g_.cols;
         // a grown box lies within prune_length + sqrt(2) + 1 pixels of either nearest point
         const std::int32_t margin = static_cast<std::int32_t>(std::ceil(m_.options.prune_length)) + 3;
-        constexpr std::int32_t kTile = 32, kCell = 3;  // cells of 8 x 8 pixels
-        const std::size_t tw = static_cast<std::size_t>((W + kTile - 1) / kTile);
-        std::vector<std::uint8_t> has_change(tw * static_cast<std::size_t>((H + kTile - 1) / kTile), 0);
+        constexpr std::int32_t kCell = 3;  // cells of 8 x 8 pixels
+        const std::int32_t bw = (W + kBlock - 1) / kBlock, bh = (H + kBlock - 1) / kBlock;
+        std::vector<std::uint8_t> has_change(static_cast<std::size_t>(bw) * static_cast<std::size_t>(bh), 0);
         for (std::size_t i : changed_) {
             const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
             const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
-            has_change[static_cast<std::size_t>(r / kTile) * tw + static_cast<std::size_t>(c / kTile)] = 1;
+            has_change[static_cast<std::size_t>(r / kBlock * bw + c / kBlock)] = 1;
         }
         // nearest points' pixel coordinates (x, y) = (fx / 2, fy / 2) lie in [0, W] x [0, H]
         const std::int32_t zw = (W >> kCell) + 1;
-        std::vector<std::uint8_t> zone;
-        struct Square { std::int32_t ra, rb, ca, cb; };  // the pixels to search for one tile
-        std::vector<Square> squares;
-        std::int64_t reach = -1;
-        for (std::size_t t = 0; t < has_change.size(); ++t) {
-            if (!has_change[t]) continue;
-            const std::int32_t r0 = static_cast<std::int32_t>(t / tw) * kTile, c0 = static_cast<std::int32_t>(t % tw) * kTile;
-            const std::int32_t r1 = std::min(H, r0 + kTile) - 1, c1 = std::min(W, c0 + kTile) - 1;
+        std::vector<std::uint8_t> zone, search;
+        std::int64_t reach = 0;  // pixels: the largest clearance of the map, and the margin
+        for (std::int32_t t = 0; t < bw * bh; ++t) {
+            if (!has_change[static_cast<std::size_t>(t)]) continue;
+            const std::int32_t r0 = t / bw * kBlock, c0 = t % bw * kBlock;
+            const std::int32_t r1 = std::min(H, r0 + kBlock) - 1, c1 = std::min(W, c0 + kBlock) - 1;
             // nearest points (doubled) in [xlo, xhi] x [ylo, yhi]
             const std::int32_t xlo = 2 * (c0 - margin), xhi = 2 * (c1 + 1 + margin);
             const std::int32_t ylo = 2 * (H - 1 - r1 - margin), yhi = 2 * (H - r0 + margin);
             if (!unchanged_walls_meet(xlo, xhi, ylo, yhi)) continue;
-            if (reach < 0) {
-                reach = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(max_sq())) / 2.0)) + margin + 1;
+            if (zone.empty()) {
+                const std::int32_t most = *std::max_element(block_sq().begin(), block_sq().end());
+                reach = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(most)) / 2.0)) + margin + 1;
                 zone.assign(static_cast<std::size_t>(zw) * static_cast<std::size_t>((H >> kCell) + 1), 0);
+                search.assign(has_change.size(), 0);
             }
             const std::int32_t x0 = std::max(0, xlo / 2) >> kCell, x1 = std::min(W, xhi / 2) >> kCell;
             const std::int32_t y0 = std::max(0, ylo / 2) >> kCell, y1 = std::min(H, yhi / 2) >> kCell;
             for (std::int32_t y = y0; y <= y1; ++y)
                 std::fill_n(&zone[static_cast<std::size_t>(y) * static_cast<std::size_t>(zw) + static_cast<std::size_t>(x0)], x1 - x0 + 1, std::uint8_t{1});
-            squares.push_back({static_cast<std::int32_t>(std::max<std::int64_t>(0, r0 - reach)),
-                               static_cast<std::int32_t>(std::min<std::int64_t>(H - 1, r1 + reach)),
-                               static_cast<std::int32_t>(std::max<std::int64_t>(0, c0 - reach)),
-                               static_cast<std::int32_t>(std::min<std::int64_t>(W - 1, c1 + reach))});
+            // blocks within the map's largest clearance, then each by its own
+            const auto i0 = static_cast<std::int32_t>(std::max<std::int64_t>(0, r0 - reach) / kBlock);
+            const auto i1 = static_cast<std::int32_t>(std::min<std::int64_t>(H - 1, r1 + reach) / kBlock);
+            const auto j0 = static_cast<std::int32_t>(std::max<std::int64_t>(0, c0 - reach) / kBlock);
+            const auto j1 = static_cast<std::int32_t>(std::min<std::int64_t>(W - 1, c1 + reach) / kBlock);
+            for (std::int32_t bi = i0; bi <= i1; ++bi)
+                for (std::int32_t bj = j0; bj <= j1; ++bj) {
+                    // the block's pixel centres span [bx0, bx1] x [by0, by1] (doubled)
+                    const std::int64_t bx0 = 2 * bj * kBlock + 1, bx1 = 2 * (std::min(W, (bj + 1) * kBlock) - 1) + 1;
+                    const std::int64_t by1 = 2 * (H - 1 - bi * kBlock) + 1, by0 = 2 * (H - std::min(H, (bi + 1) * kBlock)) + 1;
+                    const std::int64_t dx = std::max<std::int64_t>({0, xlo - bx1, bx0 - xhi}), dy = std::max<std::int64_t>({0, ylo - by1, by0 - yhi});
+                    const std::size_t b = static_cast<std::size_t>(bi * bw + bj);
+                    if (dx * dx + dy * dy <= block_sq()[b]) search[b] = 1;
+                }
         }
-        // The rows between two consecutive square edges share one union of column intervals.
-        std::vector<std::int32_t> edges;
-        for (const Square& q : squares) {
-            edges.push_back(q.ra);
-            edges.push_back(q.rb + 1);
-        }
-        std::sort(edges.begin(), edges.end());
-        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-        std::vector<std::pair<std::int32_t, std::int32_t>> spans;
-        for (std::size_t e = 0; e + 1 < edges.size(); ++e) {
-            spans.clear();
-            for (const Square& q : squares)
-                if (q.ra <= edges[e] && edges[e] <= q.rb) spans.push_back({q.ca, q.cb});
-            std::sort(spans.begin(), spans.end());
-            for (std::size_t k = 0; k < spans.size();) {
-                const std::int32_t ca = spans[k].first;
-                std::int32_t cb = spans[k].second;
-                for (++k; k < spans.size() && spans[k].first <= cb + 1; ++k) cb = std::max(cb, spans[k].second);
-                for (std::int32_t r = edges[e]; r < edges[e + 1]; ++r) {
+        if (zone.empty()) return;
+        for (std::int32_t bi = 0; bi < bh; ++bi)
+            for (std::int32_t bj = 0; bj < bw;) {  // runs of blocks to search in a row of blocks
+                if (!search[static_cast<std::size_t>(bi * bw + bj)]) { ++bj; continue; }
+                std::int32_t bk = bj + 1;
+                while (bk < bw && search[static_cast<std::size_t>(bi * bw + bk)]) ++bk;
+                const std::int32_t ca = bj * kBlock, cb = std::min(W, bk * kBlock) - 1;
+                for (std::int32_t r = bi * kBlock; r < std::min(H, (bi + 1) * kBlock); ++r) {
                     const std::size_t base = f_.at(r, 0);
                     for (std::int32_t x = m_.boxed.find(r, ca, true, cb + 1); x <= cb; x = m_.boxed.find(r, x + 1, true, cb + 1)) {
                         const std::size_t i = base + static_cast<std::size_t>(x);
@@ -193,8 +241,8 @@ private:
                         if (zone[cell]) redo.set(r, x, true);
                     }
                 }
+                bj = bk;
             }
-        }
     }
 
     /// Does an occupied square that is not a changed pixel (or the outside) meet the zone
@@ -220,10 +268,10 @@ private:
         return false;
     }
 
-    /// Largest squared clearance (doubled units) now, an upper bound kept by the diagram.
-    std::int64_t max_sq() {
-        if (m_.max_sq < 0) m_.max_sq = largest_sq(f_, 0, f_.rows);  // the first update that needs it finds it
-        return m_.max_sq;
+    /// The diagram's bounds of each block's clearance; the first update that needs them computes them.
+    const std::vector<std::int32_t>& block_sq() {
+        if (m_.block_sq.empty()) m_.block_sq = block_clearances(f_);
+        return m_.block_sq;
     }
 
     /// Pass 1 after removals: between the nearest pixels of a column that stay occupied (or the
@@ -347,7 +395,6 @@ private:
         f_.fx[i] = static_cast<std::int16_t>(n.x);
         f_.fy[i] = static_cast<std::int16_t>(n.y);
         touched_.set(r, x, true);
-        touched_sq_ = std::max(touched_sq_, n.sq);
         ++stats.feature_changes;
     }
 
@@ -392,6 +439,13 @@ private:
         const std::int16_t* fx = &f_.fx[base];
         const std::int16_t* fy = &f_.fy[base];
         const std::int16_t* vg = &f_.vgap[base];
+        // clearances grow only here (additions bring points closer): the blocks' bounds follow
+        std::int32_t* bound = m_.block_sq.empty() ? nullptr : &m_.block_sq[static_cast<std::size_t>(r / kBlock * ((W + kBlock - 1) / kBlock))];
+        auto take = [&](std::int32_t x, const Candidate2& nc) {
+            store(r, x, nc);
+            if (bound) bound[x / kBlock] = std::max(bound[x / kBlock], static_cast<std::int32_t>(nc.sq));  // < 2^31: sides <= 16383
+        };
+        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1;
         std::int32_t from = 0, built = -1;  // built: the first column of the run build_run holds
         for (std::size_t a = 0; a < n;) {
             std::size_t b = a;
@@ -414,7 +468,7 @@ private:
                 env_.build(g_, f_, r, ca, cb);
                 for (std::int32_t x = x1; x < x2; ++x) {
                     const Candidate2 nc = env_.query(x);
-                    if (nc.x != fx[x] || nc.y != fy[x]) store(r, x, nc);
+                    if (nc.x != fx[x] || nc.y != fy[x]) take(x, nc);
                 }
                 built = -1;
                 continue;
@@ -428,9 +482,12 @@ private:
                 built = s;
             }
             env_.fill_run(x1, x2 - 1, run_x_.data(), run_y_.data());  // a part of the run
-            for (std::int32_t x = x1; x < x2; ++x)
-                if (run_x_[static_cast<std::size_t>(x)] != fx[x] || run_y_[static_cast<std::size_t>(x)] != fy[x])
-                    set_feature(r, x, run_x_[static_cast<std::size_t>(x)], run_y_[static_cast<std::size_t>(x)]);
+            for (std::int32_t x = x1; x < x2; ++x) {
+                const std::int32_t nx = run_x_[static_cast<std::size_t>(x)], ny = run_y_[static_cast<std::size_t>(x)];
+                if (nx == fx[x] && ny == fy[x]) continue;
+                const std::int64_t dx = nx - (2 * x + 1), dy = ny - Y;
+                take(x, {dx * dx + dy * dy, nx, ny});
+            }
         }
     }
 
@@ -475,7 +532,6 @@ private:
     std::vector<std::int16_t> run_x_, run_y_;  // remove_row: nearest points of a run, by column
     std::vector<std::size_t> changed_;         // pixels whose occupancy flipped, ascending
     PixelMask touched_;                        // pixels whose occupancy or nearest point changed
-    std::int64_t touched_sq_ = 0;              // their largest squared clearance now
 };
 
 }  // namespace detail
