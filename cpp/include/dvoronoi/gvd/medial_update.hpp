@@ -274,26 +274,30 @@ private:
         return m_.block_sq;
     }
 
-    /// Pass 1 after removals: between the nearest pixels of a column that stay occupied (or the
-    /// outside) every pixel is free, so its offsets to both are known without a pass. Those pixels are
-    /// found by jumping along the old offsets: a free pixel's offset says how far its column was
-    /// free (and a pixel with none was occupied: it stays so or was freed).
+    /// Pass 1 after removals: between the nearest pixels lo and hi of a column that stay occupied (or
+    /// the outside) every pixel is free, so its offsets to both are known without a pass. Those pixels
+    /// are found by jumping along the old offsets: a free pixel's offset says how far its column was
+    /// free (and a pixel with none was occupied: it stays so or was freed). Only the pixels whose old
+    /// nearest pixel was freed change: from the middle between lo and the first freed pixel a to the
+    /// middle between the last one b and hi (ties went below, as in column_pass).
     std::vector<std::pair<std::int32_t, std::int32_t>> remove_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
         const std::int32_t H = g_.rows;
         std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
-        std::int32_t col = -1, done_to = -1;  // rows <= done_to of column col are done
-        for (const auto& [c, r0] : cr) {
-            if (c == col && r0 <= done_to) continue;
-            col = c;
+        for (std::size_t k = 0; k < cr.size();) {
+            const std::int32_t c = cr[k].first, a = cr[k].second;
             auto v = [&](std::int32_t r) -> std::int32_t { return f_.vgap[f_.at(r, c)]; };
-            std::int32_t lo = r0 - 1, hi = r0 + 1;
+            std::int32_t lo = a - 1, hi = a + 1;
             // above: offset k > 0 (below nearer or as near) leaves rows r-1 .. r-k+1 free; k < 0 points
             // at the occupied pixel above
             while (lo >= 0 && !g_.occ(lo, c)) lo -= v(lo) > 0 ? v(lo) : (v(lo) < 0 ? -v(lo) : 1);
             // below: k > 0 points at the occupied pixel below; k < 0 (above strictly nearer) leaves
             // rows r+1 .. r-k free
             while (hi < H && !g_.occ(hi, c)) hi += v(hi) > 0 ? v(hi) : (v(hi) < 0 ? 1 - v(hi) : 1);
-            for (std::int32_t r = lo + 1; r < hi; ++r) {
+            std::int32_t b = a;
+            for (; k < cr.size() && cr[k].first == c && cr[k].second < hi; ++k) b = cr[k].second;
+            // rows r with a - r <= r - lo, to rows r with r - b < hi - r
+            const std::int32_t first = (a + lo + 1) >> 1, last = (hi + b - 1) >> 1;  // lo + a >= -1
+            for (std::int32_t r = first; r <= last; ++r) {
                 const std::int32_t up = r - lo, down = hi - r;  // ties: below, as in column_pass
                 const auto nv = static_cast<std::int16_t>(down <= up ? down : -up);
                 std::int16_t& cur = f_.vgap[f_.at(r, c)];
@@ -302,8 +306,7 @@ private:
                     cells.push_back({r, c});
                 }
             }
-            stats.column_cells += static_cast<std::uint64_t>(hi - lo - 1);
-            done_to = hi - 1;
+            stats.column_cells += static_cast<std::uint64_t>(last - first + 1);
         }
         return cells;
     }
