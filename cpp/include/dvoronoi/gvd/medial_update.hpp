@@ -426,10 +426,10 @@ private:
     /// Removals in row r with changed columns `cols` (n, ascending; all free now). A pixel needs a
     /// new nearest point only if its old one lies on no occupied square any more: on a changed
     /// column's old pass-1 square, so its x lies in a run of changed columns' span, and nearest x only
-    /// grows along a row: one interval of pixels a run, found by binary search, inside the free run
-    /// [s, t] that holds the changed columns. The interval's new points are found among the columns of
-    /// a window, or, when the window is not much smaller than the run, by pass 2 over the whole run as
-    /// a build runs it (a column costs less there). Two bounds make the window:
+    /// grows along a row: one interval of pixels a run, found by a search out from the run, inside
+    /// the free run [s, t] that holds the changed columns. The interval's new points are found among
+    /// the columns of a window, or, when the window is not much smaller than the run, by pass 2 over
+    /// the whole run as a build runs it (a column costs less there). Two bounds make the window:
     ///  - the pixels' own squares are at most 2k - 1 away (doubled units) and a column d pixels away
     ///    is at least 2d - 1 away, so columns more than k away cannot win (ties included); nor can
     ///    columns beyond an occupied pixel of the row (its edge is at distance 0 in the row);
