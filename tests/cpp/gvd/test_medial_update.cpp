@@ -16,7 +16,11 @@ void require_same_as_full_build(const MedialDiagram& m) {
     REQUIRE(m.features.fy == full.features.fy);
     REQUIRE(m.mask == full.mask);
     REQUIRE(m.boxed == full.boxed);  // the pixels an update rechecks near a change
-    REQUIRE((m.max_sq < 0 || m.max_sq >= detail::largest_sq(full.features, 0, full.features.rows)));
+    if (!m.block_sq.empty()) {  // the bounds of each block's clearance that updates keep
+        const std::vector<std::int32_t> now = detail::block_clearances(full.features);
+        REQUIRE(m.block_sq.size() == now.size());
+        for (std::size_t b = 0; b < now.size(); ++b) REQUIRE(m.block_sq[b] >= now[b]);
+    }
 }
 
 }  // namespace
@@ -87,6 +91,97 @@ TEST_CASE("blobs put into open space and next to walls: the diagram is the full 
                 require_same_as_full_build(m);
             }
         }
+    }
+}
+
+TEST_CASE("blobs side by side, on the map's edge and across corridors: the diagram is the full build's") {
+    // Cases the update handles apart: runs of new pixels that meet in a column or a row (one blob's
+    // walk reaches the other's), blobs whose walks end at the outside, corridors closed by a blob and
+    // opened again (a removal whose pixels take points beyond the reopened gap), and a wall taken
+    // away while a blob appears.
+    auto block = [](const OccupancyGrid& g, int r0, int c0, int h, int w) {
+        std::vector<std::size_t> px;
+        for (int r = std::max(0, r0); r < std::min(g.rows, r0 + h); ++r)
+            for (int c = std::max(0, c0); c < std::min(g.cols, c0 + w); ++c) px.push_back(g.at(r, c));
+        return px;
+    };
+    for (const double prune : {0.0, 3.0, 8.0, 20.0}) {
+        for (int variant = 0; variant < 3; ++variant) {
+            OccupancyGrid g = variant == 0 ? scenes::corridors(30) : (variant == 1 ? scenes::rooms() : OccupancyGrid(70, 131));
+            MedialOptions o;
+            o.prune_length = prune;
+            MedialDiagram m = medial_diagram(g, o);
+            auto step = [&](const std::vector<std::size_t>& px, bool occupied, const char* what) {
+                set_pixels(m, px, occupied);
+                INFO("prune " << prune << ", map " << variant << ": " << what);
+                require_same_as_full_build(m);
+            };
+            const int H = g.rows, W = g.cols;
+            // side by side, above one another and corner to corner, in one update and then one at a time
+            std::vector<std::size_t> pair = block(g, H / 2 - 3, W / 3, 3, 4), other = block(g, H / 2 - 3, W / 3 + 4, 3, 4);
+            pair.insert(pair.end(), other.begin(), other.end());
+            const std::vector<std::size_t> below = block(g, H / 2, W / 3 + 2, 2, 3), corner = block(g, H / 2 + 2, W / 3 + 5, 2, 2);
+            step(pair, true, "two blocks side by side");
+            step(below, true, "a block under them");
+            step(corner, true, "a block touching a corner");
+            step(other, false, "one of the pair removed");
+            step(below, false, "the block under them removed");
+            step(pair, false, "the rest of the pair removed");
+            step(corner, false, "the corner block removed");
+            // on the edge and in the corners of the map
+            for (const auto& rc : {std::pair<int, int>{0, 0}, {0, W - 3}, {H - 2, 0}, {H - 3, W - 4}, {0, W / 2}, {H / 2, 0}, {H / 2, W - 1}}) {
+                const std::vector<std::size_t> px = block(g, rc.first, rc.second, 3, 4);
+                step(px, true, "a block on the edge");
+                step(px, false, "a block on the edge removed");
+            }
+            // a blob across the map's full height closes every corridor it crosses; taking it away opens them
+            const std::vector<std::size_t> across = block(g, 0, W / 2 - 1, H, 2);
+            step(across, true, "a wall across the map");
+            step(across, false, "the wall across the map removed");
+            // a wall removed and a blob added in one update_occupancy
+            std::vector<std::uint8_t> occ = m.grid.occupied;
+            for (int c = 0; c < W; ++c) occ[g.at(H / 3, c)] ^= 1;
+            for (std::size_t i : block(g, 2 * H / 3, W / 4, 4, 6)) occ[i] = 1;
+            update_occupancy(m, occ);
+            INFO("prune " << prune << ", map " << variant << ": a row flipped and a blob added at once");
+            require_same_as_full_build(m);
+        }
+    }
+}
+
+TEST_CASE("block_clearances: the largest squared clearance of each 32 x 32 block") {
+    for (unsigned seed = 0; seed < 40; ++seed) {
+        const OccupancyGrid g = seed % 5 == 0 ? scenes::rooms() : scenes::clutter(seed, 100);
+        const FeatureMap f = feature_transform(g);
+        const std::vector<std::int32_t> got = detail::block_clearances(f);
+        const std::int32_t bw = (g.cols + 31) / 32;
+        std::vector<std::int32_t> want(static_cast<std::size_t>(bw * ((g.rows + 31) / 32)), 0);
+        for (int r = 0; r < g.rows; ++r)
+            for (int c = 0; c < g.cols; ++c) {
+                std::int32_t& w = want[static_cast<std::size_t>(r / 32 * bw + c / 32)];
+                w = std::max(w, static_cast<std::int32_t>(f.sq(r, c)));
+            }
+        INFO("seed " << seed << ": " << g.rows << " x " << g.cols);
+        REQUIRE(got == want);
+    }
+}
+
+TEST_CASE("OccupancyBits::free_run finds the free columns around one, across words") {
+    std::mt19937 rng(7);
+    for (int t = 0; t < 200; ++t) {
+        OccupancyGrid g(3, 1 + static_cast<int>(rng() % 300));
+        for (auto& v : g.occupied) v = rng() % (2 + t % 40) == 0 ? 1 : 0;
+        const OccupancyBits bits(g);
+        for (int r = 0; r < g.rows; ++r)
+            for (int c = 0; c < g.cols; ++c) {
+                if (g.occ(r, c)) continue;
+                int s = c, e = c;
+                while (s > 0 && !g.occ(r, s - 1)) --s;
+                while (e + 1 < g.cols && !g.occ(r, e + 1)) ++e;
+                const auto run = bits.free_run(g.rows - 1 - r, c);
+                REQUIRE(run.first == s);
+                REQUIRE(run.second == e);
+            }
     }
 }
 

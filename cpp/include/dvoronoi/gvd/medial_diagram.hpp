@@ -253,7 +253,10 @@ struct MedialDiagram {
     /// their nearest points or their neighbours' (an update rechecks these near the change).
     PixelMask boxed;
     MedialOptions options;
-    std::int64_t max_sq = -1;        ///< an upper bound of every pixel's squared clearance (doubled units); -1: not known yet
+    /// Per block of kBlock x kBlock pixels (row-major): an upper bound of its pixels' squared
+    /// clearance (doubled units), kept by updates; empty until an update needs it.
+    std::vector<std::int32_t> block_sq;
+    static constexpr std::int32_t kBlock = 32;
     OccupancyBits bits;              ///< the occupancy as bits, for the box rule
 
     /// Clearance of pixel (r, c)'s centre in map units (0 for occupied pixels).
@@ -264,20 +267,6 @@ struct MedialDiagram {
 };
 
 namespace detail {
-
-/// The largest squared clearance of rows [r0, r1).
-inline std::int64_t largest_sq(const FeatureMap& f, std::int32_t r0, std::int32_t r1) {
-    std::int32_t best = 0;
-    for (std::int32_t r = r0; r < r1; ++r) {
-        const std::int16_t *x = &f.fx[f.at(r, 0)], *y = &f.fy[f.at(r, 0)];
-        const std::int32_t Y = 2 * (f.rows - 1 - r) + 1;
-        for (std::int32_t c = 0; c < f.cols; ++c) {
-            const std::int32_t dx = x[c] - (2 * c + 1), dy = y[c] - Y;
-            best = std::max(best, dx * dx + dy * dy);
-        }
-    }
-    return best;
-}
 
 /// Marks rows [r0, r1) of `m.mask`, pair by pair: a pair is judged once and marks one or both of
 /// its pixels (the rule seen from both ends). Most pairs fail the separation test: it runs first over

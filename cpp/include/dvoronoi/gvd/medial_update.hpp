@@ -3,15 +3,17 @@
 // change can affect is recomputed.
 //
 // An update runs in two exact steps, removals first, then additions:
-//  1. Columns: the vertical nearest squares (pass 1) are recomputed between the nearest pixels of the
-//     column that stay occupied; the rows where a column's value changed are recorded.
+//  1. Columns: the vertical nearest squares (pass 1) change only between the nearest pixels of the
+//     column that stay occupied: after removals they are recomputed there (closed form: every pixel
+//     between is free); after additions a walk out of each run of new pixels stops at the first
+//     pixel that keeps its offset. The rows where a column's value changed are recorded.
 //  2. Nearest points. A pixel's nearest point comes from its row's pass-1 squares, so only rows with
 //     a changed column can change, and in them:
 //     - removals: a pixel needs a new nearest point only if its old one lies on no occupied square any
 //       more; that square was its column's pass-1 square, so the point's x lies in the changed columns'
 //       span, and nearest points' x only grows along a row: the candidates are one interval, found by
-//       binary search. They are recomputed from the row's squares in a window that the pixel's own
-//       column bounds (its own square is at distance <= V, so no farther column can win).
+//       a search from the column. They are recomputed in a window of columns (bounded by their own
+//       vertical distances and by their neighbours' nearest points) or by pass 2 over their free run.
 //     - additions: squares only come closer; a pixel takes a changed column's square when it beats (or
 //       ties with a smaller x) the one it has. Scanning outward from a run of changed columns stops at
 //       the first pixel that keeps a nearest point lying beyond the run: parabolas of translates
@@ -20,8 +22,9 @@
 //     a box spanned by two nearest points at most prune_length apart (grown by one pixel). Rechecked:
 //     pixels whose nearest point or occupancy changed, their neighbours, and pixels of box-judged
 //     pairs (MedialDiagram::boxed) whose nearest point lies within prune_length + 3 pixels of a
-//     changed pixel (searched within the largest clearance of the map; skipped where no unchanged
-//     wall is that near). They are re-marked in row segments, vectorised as a build marks rows.
+//     changed pixel (searched in the blocks of pixels whose largest clearance reaches that far,
+//     MedialDiagram::block_sq; skipped where no unchanged wall is that near). They are re-marked in
+//     row segments, vectorised as a build marks rows.
 #pragma once
 
 #include "dvoronoi/gvd/medial_diagram.hpp"
@@ -31,6 +34,10 @@
 #include <cstdint>
 #include <cstring>
 #include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace dvoronoi::gvd {
 
@@ -44,38 +51,101 @@ struct UpdateStats {
 
 namespace detail {
 
-/// First x in row r with fx >= lo (fx is non-decreasing along a row).
-inline std::int32_t first_at_least(const FeatureMap& f, std::int32_t r, std::int32_t lo) {
-    const std::int16_t* fx = &f.fx[f.at(r, 0)];
-    return static_cast<std::int32_t>(std::lower_bound(fx, fx + f.cols, lo) - fx);
+inline constexpr std::int32_t kBlock = MedialDiagram::kBlock;
+
+/// The largest squared clearance (doubled units) of each kBlock x kBlock block of pixels, blocks in
+/// row-major order. Offsets from a pixel's centre to its nearest point fit 16 bits (sides <= 16383),
+/// so SSE2's pmaddwd gives dx^2 + dy^2 for eight pixels at once (< 2^31).
+inline std::vector<std::int32_t> block_clearances(const FeatureMap& f) {
+    const std::int32_t bw = (f.cols + kBlock - 1) / kBlock;
+    std::vector<std::int32_t> out(static_cast<std::size_t>(bw) * static_cast<std::size_t>((f.rows + kBlock - 1) / kBlock), 0);
+    for (std::int32_t r = 0; r < f.rows; ++r) {
+        const std::int16_t* x = &f.fx[f.at(r, 0)];
+        const std::int16_t* y = &f.fy[f.at(r, 0)];
+        const std::int32_t Y = 2 * (f.rows - 1 - r) + 1;
+        std::int32_t* o = &out[static_cast<std::size_t>(r / kBlock * bw)];
+        for (std::int32_t c0 = 0; c0 < f.cols; c0 += kBlock) {
+            const std::int32_t end = std::min(f.cols, c0 + kBlock);
+            std::int32_t best = 0, c = c0;
+#if defined(__SSE2__)
+            __m128i most = _mm_setzero_si128();
+            const __m128i cy = _mm_set1_epi16(static_cast<std::int16_t>(Y));
+            for (; c + 8 <= end; c += 8) {
+                const __m128i cx = _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * c + 1)), _mm_setr_epi16(0, 2, 4, 6, 8, 10, 12, 14));
+                const __m128i dx = _mm_sub_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(x + c)), cx);
+                const __m128i dy = _mm_sub_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(y + c)), cy);
+                const __m128i lo = _mm_unpacklo_epi16(dx, dy), hi = _mm_unpackhi_epi16(dx, dy);
+                for (const __m128i d2 : {_mm_madd_epi16(lo, lo), _mm_madd_epi16(hi, hi)}) {
+                    const __m128i gt = _mm_cmpgt_epi32(d2, most);  // SSE2 has no pmaxsd
+                    most = _mm_or_si128(_mm_and_si128(gt, d2), _mm_andnot_si128(gt, most));
+                }
+            }
+            alignas(16) std::int32_t lanes[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(lanes), most);
+            best = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+#endif
+            for (; c < end; ++c) {
+                const std::int32_t dx = x[c] - (2 * c + 1), dy = y[c] - Y;
+                best = std::max(best, dx * dx + dy * dy);
+            }
+            o[c0 / kBlock] = std::max(o[c0 / kBlock], best);
+        }
+    }
+    return out;
 }
+
+/// Changed cells bucketed by row: row rows[k] has the ascending columns cols[start[k] .. start[k+1]).
+struct RowCells {
+    std::vector<std::int32_t> rows, cols;
+    std::vector<std::size_t> start{0};
+};
 
 class Updater {
 public:
-    explicit Updater(MedialDiagram& m) : m_(m), g_(m.grid), f_(m.features) {}
+    // A column costs about three times as much in RowEnvelope::build as in build_run (measured in
+    // instructions on three 2048 x 2048 maps); fill_run then reads only the pixels asked for.
+    static constexpr std::int32_t kWindowCost = 3, kRunCost = 1;
+    static constexpr std::size_t kAhead = 2;  // rows whose first cache lines are fetched ahead
+
+    explicit Updater(MedialDiagram& m) : m_(m), g_(m.grid), f_(m.features), touched_(m.grid.rows, m.grid.cols) {}
 
     /// Sets the listed pixels (linear indices) to `occupied`; pixels already so are skipped.
     void apply(const std::vector<std::size_t>& pixels, bool occupied) {
-        std::vector<std::size_t> todo;
-        for (std::size_t i : pixels)
-            if ((g_.occupied[i] != 0) != occupied) todo.push_back(i);
-        std::sort(todo.begin(), todo.end());
-        todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
-        if (todo.empty()) return;
-        stats.changed_pixels += todo.size();
-        touched_.reserve(touched_.size() + 16 * todo.size());  // a blob's nearest points change around it
-        for (std::size_t i : todo) {
+        const auto W = static_cast<std::uint32_t>(g_.cols);
+        std::vector<std::pair<std::int32_t, std::int32_t>> rc;  // (row, column) of the changes, as given
+        for (std::size_t i : pixels) {
+            if ((g_.occupied[i] != 0) == occupied) continue;  // already so, or listed twice
             g_.occupied[i] = occupied ? 1 : 0;
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(g_.cols));
-            m_.bits.put(g_.rows - 1 - r, static_cast<std::int32_t>(i % static_cast<std::size_t>(g_.cols)), occupied);
-            changed_.push_back(i);
-            touched_.push_back(i);
+            const auto k = static_cast<std::uint32_t>(i);  // < 2^28: 32-bit division
+            const auto r = static_cast<std::int32_t>(k / W), c = static_cast<std::int32_t>(k % W);
+            m_.bits.put(g_.rows - 1 - r, c, occupied);
+            touched_.set(r, c, true);
+            rc.push_back({r, c});
         }
-        const auto rows_changed = update_columns(todo, occupied);
-        if (occupied) {
-            for (const auto& rc : rows_changed) add_row(rc.first, rc.second);
-        } else {
-            for (const auto& rc : rows_changed) remove_row(rc.first, rc.second);
+        if (rc.empty()) return;
+        stats.changed_pixels += rc.size();
+        // (column, row) order for the column pass and (row, column) order for find_boxed, each by two
+        // stable bucketings (sorts of the lists cost more than the column pass)
+        std::vector<std::pair<std::int32_t, std::int32_t>> by_c = bucketed(bucketed(rc, 0, g_.rows), 1, g_.cols);
+        for (auto& p : by_c) std::swap(p.first, p.second);
+        const bool sorted = changed_.empty();
+        for (const auto& [r, c] : bucketed(bucketed(rc, 1, g_.cols), 0, g_.rows)) changed_.push_back(g_.at(r, c));
+        if (!sorted) std::sort(changed_.begin(), changed_.end());  // removals, then additions
+        const RowCells cells = by_row(occupied ? add_columns(by_c) : remove_columns(by_c));
+        for (std::size_t k = 0; k < cells.rows.size(); ++k) {
+            const std::int32_t* cols = cells.cols.data() + cells.start[k];
+            const std::size_t n = cells.start[k + 1] - cells.start[k];
+            if (k + kAhead < cells.rows.size()) {  // rows lie 2 W bytes apart: no hardware prefetch
+                const std::size_t q = k + kAhead;
+                for (const std::size_t e : {cells.start[q], cells.start[q + 1] - 1}) {
+                    const std::size_t i = f_.at(cells.rows[q], cells.cols[e]);
+                    ::dvoronoi::detail::prefetch(&f_.vgap[i]);
+                    ::dvoronoi::detail::prefetch(&f_.fx[i]);
+                    ::dvoronoi::detail::prefetch(&f_.fy[i]);
+                }
+            }
+            if (occupied) add_row(cells.rows[k], cols, n);
+            else remove_row(cells.rows[k], cols, n);
         }
     }
 
@@ -84,53 +154,11 @@ public:
     /// row segment as a build marks them.
     void refresh_mask() {
         if (changed_.empty()) return;
-        const std::int32_t H = g_.rows, W = g_.cols;
-        PixelMask redo(H, W);  // touched pixels and their 4-neighbours (they share a pair)
-        for (std::size_t i : touched_) redo.set(i, true);
-        redo = redo.dilated4();
-        // Pixels whose nearest point lies near a change (the box rule): changed pixels grouped in
-        // tiles, each tile's box grown by that margin, searched in the rows within the map's
-        // largest clearance of it.
-        // a grown box lies within prune_length + sqrt(2) + 1 pixels of either nearest point
-        const std::int32_t margin = static_cast<std::int32_t>(std::ceil(m_.options.prune_length)) + 3;
-        constexpr std::int32_t kTile = 32;
-        const std::size_t tw = static_cast<std::size_t>((W + kTile - 1) / kTile);
-        std::vector<std::size_t> tiles;
-        for (std::size_t i : changed_) {
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
-            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
-            tiles.push_back(static_cast<std::size_t>(r / kTile) * tw + static_cast<std::size_t>(c / kTile));
-        }
-        std::sort(tiles.begin(), tiles.end());
-        tiles.erase(std::unique(tiles.begin(), tiles.end()), tiles.end());
-        const std::int64_t reach = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(max_sq())) / 2.0)) + margin + 1;
-        std::vector<std::size_t> changed = changed_;
-        std::sort(changed.begin(), changed.end());
-        for (std::size_t t : tiles) {
-            const std::int32_t r0 = static_cast<std::int32_t>(t / tw) * kTile, c0 = static_cast<std::int32_t>(t % tw) * kTile;
-            const std::int32_t r1 = std::min(H, r0 + kTile) - 1, c1 = std::min(W, c0 + kTile) - 1;
-            // nearest points (doubled) in [xlo, xhi] x [ylo, yhi]
-            const std::int32_t xlo = 2 * (c0 - margin), xhi = 2 * (c1 + 1 + margin);
-            const std::int32_t ylo = 2 * (H - 1 - r1 - margin), yhi = 2 * (H - r0 + margin);
-            if (!unchanged_walls_meet(changed, xlo, xhi, ylo, yhi)) continue;
-            // Only pixels of box-judged pairs (m.boxed) can change without a touched neighbour, and
-            // a pixel is within the largest clearance of its nearest point.
-            const auto ra = static_cast<std::int32_t>(std::max<std::int64_t>(0, r0 - reach));
-            const auto rb = static_cast<std::int32_t>(std::min<std::int64_t>(H - 1, r1 + reach));
-            const auto ca = static_cast<std::int32_t>(std::max<std::int64_t>(0, c0 - reach));
-            const auto cb = static_cast<std::int32_t>(std::min<std::int64_t>(W - 1, c1 + reach));
-            for (std::int32_t r = ra; r <= rb; ++r) {
-                const std::size_t base = f_.at(r, 0);
-                for (std::int32_t x = m_.boxed.find(r, ca, true, cb + 1); x <= cb; x = m_.boxed.find(r, x + 1, true, cb + 1)) {
-                    const std::size_t i = base + static_cast<std::size_t>(x);
-                    const std::int32_t fx = f_.fx[i], fy = f_.fy[i];
-                    if (fx >= xlo && fx <= xhi && fy >= ylo && fy <= yhi && !g_.occupied[i]) redo.set(r, x, true);
-                }
-            }
-        }
+        PixelMask redo = touched_.dilated4();  // touched pixels and their 4-neighbours (they share a pair)
+        find_boxed(redo);
         RowMarker marker(m_);
-        for (std::int32_t r = 0; r < H; ++r)  // runs of set bits
-            for (std::int32_t a = redo.find(r, 0, true); a < W; a = redo.find(r, a, true)) {
+        for (std::int32_t r = 0; r < g_.rows; ++r)  // runs of set bits
+            for (std::int32_t a = redo.find(r, 0, true); a < g_.cols; a = redo.find(r, a, true)) {
                 const std::int32_t b = redo.find(r, a, false);
                 stats.mask_checks += static_cast<std::uint64_t>(b - a);
                 marker.mark_segment(r, a, b - 1);
@@ -141,13 +169,88 @@ public:
     UpdateStats stats;
 
 private:
+    /// Adds to `redo` the pixels of box-judged pairs (m.boxed: the only pixels whose membership a
+    /// change of occupancy can alter without a touched neighbour) whose nearest point lies near a
+    /// change: changed pixels grouped in blocks, each block's box grown by the margin below (a zone).
+    /// A pixel is no farther from its nearest point than its clearance, so only the blocks no farther
+    /// from a zone than their largest clearance (MedialDiagram::block_sq) are searched, and a pixel's
+    /// nearest point is looked up in a coarse grid of cells holding the zones (a cell over a zone's
+    /// edge adds pixels to recheck, never drops one).
+    void find_boxed(PixelMask& redo) {
+        const std::int32_t H = g_.rows, W = g_.cols;
+        // a grown box lies within prune_length + sqrt(2) + 1 pixels of either nearest point
+        const std::int32_t margin = static_cast<std::int32_t>(std::ceil(m_.options.prune_length)) + 3;
+        constexpr std::int32_t kCell = 3;  // cells of 8 x 8 pixels
+        const std::int32_t bw = (W + kBlock - 1) / kBlock, bh = (H + kBlock - 1) / kBlock;
+        std::vector<std::uint8_t> has_change(static_cast<std::size_t>(bw) * static_cast<std::size_t>(bh), 0);
+        for (std::size_t i : changed_) {
+            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(W));
+            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(W));
+            has_change[static_cast<std::size_t>(r / kBlock * bw + c / kBlock)] = 1;
+        }
+        // nearest points' pixel coordinates (x, y) = (fx / 2, fy / 2) lie in [0, W] x [0, H]
+        const std::int32_t zw = (W >> kCell) + 1;
+        std::vector<std::uint8_t> zone, search;
+        std::int64_t reach = 0;  // pixels: the largest clearance of the map, and the margin
+        for (std::int32_t t = 0; t < bw * bh; ++t) {
+            if (!has_change[static_cast<std::size_t>(t)]) continue;
+            const std::int32_t r0 = t / bw * kBlock, c0 = t % bw * kBlock;
+            const std::int32_t r1 = std::min(H, r0 + kBlock) - 1, c1 = std::min(W, c0 + kBlock) - 1;
+            // nearest points (doubled) in [xlo, xhi] x [ylo, yhi]
+            const std::int32_t xlo = 2 * (c0 - margin), xhi = 2 * (c1 + 1 + margin);
+            const std::int32_t ylo = 2 * (H - 1 - r1 - margin), yhi = 2 * (H - r0 + margin);
+            if (!unchanged_walls_meet(xlo, xhi, ylo, yhi)) continue;
+            if (zone.empty()) {
+                const std::int32_t most = *std::max_element(block_sq().begin(), block_sq().end());
+                reach = static_cast<std::int64_t>(std::ceil(std::sqrt(static_cast<double>(most)) / 2.0)) + margin + 1;
+                zone.assign(static_cast<std::size_t>(zw) * static_cast<std::size_t>((H >> kCell) + 1), 0);
+                search.assign(has_change.size(), 0);
+            }
+            const std::int32_t x0 = std::max(0, xlo / 2) >> kCell, x1 = std::min(W, xhi / 2) >> kCell;
+            const std::int32_t y0 = std::max(0, ylo / 2) >> kCell, y1 = std::min(H, yhi / 2) >> kCell;
+            for (std::int32_t y = y0; y <= y1; ++y)
+                std::fill_n(&zone[static_cast<std::size_t>(y) * static_cast<std::size_t>(zw) + static_cast<std::size_t>(x0)], x1 - x0 + 1, std::uint8_t{1});
+            // blocks within the map's largest clearance, then each by its own
+            const auto i0 = static_cast<std::int32_t>(std::max<std::int64_t>(0, r0 - reach) / kBlock);
+            const auto i1 = static_cast<std::int32_t>(std::min<std::int64_t>(H - 1, r1 + reach) / kBlock);
+            const auto j0 = static_cast<std::int32_t>(std::max<std::int64_t>(0, c0 - reach) / kBlock);
+            const auto j1 = static_cast<std::int32_t>(std::min<std::int64_t>(W - 1, c1 + reach) / kBlock);
+            for (std::int32_t bi = i0; bi <= i1; ++bi)
+                for (std::int32_t bj = j0; bj <= j1; ++bj) {
+                    // the block's pixel centres span [bx0, bx1] x [by0, by1] (doubled)
+                    const std::int64_t bx0 = 2 * bj * kBlock + 1, bx1 = 2 * (std::min(W, (bj + 1) * kBlock) - 1) + 1;
+                    const std::int64_t by1 = 2 * (H - 1 - bi * kBlock) + 1, by0 = 2 * (H - std::min(H, (bi + 1) * kBlock)) + 1;
+                    const std::int64_t dx = std::max<std::int64_t>({0, xlo - bx1, bx0 - xhi}), dy = std::max<std::int64_t>({0, ylo - by1, by0 - yhi});
+                    const std::size_t b = static_cast<std::size_t>(bi * bw + bj);
+                    if (dx * dx + dy * dy <= block_sq()[b]) search[b] = 1;
+                }
+        }
+        if (zone.empty()) return;
+        for (std::int32_t bi = 0; bi < bh; ++bi)
+            for (std::int32_t bj = 0; bj < bw;) {  // runs of blocks to search in a row of blocks
+                if (!search[static_cast<std::size_t>(bi * bw + bj)]) { ++bj; continue; }
+                std::int32_t bk = bj + 1;
+                while (bk < bw && search[static_cast<std::size_t>(bi * bw + bk)]) ++bk;
+                const std::int32_t ca = bj * kBlock, cb = std::min(W, bk * kBlock) - 1;
+                for (std::int32_t r = bi * kBlock; r < std::min(H, (bi + 1) * kBlock); ++r) {
+                    const std::size_t base = f_.at(r, 0);
+                    for (std::int32_t x = m_.boxed.find(r, ca, true, cb + 1); x <= cb; x = m_.boxed.find(r, x + 1, true, cb + 1)) {
+                        const std::size_t i = base + static_cast<std::size_t>(x);
+                        const std::size_t cell = static_cast<std::size_t>(f_.fy[i] >> (kCell + 1)) * static_cast<std::size_t>(zw) +
+                                                 static_cast<std::size_t>(f_.fx[i] >> (kCell + 1));
+                        if (zone[cell]) redo.set(r, x, true);
+                    }
+                }
+                bj = bk;
+            }
+    }
+
     /// Does an occupied square that is not a changed pixel (or the outside) meet the zone
     /// [xlo, xhi] x [ylo, yhi] (doubled units)? If not, a pixel whose nearest point lies in the zone
     /// has it on a changed square only, so the update gave it that point (or took it away): the pixel
     /// was touched and is rechecked anyway. A blob put into open space (the common update) skips the
     /// search for pixels whose nearest point lies near it.
-    bool unchanged_walls_meet(const std::vector<std::size_t>& changed, std::int32_t xlo, std::int32_t xhi,
-                              std::int32_t ylo, std::int32_t yhi) const {
+    bool unchanged_walls_meet(std::int32_t xlo, std::int32_t xhi, std::int32_t ylo, std::int32_t yhi) const {
         const std::int32_t H = g_.rows, W = g_.cols;
         // square column c covers [2c, 2c + 2]: it meets [xlo, xhi] (even bounds) for xlo/2 - 1 <= c <= xhi/2;
         // columns and rows -1 and cols / rows are the outside (occupied in the bits)
@@ -159,179 +262,268 @@ private:
                 for (std::uint64_t w = m_.bits.row(j, c, n); w != 0; w &= w - 1) {
                     const std::int32_t cc = c + lowest_bit(w), r = H - 1 - j;
                     if (cc < 0 || cc >= W || r < 0 || r >= H) return true;
-                    if (!std::binary_search(changed.begin(), changed.end(), g_.at(r, cc))) return true;
+                    if (!std::binary_search(changed_.begin(), changed_.end(), g_.at(r, cc))) return true;
                 }
             }
         return false;
     }
 
-    /// Largest squared clearance (doubled units) now, an upper bound kept by the diagram.
-    std::int64_t max_sq() {
-        if (m_.max_sq < 0) m_.max_sq = largest_sq(f_, 0, f_.rows);  // the first update finds it
-        for (std::size_t i : touched_) {
-            const auto r = static_cast<std::int32_t>(i / static_cast<std::size_t>(g_.cols));
-            const auto c = static_cast<std::int32_t>(i % static_cast<std::size_t>(g_.cols));
-            m_.max_sq = std::max(m_.max_sq, f_.sq(r, c));
-        }
-        return m_.max_sq;
+    /// The diagram's bounds of each block's clearance; the first update that needs them computes them.
+    const std::vector<std::int32_t>& block_sq() {
+        if (m_.block_sq.empty()) m_.block_sq = block_clearances(f_);
+        return m_.block_sq;
     }
 
-    /// Pass 1 in the changed columns; returns (row, sorted changed columns) for every row that changed.
-    std::vector<std::pair<std::int32_t, std::vector<std::int32_t>>> update_columns(const std::vector<std::size_t>& todo,
-                                                                                   bool occupied) {
-        const std::int32_t H = g_.rows, W = g_.cols;
-        std::vector<std::pair<std::int32_t, std::int32_t>> cr;  // (column, row) of the changes
-        for (std::size_t i : todo)
-            cr.push_back({static_cast<std::int32_t>(i % static_cast<std::size_t>(W)), static_cast<std::int32_t>(i / static_cast<std::size_t>(W))});
-        std::sort(cr.begin(), cr.end());
-        auto is_new = [&](std::int32_t r, std::int32_t c) {
-            return std::binary_search(cr.begin(), cr.end(), std::make_pair(c, r));
-        };
-        // an occupied pixel that bounds a column's range: occupied before and after
-        auto stays_occupied = [&](std::int32_t r, std::int32_t c) {
-            return r < 0 || r >= H || (g_.occ(r, c) && !(occupied && is_new(r, c)));
-        };
+    /// Pass 1 after removals: between the nearest pixels lo and hi of a column that stay occupied (or
+    /// the outside) every pixel is free, so its offsets to both are known without a pass. Those pixels
+    /// are found by jumping along the old offsets: a free pixel's offset says how far its column was
+    /// free (and a pixel with none was occupied: it stays so or was freed). Only the pixels whose old
+    /// nearest pixel was freed change: from the middle between lo and the first freed pixel a to the
+    /// middle between the last one b and hi (ties went below, as in column_pass).
+    std::vector<std::pair<std::int32_t, std::int32_t>> remove_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
+        const std::int32_t H = g_.rows;
         std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
-        std::vector<std::int16_t> up;
-        std::size_t k = 0;
-        while (k < cr.size()) {
-            const std::int32_t c = cr[k].first;
-            std::int32_t done_to = -1;  // rows <= done_to are done in this column
-            for (; k < cr.size() && cr[k].first == c; ++k) {
-                const std::int32_t r0 = cr[k].second;
-                if (r0 <= done_to) continue;
-                std::int32_t lo = r0 - 1, hi = r0 + 1;
-                while (!stays_occupied(lo, c)) --lo;
-                while (!stays_occupied(hi, c)) ++hi;
-                // rows lo+1 .. hi-1 between two pixels occupied before and after (or the outside)
-                const std::int32_t n = hi - lo - 1;
-                up.assign(static_cast<std::size_t>(n), 0);
-                std::int16_t run = 0;
-                for (std::int32_t r = lo + 1; r < hi; ++r) {
-                    run = g_.occ(r, c) ? std::int16_t(0) : static_cast<std::int16_t>(run + 1);
-                    up[static_cast<std::size_t>(r - lo - 1)] = run;
+        for (std::size_t k = 0; k < cr.size();) {
+            const std::int32_t c = cr[k].first, a = cr[k].second;
+            auto v = [&](std::int32_t r) -> std::int32_t { return f_.vgap[f_.at(r, c)]; };
+            std::int32_t lo = a - 1, hi = a + 1;
+            // above: offset k > 0 (below nearer or as near) leaves rows r-1 .. r-k+1 free; k < 0 points
+            // at the occupied pixel above
+            while (lo >= 0 && !g_.occ(lo, c)) lo -= v(lo) > 0 ? v(lo) : (v(lo) < 0 ? -v(lo) : 1);
+            // below: k > 0 points at the occupied pixel below; k < 0 (above strictly nearer) leaves
+            // rows r+1 .. r-k free
+            while (hi < H && !g_.occ(hi, c)) hi += v(hi) > 0 ? v(hi) : (v(hi) < 0 ? 1 - v(hi) : 1);
+            std::int32_t b = a;
+            for (; k < cr.size() && cr[k].first == c && cr[k].second < hi; ++k) b = cr[k].second;
+            // rows r with a - r <= r - lo, to rows r with r - b < hi - r
+            const std::int32_t first = (a + lo + 1) >> 1, last = (hi + b - 1) >> 1;  // lo + a >= -1
+            for (std::int32_t r = first; r <= last; ++r) {
+                const std::int32_t up = r - lo, down = hi - r;  // ties: below, as in column_pass
+                const auto nv = static_cast<std::int16_t>(down <= up ? down : -up);
+                std::int16_t& cur = f_.vgap[f_.at(r, c)];
+                if (cur != nv) {
+                    cur = nv;
+                    cells.push_back({r, c});
                 }
-                run = 0;
-                for (std::int32_t r = hi - 1; r > lo; --r) {
-                    run = g_.occ(r, c) ? std::int16_t(0) : static_cast<std::int16_t>(run + 1);
-                    const std::int16_t u = up[static_cast<std::size_t>(r - lo - 1)];
-                    const std::int16_t v = run <= u ? run : static_cast<std::int16_t>(-u);
-                    std::int16_t& cur = f_.vgap[f_.at(r, c)];
-                    if (cur != v) {
-                        cur = v;
-                        cells.push_back({r, c});
-                    }
-                }
-                stats.column_cells += static_cast<std::uint64_t>(n);
-                done_to = hi - 1;
             }
+            stats.column_cells += static_cast<std::uint64_t>(last - first + 1);
         }
-        // by row, columns ascending: the cells come column by column with rows ascending, so a stable
-        // bucketing by row keeps each row's columns in order
-        std::vector<std::size_t> start(static_cast<std::size_t>(H) + 1, 0);
-        for (const auto& rc : cells) ++start[static_cast<std::size_t>(rc.first) + 1];
-        std::vector<std::pair<std::int32_t, std::vector<std::int32_t>>> rows;
-        std::vector<std::size_t> slot(static_cast<std::size_t>(H), 0);
-        for (std::int32_t r = 0; r < H; ++r)
-            if (start[static_cast<std::size_t>(r) + 1] != 0) {
-                slot[static_cast<std::size_t>(r)] = rows.size();
-                rows.push_back({r, {}});
-                rows.back().second.reserve(start[static_cast<std::size_t>(r) + 1]);
+        return cells;
+    }
+
+    /// Pass 1 after additions: offsets only shrink, so from each run of new pixels of a column the
+    /// walk goes outward while the run is nearer than the offset a pixel has (ties: below). It stops
+    /// at the first pixel that keeps its offset: the run's distance grows by one a row and the kept
+    /// side's shrinks by one, so no pixel beyond changes either. A column's new pixels get offset 0
+    /// first, so the walks read the offsets only (0: occupied).
+    std::vector<std::pair<std::int32_t, std::int32_t>> add_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
+        const std::int32_t H = g_.rows;
+        std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
+        auto put = [&](std::int32_t r, std::int32_t c, std::int32_t v) {
+            std::int16_t& cur = f_.vgap[f_.at(r, c)];
+            if (cur == v) return;
+            cur = static_cast<std::int16_t>(v);
+            cells.push_back({r, c});
+        };
+        for (std::size_t k = 0; k < cr.size();) {
+            const std::int32_t c = cr[k].first, a = cr[k].second;
+            if (k == 0 || cr[k - 1].first != c)  // a new column (cells go out column by column)
+                for (std::size_t q = k; q < cr.size() && cr[q].first == c; ++q) put(cr[q].second, c, 0);
+            std::size_t e = k + 1;
+            while (e < cr.size() && cr[e].first == c && cr[e].second == cr[e - 1].second + 1) ++e;
+            const std::int32_t b = cr[e - 1].second;  // new pixels a .. b of column c
+            std::int32_t r = a - 1;
+            for (; r >= 0; --r) {  // above the run: the run is below, at a - r
+                const std::int32_t v = f_.vgap[f_.at(r, c)];
+                if (v == 0 || (v < 0 && -v < a - r)) break;
+                put(r, c, a - r);
             }
-        for (const auto& rc : cells) rows[slot[static_cast<std::size_t>(rc.first)]].second.push_back(rc.second);
-        return rows;
+            std::int32_t s = b + 1;
+            for (; s < H; ++s) {  // below the run: the run is above, at s - b
+                const std::int32_t v = f_.vgap[f_.at(s, c)];
+                if (v == 0 || (v > 0 && v <= s - b)) break;
+                put(s, c, b - s);
+            }
+            stats.column_cells += static_cast<std::uint64_t>(s - r - 1);
+            k = e;
+        }
+        return cells;
+    }
+
+    /// `items` (pairs) stably bucketed by their `key`-th member, which lies in [0, n).
+    static std::vector<std::pair<std::int32_t, std::int32_t>> bucketed(const std::vector<std::pair<std::int32_t, std::int32_t>>& items,
+                                                                       int key, std::int32_t n) {
+        auto k = [key](const std::pair<std::int32_t, std::int32_t>& p) { return static_cast<std::size_t>(key == 0 ? p.first : p.second); };
+        std::vector<std::size_t> at(static_cast<std::size_t>(n) + 1, 0);
+        for (const auto& p : items) ++at[k(p) + 1];
+        for (std::size_t b = 1; b < at.size(); ++b) at[b] += at[b - 1];
+        std::vector<std::pair<std::int32_t, std::int32_t>> out(items.size());
+        for (const auto& p : items) out[at[k(p)]++] = p;
+        return out;
+    }
+
+    /// (row, column) cells, column by column, to rows with ascending unique columns: a stable bucketing
+    /// by row keeps each row's columns in order.
+    RowCells by_row(const std::vector<std::pair<std::int32_t, std::int32_t>>& cells) const {
+        const std::int32_t H = g_.rows;
+        std::vector<std::size_t> at(static_cast<std::size_t>(H) + 1, 0);
+        for (const auto& rc : cells) ++at[static_cast<std::size_t>(rc.first) + 1];
+        for (std::int32_t r = 0; r < H; ++r) at[static_cast<std::size_t>(r) + 1] += at[static_cast<std::size_t>(r)];
+        std::vector<std::int32_t> flat(cells.size());
+        std::vector<std::size_t> fill(at.begin(), at.end() - 1);
+        for (const auto& rc : cells) flat[fill[static_cast<std::size_t>(rc.first)]++] = rc.second;
+        RowCells out;
+        for (std::int32_t r = 0; r < H; ++r) {
+            const std::size_t a = at[static_cast<std::size_t>(r)], b = at[static_cast<std::size_t>(r) + 1];
+            if (a == b) continue;
+            out.rows.push_back(r);
+            // a cell reached from the runs above and below it comes twice
+            const auto end = std::unique(flat.begin() + static_cast<std::ptrdiff_t>(a), flat.begin() + static_cast<std::ptrdiff_t>(b));
+            out.cols.insert(out.cols.end(), flat.begin() + static_cast<std::ptrdiff_t>(a), end);
+            out.start.push_back(out.cols.size());
+        }
+        return out;
     }
 
     void set_feature(std::int32_t r, std::int32_t x, std::int32_t fx, std::int32_t fy) {
         const std::size_t i = f_.at(r, x);
         if (f_.fx[i] == fx && f_.fy[i] == fy) return;
-        f_.fx[i] = static_cast<std::int16_t>(fx);
-        f_.fy[i] = static_cast<std::int16_t>(fy);
-        touched_.push_back(i);
+        const std::int64_t dx = fx - (2 * x + 1), dy = fy - (2 * (g_.rows - 1 - r) + 1);
+        store(r, x, {dx * dx + dy * dy, fx, fy});
+    }
+
+    /// Pixel (r, x) takes the nearest point n (a different one), n.sq away.
+    void store(std::int32_t r, std::int32_t x, const Candidate2& n) {
+        const std::size_t i = f_.at(r, x);
+        f_.fx[i] = static_cast<std::int16_t>(n.x);
+        f_.fy[i] = static_cast<std::int16_t>(n.y);
+        touched_.set(r, x, true);
         ++stats.feature_changes;
     }
 
-    Candidate2 current(std::int32_t r, std::int32_t x) const {
-        const std::size_t i = f_.at(r, x);
-        return {f_.sq(r, x), f_.fx[i], f_.fy[i]};
+    /// The first x in [from, W) with fx[x] >= v (fx non-decreasing), searched outward from `guess`:
+    /// the answer is usually near it, and a binary search over the whole row reads a cache line a step.
+    static std::int32_t first_at_least(const std::int16_t* fx, std::int32_t from, std::int32_t W, std::int32_t v, std::int32_t guess) {
+        if (from >= W) return W;
+        std::int32_t lo = std::max(from, std::min(guess, W - 1)), hi = lo;  // the answer lies in (lo, hi]
+        if (fx[lo] >= v) {
+            for (std::int32_t step = 1; lo > from && fx[lo - 1] >= v; step *= 2) {
+                hi = lo;
+                lo = std::max(from, lo - step);
+                if (fx[lo] < v) break;
+            }
+            if (fx[lo] >= v) return lo;
+        } else {
+            for (std::int32_t step = 1; fx[hi] < v; step *= 2) {
+                lo = hi;
+                if (hi == W - 1) return W;
+                hi = std::min(W - 1, hi + step);
+            }
+        }
+        return static_cast<std::int32_t>(std::lower_bound(fx + lo + 1, fx + hi, v) - fx);
     }
 
-    /// Removals in row r with changed columns `cols`: recompute the pixels whose nearest point is gone.
-    void remove_row(std::int32_t r, const std::vector<std::int32_t>& cols) {
-        const std::int32_t W = g_.cols;
+    /// Removals in row r with changed columns `cols` (n, ascending; all free now). A pixel needs a
+    /// new nearest point only if its old one lies on no occupied square any more: on a changed
+    /// column's old pass-1 square, so its x lies in a run of changed columns' span, and nearest x only
+    /// grows along a row: one interval of pixels a run, found by a search out from the run, inside
+    /// the free run [s, t] that holds the changed columns. The interval's new points are found among
+    /// the columns of a window, or, when the window is not much smaller than the run, by pass 2 over
+    /// the whole run as a build runs it (a column costs less there). Two bounds make the window:
+    ///  - the pixels' own squares are at most 2k - 1 away (doubled units) and a column d pixels away
+    ///    is at least 2d - 1 away, so columns more than k away cannot win (ties included); nor can
+    ///    columns beyond an occupied pixel of the row (its edge is at distance 0 in the row);
+    ///  - nearest x grows along the row, so the new points' x lies between the final points of the
+    ///    pixels just left and right of the interval: only the columns whose squares reach that span
+    ///    can hold them (the pixel on the right is final unless a later run of the row recomputes it).
+    void remove_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
+        const std::int32_t W = g_.cols, j = g_.rows - 1 - r;
         const std::size_t base = f_.at(r, 0);
-        std::vector<std::int32_t>& redo = redo_;  // kept between rows: no allocation a row
-        redo.clear();
-        // One interval of nearest x per run of adjacent changed columns: the runs of a row are often
-        // far apart (blobs whose columns' changes reach the same row), and the pixels between their
-        // intervals have nearest points on columns that did not change.
-        std::int32_t from = 0;  // x ascends with the runs (nearest x does along a row)
-        for (std::size_t a = 0; a < cols.size();) {
+        const std::int16_t* fx = &f_.fx[base];
+        const std::int16_t* fy = &f_.fy[base];
+        const std::int16_t* vg = &f_.vgap[base];
+        // clearances grow only here (additions bring points closer): the blocks' bounds follow
+        std::int32_t* bound = m_.block_sq.empty() ? nullptr : &m_.block_sq[static_cast<std::size_t>(r / kBlock * ((W + kBlock - 1) / kBlock))];
+        auto take = [&](std::int32_t x, const Candidate2& nc) {
+            store(r, x, nc);
+            if (bound) bound[x / kBlock] = std::max(bound[x / kBlock], static_cast<std::int32_t>(nc.sq));  // < 2^31: sides <= 16383
+        };
+        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1;
+        std::int32_t from = 0, built = -1;  // built: the first column of the run build_run holds
+        for (std::size_t a = 0; a < n;) {
             std::size_t b = a;
-            while (b + 1 < cols.size() && cols[b + 1] == cols[b] + 1) ++b;
-            const std::int32_t xlo = 2 * cols[a], xhi = 2 * cols[b] + 2;
-            std::int32_t x = std::max(from, first_at_least(f_, r, xlo));
-            for (; x < W && f_.fx[base + static_cast<std::size_t>(x)] <= xhi; ++x) {
-                const std::size_t i = base + static_cast<std::size_t>(x);
-                if (g_.occupied[i]) continue;  // still occupied: its own centre
-                if (!m_.bits.holds_point(f_.fx[i], f_.fy[i])) redo.push_back(x);
-            }
-            from = x;
+            while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
+            const std::int32_t c = cols[a], xhi = 2 * cols[b] + 2;
             a = b + 1;
-        }
-        // one window per group of pixels with no occupied pixel between them
-        const std::uint8_t* o = &g_.occupied[base];
-        std::size_t a = 0;
-        while (a < redo.size()) {
-            std::size_t b = a + 1;
-            while (b < redo.size() && !std::memchr(o + redo[b - 1] + 1, 1, static_cast<std::size_t>(redo[b] - redo[b - 1] - 1))) ++b;
-            std::int64_t U = 0;
-            for (std::size_t q = a; q < b; ++q) {
-                const std::int64_t k = std::abs(static_cast<std::int32_t>(f_.vgap[base + static_cast<std::size_t>(redo[q])]));
-                U = std::max(U, (2 * k - 1) * (2 * k - 1));
+            const std::int32_t x1 = first_at_least(fx, from, W, 2 * c, c);
+            std::int32_t x2 = x1;  // pixels x1 .. x2 - 1
+            std::int32_t k = 0;    // their largest vertical offset
+            for (; x2 < W && fx[x2] <= xhi; ++x2) k = std::max<std::int32_t>(k, std::abs(static_cast<std::int32_t>(vg[x2])));
+            from = x2;
+            if (x1 == x2) continue;
+            const auto [s, t] = m_.bits.free_run(j, c);
+            const std::int32_t R = std::max(k, 1) + 1;
+            const std::int32_t lo = x1 > 0 ? fx[x1 - 1] : 0;  // the new points' x lies in [lo, hi]
+            const std::int32_t hi = x2 < W && (a == n || fx[x2] < 2 * cols[a]) ? fx[x2] : 2 * W;
+            // columns whose squares [2e, 2e + 2] meet [lo, hi]
+            const std::int32_t ca = std::max({s - 1, x1 - R, (lo + 1) / 2 - 1}), cb = std::min({t + 1, x2 - 1 + R, hi / 2});
+            if (built != s && kWindowCost * (cb - ca + 1) < kRunCost * (t - s + 1)) {
+                env_.build(g_, f_, r, ca, cb);
+                for (std::int32_t x = x1; x < x2; ++x) {
+                    const Candidate2 nc = env_.query(x);
+                    if (nc.x != fx[x] || nc.y != fy[x]) take(x, nc);
+                }
+                built = -1;
+                continue;
             }
-            // A square of column c is at least |X - 2e| away for its nearer edge e, so columns more than
-            // sqrt(U)/2 + 1 from every pixel cannot beat the pixels' own columns; nor can columns
-            // beyond an occupied pixel of the row (its edge is nearer, at distance 0 in the row).
-            const auto R = static_cast<std::int32_t>(std::sqrt(static_cast<double>(U)) / 2.0) + 2;
-            std::int32_t ca = redo[a] - 1;
-            while (ca >= 0 && !o[ca] && redo[a] - ca < R) --ca;
-            std::int32_t cb = redo[b - 1] + 1;
-            while (cb < W && !o[cb] && cb - redo[b - 1] < R) ++cb;
-            env_.build(g_, f_, r, ca, cb);
-            for (std::size_t q = a; q < b; ++q) {
-                const Candidate2 n = env_.query(redo[q]);
-                set_feature(r, redo[q], n.x, n.y);
+            if (built != s) {
+                if (run_x_.size() < static_cast<std::size_t>(W)) {
+                    run_x_.resize(static_cast<std::size_t>(W));
+                    run_y_.resize(static_cast<std::size_t>(W));
+                }
+                env_.build_run(g_, f_, r, s, t);
+                built = s;
             }
-            a = b;
+            env_.fill_run(x1, x2 - 1, run_x_.data(), run_y_.data());  // a part of the run
+            for (std::int32_t x = x1; x < x2; ++x) {
+                const std::int32_t nx = run_x_[static_cast<std::size_t>(x)], ny = run_y_[static_cast<std::size_t>(x)];
+                if (nx == fx[x] && ny == fy[x]) continue;
+                const std::int64_t dx = nx - (2 * x + 1), dy = ny - Y;
+                take(x, {dx * dx + dy * dy, nx, ny});
+            }
         }
     }
 
-    /// Additions in row r with changed columns `cols`.
-    void add_row(std::int32_t r, const std::vector<std::int32_t>& cols) {
+    /// Additions in row r with changed columns `cols` (n, ascending).
+    void add_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
         const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
-        for (std::int32_t c : cols)  // newly occupied pixels: their own centres
-            if (g_.occ(r, c)) set_feature(r, c, 2 * c + 1, Y);
+        const std::size_t base = f_.at(r, 0);
+        const std::int16_t* vg = &f_.vgap[base];  // 0: occupied (the occupancy row is not read)
+        const std::int16_t* fx = &f_.fx[base];
+        const std::int16_t* fy = &f_.fy[base];
+        for (std::size_t k = 0; k < n; ++k)  // newly occupied pixels: their own centres
+            if (vg[cols[k]] == 0) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
         std::size_t a = 0;
-        while (a < cols.size()) {
+        while (a < n) {
             std::size_t b = a;
-            while (b + 1 < cols.size() && cols[b + 1] == cols[b] + 1) ++b;
+            while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
             const std::int32_t ca = cols[a], cb = cols[b];
             env_.build(g_, f_, r, ca, cb);
             auto offer = [&](std::int32_t x) {  // true when x took the run's square
-                if (g_.occ(r, x)) return false;
-                const Candidate2 n = env_.query(x);
-                if (n < current(r, x)) {
-                    set_feature(r, x, n.x, n.y);
+                if (vg[x] == 0) return false;
+                const Candidate2 nc = env_.query(x);
+                const std::int64_t dx = fx[x] - (2 * x + 1), dy = fy[x] - Y;
+                if (nc < Candidate2{dx * dx + dy * dy, fx[x], fy[x]}) {
+                    store(r, x, nc);
                     return true;
                 }
                 return false;
             };
             for (std::int32_t x = ca - 1; x >= 0; --x)
-                if (!offer(x) && f_.fx[f_.at(r, x)] < 2 * ca) break;
+                if (!offer(x) && fx[x] < 2 * ca) break;
             for (std::int32_t x = ca; x <= cb; ++x) offer(x);
             for (std::int32_t x = cb + 1; x < W; ++x)
-                if (!offer(x) && f_.fx[f_.at(r, x)] > 2 * cb + 2) break;
+                if (!offer(x) && fx[x] > 2 * cb + 2) break;
             a = b + 1;
         }
     }
@@ -340,9 +532,9 @@ private:
     OccupancyGrid& g_;
     FeatureMap& f_;
     RowEnvelope env_;
-    std::vector<std::int32_t> redo_;    // remove_row: the row's pixels to recompute
-    std::vector<std::size_t> changed_;  // pixels whose occupancy flipped
-    std::vector<std::size_t> touched_;  // pixels whose occupancy or nearest point changed
+    std::vector<std::int16_t> run_x_, run_y_;  // remove_row: nearest points of a run, by column
+    std::vector<std::size_t> changed_;         // pixels whose occupancy flipped, ascending
+    PixelMask touched_;                        // pixels whose occupancy or nearest point changed
 };
 
 }  // namespace detail

@@ -24,6 +24,7 @@
 #include <emmintrin.h>
 #endif
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dvoronoi::gvd {
@@ -75,6 +76,17 @@ inline std::int32_t lowest_bit(std::uint64_t w) {
 #endif
 }
 
+/// The index of the highest set bit of w (w != 0).
+inline std::int32_t highest_bit(std::uint64_t w) {
+#if defined(__GNUC__) || defined(__clang__)
+    return 63 - __builtin_clzll(w);
+#else
+    std::int32_t k = 63;
+    for (; (w >> k) == 0; --k) {}
+    return k;
+#endif
+}
+
 /// The squares whose closed extent holds a point (x, y) given in doubled units: columns c0 .. c1 and
 /// square rows j0 .. j1 (counted from the bottom); one of each when the coordinate is odd (inside a
 /// square), two when it is even (on the line between two).
@@ -122,6 +134,31 @@ public:
         return n == 64 ? v : v & ((std::uint64_t{1} << n) - 1);
     }
     bool empty() const { return w_.empty(); }
+    /// The free columns s .. t of square row j around free column c (0 <= c < cols): bounded by
+    /// occupied squares or the outside, found a word at a time.
+    std::pair<std::int32_t, std::int32_t> free_run(std::int32_t j, std::int32_t c) const {
+        std::int32_t s = c;  // columns s .. c are free
+        for (;;) {
+            const std::int32_t n = std::min(64, s + 1);  // columns s - n .. s - 1 (column -1 is set)
+            const std::uint64_t w = row(j, s - n, n);
+            if (w != 0) {
+                s = s - n + highest_bit(w) + 1;
+                break;
+            }
+            s -= n;
+        }
+        std::int32_t t = c;  // columns c .. t are free
+        for (;;) {
+            const std::int32_t n = std::min(64, cols_ - t);  // columns t + 1 .. t + n (column cols is set)
+            const std::uint64_t w = row(j, t + 1, n);
+            if (w != 0) {
+                t += lowest_bit(w);
+                break;
+            }
+            t += n;
+        }
+        return {s, t};
+    }
     /// Is the point (x, y) (doubled units, 0 <= x <= 2 cols, 0 <= y <= 2 rows) on an occupied square
     /// or on the outside?
     bool holds_point(std::int32_t x, std::int32_t y) const {
