@@ -139,7 +139,7 @@ TEST_CASE("blobs side by side, on the map's edge and across corridors: the diagr
             step(across, true, "a wall across the map");
             step(across, false, "the wall across the map removed");
             // a wall removed and a blob added in one update_occupancy
-            std::vector<std::uint8_t> occ = m.grid.occupied;
+            std::vector<std::uint8_t> occ(m.grid.occupied.begin(), m.grid.occupied.end());
             for (int c = 0; c < W; ++c) occ[g.at(H / 3, c)] ^= 1;
             for (std::size_t i : block(g, 2 * H / 3, W / 4, 4, 6)) occ[i] = 1;
             update_occupancy(m, occ);
