@@ -21,7 +21,7 @@ import subprocess
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
-CASES = [("limited", "1e6", 1), ("limited", "1e6", 2), ("voronoi", "1e6", 2), ("features", "4096", 2)]
+CASES = [("limited", "1e6", 1), ("limited", "1e6", 2), ("voronoi", "1e6", 2), ("features", "2048", 1), ("features", "4096", 1), ("features", "4096", 2)]
 
 
 def run(exe: Path, case) -> tuple:
