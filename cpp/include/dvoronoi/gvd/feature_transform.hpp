@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -158,6 +159,19 @@ public:
                 fy[x] = static_cast<std::int16_t>(mine ? feature_y(Y_, vg_[x]) : ey);
             }
         }
+    }
+
+    /// The envelope as segments along the row, for a scan outward from an update's columns: edge k
+    /// is the nearest of the envelope's squares for the pixels x with segment_end(k - 1) <= x <
+    /// segment_end(k) (fill_run's rule: the edge query() finds too, for pixels outside [ca, cb]).
+    std::size_t segments() const { return top_; }
+    std::int64_t segment_end(std::size_t k) const {
+        return k + 1 < top_ ? first_beaten(k) : std::numeric_limits<std::int64_t>::max();
+    }
+    /// Edge k's square seen from pixel x.
+    Candidate2 on_edge(std::size_t k, std::int32_t x) const {
+        const std::int64_t X = 2 * x + 1;
+        return {hA_[k] - 4 * X * he_[k] + X * X, 2 * he_[k], hy_[k]};
     }
 
     /// The nearest candidate of pixel x among the envelope's squares. Fastest when queries come in

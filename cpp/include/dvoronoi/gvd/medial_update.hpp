@@ -33,6 +33,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -509,9 +510,7 @@ private:
             while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
             const std::int32_t ca = cols[a], cb = cols[b];
             env_.build(g_, f_, r, ca, cb);
-            auto offer = [&](std::int32_t x) {  // true when x took the run's square
-                if (vg[x] == 0) return false;
-                const Candidate2 nc = env_.query(x);
+            auto offer = [&](std::int32_t x, const Candidate2& nc) {  // true when x took the run's square
                 const std::int64_t dx = fx[x] - (2 * x + 1), dy = fy[x] - Y;
                 if (nc < Candidate2{dx * dx + dy * dy, fx[x], fy[x]}) {
                     store(r, x, nc);
@@ -519,11 +518,22 @@ private:
                 }
                 return false;
             };
-            for (std::int32_t x = ca - 1; x >= 0; --x)
-                if (!offer(x) && fx[x] < 2 * ca) break;
-            for (std::int32_t x = ca; x <= cb; ++x) offer(x);
-            for (std::int32_t x = cb + 1; x < W; ++x)
-                if (!offer(x) && fx[x] > 2 * cb + 2) break;
+            // Outside [ca, cb] a pixel's candidate is the edge whose segment holds it: the segments
+            // are walked along with the scan (a division per segment, not a search per pixel).
+            std::size_t k = env_.segments() - 1;
+            std::int64_t begin = k > 0 ? env_.segment_end(k - 1) : std::numeric_limits<std::int64_t>::min();
+            for (std::int32_t x = ca - 1; x >= 0; --x) {
+                while (x < begin) begin = --k > 0 ? env_.segment_end(k - 1) : std::numeric_limits<std::int64_t>::min();
+                if (!(vg[x] != 0 && offer(x, env_.on_edge(k, x))) && fx[x] < 2 * ca) break;
+            }
+            for (std::int32_t x = ca; x <= cb; ++x)
+                if (vg[x] != 0) offer(x, env_.query(x));
+            k = 0;
+            std::int64_t end = env_.segment_end(0);
+            for (std::int32_t x = cb + 1; x < W; ++x) {
+                while (x >= end) end = env_.segment_end(++k);
+                if (!(vg[x] != 0 && offer(x, env_.on_edge(k, x))) && fx[x] > 2 * cb + 2) break;
+            }
             a = b + 1;
         }
     }
