@@ -280,7 +280,7 @@ private:
     /// are found by jumping along the old offsets: a free pixel's offset says how far its column was
     /// free (and a pixel with none was occupied: it stays so or was freed). Only the pixels whose old
     /// nearest pixel was freed change: from the middle between lo and the first freed pixel a to the
-    /// middle between the last one b and hi (ties went below, as in column_pass).
+    /// middle between the last one b and hi (ties went below, as in a build's pass 1).
     std::vector<std::pair<std::int32_t, std::int32_t>> remove_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
         const std::int32_t H = g_.rows;
         std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
@@ -299,7 +299,7 @@ private:
             // rows r with a - r <= r - lo, to rows r with r - b < hi - r
             const std::int32_t first = (a + lo + 1) >> 1, last = (hi + b - 1) >> 1;  // lo + a >= -1
             for (std::int32_t r = first; r <= last; ++r) {
-                const std::int32_t up = r - lo, down = hi - r;  // ties: below, as in column_pass
+                const std::int32_t up = r - lo, down = hi - r;  // ties: below, as in a build's pass 1
                 const auto nv = static_cast<std::int16_t>(down <= up ? down : -up);
                 std::int16_t& cur = f_.vgap[f_.at(r, c)];
                 if (cur != nv) {
@@ -366,23 +366,17 @@ private:
     /// (row, column) cells, column by column, to rows with ascending unique columns: a stable bucketing
     /// by row keeps each row's columns in order.
     RowCells by_row(const std::vector<std::pair<std::int32_t, std::int32_t>>& cells) const {
-        const std::int32_t H = g_.rows;
-        std::vector<std::size_t> at(static_cast<std::size_t>(H) + 1, 0);
-        for (const auto& rc : cells) ++at[static_cast<std::size_t>(rc.first) + 1];
-        for (std::int32_t r = 0; r < H; ++r) at[static_cast<std::size_t>(r) + 1] += at[static_cast<std::size_t>(r)];
-        std::vector<std::int32_t> flat(cells.size());
-        std::vector<std::size_t> fill(at.begin(), at.end() - 1);
-        for (const auto& rc : cells) flat[fill[static_cast<std::size_t>(rc.first)]++] = rc.second;
         RowCells out;
-        for (std::int32_t r = 0; r < H; ++r) {
-            const std::size_t a = at[static_cast<std::size_t>(r)], b = at[static_cast<std::size_t>(r) + 1];
-            if (a == b) continue;
-            out.rows.push_back(r);
-            // a cell reached from the runs above and below it comes twice
-            const auto end = std::unique(flat.begin() + static_cast<std::ptrdiff_t>(a), flat.begin() + static_cast<std::ptrdiff_t>(b));
-            out.cols.insert(out.cols.end(), flat.begin() + static_cast<std::ptrdiff_t>(a), end);
-            out.start.push_back(out.cols.size());
+        for (const auto& [r, c] : bucketed(cells, 0, g_.rows)) {
+            if (out.rows.empty() || out.rows.back() != r) {
+                if (!out.rows.empty()) out.start.push_back(out.cols.size());
+                out.rows.push_back(r);
+                out.cols.push_back(c);
+            } else if (out.cols.back() != c) {  // a cell reached from the runs above and below it comes twice
+                out.cols.push_back(c);
+            }
         }
+        if (!out.rows.empty()) out.start.push_back(out.cols.size());
         return out;
     }
 
