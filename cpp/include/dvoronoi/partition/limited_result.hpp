@@ -16,6 +16,15 @@ struct AlgorithmCounts {
     Index scan = 0;    ///< Boundary Scan (every cell under Method::Scan; the filter's give-ups under Auto)
     Index chords = 0;  ///< RCVC (Method::Chords)
     Index power = 0;   ///< the power-cell clipping of heterogeneous radii (cells/power_cell.hpp)
+
+    /// Adds a thread's counts (each driver sums its threads' counts this way).
+    AlgorithmCounts& operator+=(const AlgorithmCounts& o) {
+        clip += o.clip;
+        scan += o.scan;
+        chords += o.chords;
+        power += o.power;
+        return *this;
+    }
 };
 
 /// The range-limited Voronoi partition of n agents (the result of limited_cells).

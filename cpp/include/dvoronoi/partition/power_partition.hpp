@@ -170,12 +170,7 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
             columns.store(order[pp], s.cell, s.thread, ahead);
         },
         [&](Index pos) { return order[static_cast<std::size_t>(pos)]; },
-        [&](const detail::PowerScratch& s) {
-            out.computed_by.clip += s.ran.clip;
-            out.computed_by.power += s.ran.power;
-            out.computed_by.scan += s.ran.scan;
-            out.computed_by.chords += s.ran.chords;
-        });
+        [&](const detail::PowerScratch& s) { out.computed_by += s.ran; });
 
     // The pieces and the neighbour CSR in input order.
     columns.stitch();
