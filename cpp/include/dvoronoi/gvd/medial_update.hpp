@@ -27,6 +27,7 @@
 //     row segments, vectorised as a build marks rows.
 #pragma once
 
+#include "dvoronoi/core/pages.hpp"
 #include "dvoronoi/gvd/medial_diagram.hpp"
 
 #include <algorithm>
@@ -101,6 +102,94 @@ struct RowCells {
     std::vector<std::size_t> start{0};
 };
 
+/// Pixels as bits whose rows are zeroed when first set: an update touches a few rows of a large map,
+/// and zeroing or scanning every row would cost more than a small update itself.
+class SparseRowMask {
+public:
+    SparseRowMask(std::int32_t rows, std::int32_t cols)
+        : cols_(cols), stride_((static_cast<std::size_t>(cols) + 63) / 64),
+          words_(stride_ * static_cast<std::size_t>(rows)), live_(static_cast<std::size_t>(rows), 0) {}
+
+    void set(std::int32_t r, std::int32_t c) { row_for_writing(r)[c / 64] |= std::uint64_t{1} << (c % 64); }
+    /// Row r's words, zeroed if the row had none set yet.
+    std::uint64_t* row_for_writing(std::int32_t r) {
+        std::uint64_t* w = words_.data() + static_cast<std::size_t>(r) * stride_;
+        if (!live_[static_cast<std::size_t>(r)]) {
+            live_[static_cast<std::size_t>(r)] = 1;
+            std::fill_n(w, stride_, std::uint64_t{0});
+            rows_.push_back(r);
+        }
+        return w;
+    }
+    /// Row r's words, or nullptr when none is set.
+    const std::uint64_t* row(std::int32_t r) const {
+        return live_[static_cast<std::size_t>(r)] ? words_.data() + static_cast<std::size_t>(r) * stride_ : nullptr;
+    }
+    /// Bits of columns c0 .. c0 + n - 1 of row r (n <= 64); columns outside the map read as unset.
+    std::uint64_t bits(std::int32_t r, std::int32_t c0, std::int32_t n) const {
+        const std::uint64_t* w = row(r);
+        std::uint64_t v = 0;
+        if (w == nullptr) return v;
+        for (std::int32_t k = std::max(0, -c0); k < n && c0 + k < cols_;) {
+            const std::int32_t c = c0 + k, m = std::min(n - k, 64 - c % 64);
+            const std::uint64_t part = w[c / 64] >> (c % 64);
+            v |= (m == 64 ? part : part & ((std::uint64_t{1} << m) - 1)) << k;
+            k += m;
+        }
+        return v;
+    }
+    /// The rows with a set pixel, ascending.
+    std::vector<std::int32_t> rows() const {
+        std::vector<std::int32_t> out = rows_;
+        std::sort(out.begin(), out.end());
+        return out;
+    }
+    bool empty() const { return rows_.empty(); }
+
+    /// The mask grown by each pixel's four neighbours (inside the map), whole words at a time.
+    SparseRowMask dilated4() const {
+        const auto H = static_cast<std::int32_t>(live_.size());
+        SparseRowMask out(H, cols_);
+        const std::size_t n = stride_;
+        const std::uint64_t last = cols_ % 64 == 0 ? ~std::uint64_t{0} : (std::uint64_t{1} << (cols_ % 64)) - 1;
+        for (const std::int32_t r : rows_) {
+            const std::uint64_t* w = row(r);
+            for (std::int32_t q = std::max(0, r - 1); q <= std::min(H - 1, r + 1); ++q) {
+                std::uint64_t* o = out.row_for_writing(q);
+                if (q != r) {  // the row above or below: the same columns
+                    for (std::size_t k = 0; k < n; ++k) o[k] |= w[k];
+                    continue;
+                }
+                for (std::size_t k = 0; k < n; ++k) {  // left and right, across word edges
+                    std::uint64_t v = w[k] | w[k] << 1 | w[k] >> 1;
+                    if (k > 0) v |= w[k - 1] >> 63;
+                    if (k + 1 < n) v |= w[k + 1] << 63;
+                    o[k] |= k + 1 == n ? v & last : v;
+                }
+            }
+        }
+        return out;
+    }
+
+    /// The first column >= c of row r (a set row) whose bit is v, or cols.
+    std::int32_t find(std::int32_t r, std::int32_t c, bool v) const {
+        const std::uint64_t* w = row(r);
+        while (c < cols_) {
+            const std::uint64_t word = (v ? w[c / 64] : ~w[c / 64]) >> (c % 64);
+            if (word != 0) return std::min(cols_, c + lowest_bit(word));
+            c = (c / 64 + 1) * 64;
+        }
+        return cols_;
+    }
+
+private:
+    std::int32_t cols_;
+    std::size_t stride_;
+    ::dvoronoi::detail::UninitVector<std::uint64_t> words_;  // rows not live hold garbage
+    std::vector<std::uint8_t> live_;
+    std::vector<std::int32_t> rows_;  // the live rows, in the order they were first set
+};
+
 class Updater {
 public:
     // A column costs about three times as much in RowEnvelope::build as in build_run (measured in
@@ -120,18 +209,16 @@ public:
             const auto k = static_cast<std::uint32_t>(i);  // < 2^28: 32-bit division
             const auto r = static_cast<std::int32_t>(k / W), c = static_cast<std::int32_t>(k % W);
             m_.bits.put(g_.rows - 1 - r, c, occupied);
-            touched_.set(r, c, true);
+            touched_.set(r, c);
             rc.push_back({r, c});
         }
         if (rc.empty()) return;
         stats.changed_pixels += rc.size();
-        // (column, row) order for the column pass and (row, column) order for find_boxed, each by two
-        // stable bucketings (sorts of the lists cost more than the column pass)
+        // (column, row) order for the column pass, by two stable bucketings (a sort of the list costs
+        // more than the column pass)
         std::vector<std::pair<std::int32_t, std::int32_t>> by_c = bucketed(bucketed(rc, 0, g_.rows), 1, g_.cols);
         for (auto& p : by_c) std::swap(p.first, p.second);
-        const bool sorted = changed_.empty();
-        for (const auto& [r, c] : bucketed(bucketed(rc, 1, g_.cols), 0, g_.rows)) changed_.push_back(g_.at(r, c));
-        if (!sorted) std::sort(changed_.begin(), changed_.end());  // removals, then additions
+        for (const auto& [r, c] : rc) changed_.push_back(g_.at(r, c));
         const RowCells cells = by_row(occupied ? add_columns(by_c) : remove_columns(by_c));
         for (std::size_t k = 0; k < cells.rows.size(); ++k) {
             const std::int32_t* cols = cells.cols.data() + cells.start[k];
@@ -155,10 +242,10 @@ public:
     /// row segment as a build marks them.
     void refresh_mask() {
         if (changed_.empty()) return;
-        PixelMask redo = touched_.dilated4();  // touched pixels and their 4-neighbours (they share a pair)
+        SparseRowMask redo = touched_.dilated4();  // touched pixels and their 4-neighbours (they share a pair)
         find_boxed(redo);
         RowMarker marker(m_);
-        for (std::int32_t r = 0; r < g_.rows; ++r)  // runs of set bits
+        for (const std::int32_t r : redo.rows())  // runs of set bits
             for (std::int32_t a = redo.find(r, 0, true); a < g_.cols; a = redo.find(r, a, true)) {
                 const std::int32_t b = redo.find(r, a, false);
                 stats.mask_checks += static_cast<std::uint64_t>(b - a);
@@ -177,7 +264,7 @@ private:
     /// from a zone than their largest clearance (MedialDiagram::block_sq) are searched, and a pixel's
     /// nearest point is looked up in a coarse grid of cells holding the zones (a cell over a zone's
     /// edge adds pixels to recheck, never drops one).
-    void find_boxed(PixelMask& redo) {
+    void find_boxed(SparseRowMask& redo) {
         const std::int32_t H = g_.rows, W = g_.cols;
         // a grown box lies within prune_length + sqrt(2) + 1 pixels of either nearest point
         const std::int32_t margin = static_cast<std::int32_t>(std::ceil(m_.options.prune_length)) + 3;
@@ -239,7 +326,7 @@ private:
                         const std::size_t i = base + static_cast<std::size_t>(x);
                         const std::size_t cell = static_cast<std::size_t>(f_.fy[i] >> (kCell + 1)) * static_cast<std::size_t>(zw) +
                                                  static_cast<std::size_t>(f_.fx[i] >> (kCell + 1));
-                        if (zone[cell]) redo.set(r, x, true);
+                        if (zone[cell]) redo.set(r, x);
                     }
                 }
                 bj = bk;
@@ -250,21 +337,20 @@ private:
     /// [xlo, xhi] x [ylo, yhi] (doubled units)? If not, a pixel whose nearest point lies in the zone
     /// has it on a changed square only, so the update gave it that point (or took it away): the pixel
     /// was touched and is rechecked anyway. A blob put into open space (the common update) skips the
-    /// search for pixels whose nearest point lies near it.
+    /// search for pixels whose nearest point lies near it. An occupied pixel is touched only when it
+    /// was changed (its nearest point is its own centre), so the unchanged walls are the occupied
+    /// bits less the touched ones, a word at a time.
     bool unchanged_walls_meet(std::int32_t xlo, std::int32_t xhi, std::int32_t ylo, std::int32_t yhi) const {
         const std::int32_t H = g_.rows, W = g_.cols;
         // square column c covers [2c, 2c + 2]: it meets [xlo, xhi] (even bounds) for xlo/2 - 1 <= c <= xhi/2;
         // columns and rows -1 and cols / rows are the outside (occupied in the bits)
         const std::int32_t c0 = std::max(-1, xlo / 2 - 1), c1 = std::min(W, xhi / 2);
         const std::int32_t j0 = std::max(-1, ylo / 2 - 1), j1 = std::min(H, yhi / 2);
+        if (j0 < 0 || j1 >= H) return true;
         for (std::int32_t j = j0; j <= j1; ++j)
             for (std::int32_t c = c0; c <= c1; c += 64) {
                 const std::int32_t n = std::min(64, c1 - c + 1);
-                for (std::uint64_t w = m_.bits.row(j, c, n); w != 0; w &= w - 1) {
-                    const std::int32_t cc = c + lowest_bit(w), r = H - 1 - j;
-                    if (cc < 0 || cc >= W || r < 0 || r >= H) return true;
-                    if (!std::binary_search(changed_.begin(), changed_.end(), g_.at(r, cc))) return true;
-                }
+                if ((m_.bits.row(j, c, n) & ~touched_.bits(H - 1 - j, c, n)) != 0) return true;
             }
         return false;
     }
@@ -392,7 +478,7 @@ private:
         const std::size_t i = f_.at(r, x);
         f_.fx[i] = static_cast<std::int16_t>(n.x);
         f_.fy[i] = static_cast<std::int16_t>(n.y);
-        touched_.set(r, x, true);
+        touched_.set(r, x);
         ++stats.feature_changes;
     }
 
@@ -537,8 +623,8 @@ private:
     FeatureMap& f_;
     RowEnvelope env_;
     std::vector<std::int16_t> run_x_, run_y_;  // remove_row: nearest points of a run, by column
-    std::vector<std::size_t> changed_;         // pixels whose occupancy flipped, ascending
-    PixelMask touched_;                        // pixels whose occupancy or nearest point changed
+    std::vector<std::size_t> changed_;         // pixels whose occupancy flipped
+    SparseRowMask touched_;                    // pixels whose occupancy or nearest point changed
 };
 
 }  // namespace detail

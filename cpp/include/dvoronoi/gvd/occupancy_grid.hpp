@@ -251,25 +251,6 @@ public:
         std::fill(w_.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(r0) * stride_),
                   w_.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(r1) * stride_), std::uint64_t{0});
     }
-    /// The mask grown by each pixel's four neighbours (inside the map), whole words at a time.
-    PixelMask dilated4() const {
-        PixelMask out(rows_, cols_);
-        const std::size_t n = stride_;
-        const std::uint64_t last = cols_ % 64 == 0 ? ~std::uint64_t{0} : (std::uint64_t{1} << (cols_ % 64)) - 1;
-        for (std::int32_t r = 0; r < rows_; ++r) {
-            const std::uint64_t* w = row_words(r);
-            std::uint64_t* o = out.row_words(r);
-            for (std::size_t k = 0; k < n; ++k) {
-                std::uint64_t v = w[k] | w[k] << 1 | w[k] >> 1;  // left and right, across word edges:
-                if (k > 0) v |= w[k - 1] >> 63;
-                if (k + 1 < n) v |= w[k + 1] << 63;
-                if (r > 0) v |= w[k - n];
-                if (r + 1 < rows_) v |= w[k + n];
-                o[k] = k + 1 == n ? v & last : v;
-            }
-        }
-        return out;
-    }
     std::size_t count() const {
         std::size_t n = 0;
         for (std::uint64_t w : w_) {
