@@ -599,23 +599,103 @@ private:
                 return false;
             };
             // Outside [ca, cb] a pixel's candidate is the edge whose segment holds it: the segments
-            // are walked along with the scan (a division per segment, not a search per pixel).
+            // are walked along with the scan, each offered to its pixels at once.
             std::size_t k = env_.segments() - 1;
             std::int64_t begin = k > 0 ? env_.segment_end(k - 1) : std::numeric_limits<std::int64_t>::min();
-            for (std::int32_t x = ca - 1; x >= 0; --x) {
+            for (std::int32_t x = ca - 1; x >= 0;) {  // leftwards: segment k holds pixels begin .. x
                 while (x < begin) begin = --k > 0 ? env_.segment_end(k - 1) : std::numeric_limits<std::int64_t>::min();
-                if (!(vg[x] != 0 && offer(x, env_.on_edge(k, x))) && fx[x] < 2 * ca) break;
+                const Candidate2 e = env_.on_edge(k, x);
+                const auto lo = static_cast<std::int32_t>(std::max<std::int64_t>(begin, 0));
+                if (offer_segment<false>(r, x, lo, e.x, e.y, 2 * ca) >= lo) break;
+                x = lo - 1;
             }
             for (std::int32_t x = ca; x <= cb; ++x)
                 if (vg[x] != 0) offer(x, env_.query(x));
             k = 0;
             std::int64_t end = env_.segment_end(0);
-            for (std::int32_t x = cb + 1; x < W; ++x) {
+            for (std::int32_t x = cb + 1; x < W;) {  // rightwards: segment k holds pixels x .. end - 1
                 while (x >= end) end = env_.segment_end(++k);
-                if (!(vg[x] != 0 && offer(x, env_.on_edge(k, x))) && fx[x] > 2 * cb + 2) break;
+                const Candidate2 e = env_.on_edge(k, x);
+                const auto hi = static_cast<std::int32_t>(std::min<std::int64_t>(end, W) - 1);
+                if (offer_segment<true>(r, x, hi, e.x, e.y, 2 * cb + 2) <= hi) break;
+                x = hi + 1;
             }
             a = b + 1;
         }
+    }
+
+    /// Additions: pixels `from` .. `to` of row r (rightwards when kRight, else leftwards) lie on one
+    /// segment of the changed columns' envelope, whose nearest point is (cx, cy). Each free pixel takes
+    /// it when it beats the pixel's own (ties: the smaller x, then y). Returns the first pixel that
+    /// keeps a point beyond the run (right: x beyond `lim`; left: below it), where the scan ends, or
+    /// the pixel past `to`. Eight pixels at a time with SSE2: offsets fit 16 bits and two squares sum
+    /// below 2^31 (sides <= 16383), as in a build's fill_run.
+    template <bool kRight>
+    std::int32_t offer_segment(std::int32_t r, std::int32_t from, std::int32_t to, std::int32_t cx, std::int32_t cy, std::int32_t lim) {
+        const std::size_t base = f_.at(r, 0);
+        std::int16_t* fx = &f_.fx[base];
+        std::int16_t* fy = &f_.fy[base];
+        const std::int16_t* vg = &f_.vgap[base];
+        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1, step = kRight ? 1 : -1;
+        std::int32_t x = from;
+#if defined(__SSE2__)
+        const __m128i CX = _mm_set1_epi16(static_cast<std::int16_t>(cx)), CY = _mm_set1_epi16(static_cast<std::int16_t>(cy));
+        const __m128i YV = _mm_set1_epi16(static_cast<std::int16_t>(Y)), LIM = _mm_set1_epi16(static_cast<std::int16_t>(lim));
+        const __m128i lane = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7), zero = _mm_setzero_si128();
+        const __m128i ndy = _mm_sub_epi16(CY, YV);
+        for (; kRight ? x + 7 <= to : x - 7 >= to; x += 8 * step) {
+            const std::int32_t x0 = kRight ? x : x - 7;  // the eight pixels x0 .. x0 + 7
+            const __m128i vfx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x0));
+            const __m128i vfy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x0));
+            const __m128i vvg = _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x0));
+            const __m128i X = _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x0 + 1)), _mm_add_epi16(lane, lane));
+            const __m128i odx = _mm_sub_epi16(vfx, X), ody = _mm_sub_epi16(vfy, YV), ndx = _mm_sub_epi16(CX, X);
+            const __m128i olo = _mm_unpacklo_epi16(odx, ody), ohi = _mm_unpackhi_epi16(odx, ody);
+            const __m128i nlo = _mm_unpacklo_epi16(ndx, ndy), nhi = _mm_unpackhi_epi16(ndx, ndy);
+            const __m128i o0 = _mm_madd_epi16(olo, olo), o1 = _mm_madd_epi16(ohi, ohi);
+            const __m128i n0 = _mm_madd_epi16(nlo, nlo), n1 = _mm_madd_epi16(nhi, nhi);
+            const __m128i lt = _mm_packs_epi32(_mm_cmplt_epi32(n0, o0), _mm_cmplt_epi32(n1, o1));
+            const __m128i eq = _mm_packs_epi32(_mm_cmpeq_epi32(n0, o0), _mm_cmpeq_epi32(n1, o1));
+            const __m128i tie = _mm_or_si128(_mm_cmplt_epi16(CX, vfx), _mm_and_si128(_mm_cmpeq_epi16(CX, vfx), _mm_cmplt_epi16(CY, vfy)));
+            __m128i take = _mm_andnot_si128(_mm_cmpeq_epi16(vvg, zero), _mm_or_si128(lt, _mm_and_si128(eq, tie)));
+            const __m128i beyond = kRight ? _mm_cmpgt_epi16(vfx, LIM) : _mm_cmplt_epi16(vfx, LIM);
+            const int stops = _mm_movemask_epi8(_mm_packs_epi16(_mm_andnot_si128(take, beyond), zero));
+            std::int32_t stop = -1;  // the lane where the scan ends
+            if (stops != 0) {
+                stop = kRight ? lowest_bit(static_cast<std::uint64_t>(stops)) : highest_bit(static_cast<std::uint64_t>(stops));
+                // only the lanes the scan reaches before it
+                take = _mm_and_si128(take, kRight ? _mm_cmplt_epi16(lane, _mm_set1_epi16(static_cast<std::int16_t>(stop)))
+                                                  : _mm_cmpgt_epi16(lane, _mm_set1_epi16(static_cast<std::int16_t>(stop))));
+            }
+            const auto took = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(take, zero)));
+            if (took != 0) {
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x0), _mm_or_si128(_mm_and_si128(take, CX), _mm_andnot_si128(take, vfx)));
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x0), _mm_or_si128(_mm_and_si128(take, CY), _mm_andnot_si128(take, vfy)));
+                std::uint64_t* w = touched_.row_for_writing(r);
+                w[x0 / 64] |= took << (x0 % 64);
+                if (x0 % 64 > 56) w[x0 / 64 + 1] |= took >> (64 - x0 % 64);
+                stats.feature_changes += static_cast<std::uint64_t>(__builtin_popcount(static_cast<unsigned>(took)));
+            }
+            if (stop >= 0) return x0 + stop;
+        }
+#endif
+        for (; kRight ? x <= to : x >= to; x += step) {
+            bool took = false;
+            if (vg[x] != 0) {
+                const std::int64_t X = 2 * x + 1;
+                const std::int64_t odx = fx[x] - X, ody = fy[x] - Y, ndx = cx - X, ndy = cy - Y;
+                const std::int64_t o = odx * odx + ody * ody, n = ndx * ndx + ndy * ndy;
+                if (n < o || (n == o && (cx < fx[x] || (cx == fx[x] && cy < fy[x])))) {
+                    fx[x] = static_cast<std::int16_t>(cx);
+                    fy[x] = static_cast<std::int16_t>(cy);
+                    touched_.set(r, x);
+                    ++stats.feature_changes;
+                    took = true;
+                }
+            }
+            if (!took && (kRight ? fx[x] > lim : fx[x] < lim)) return x;
+        }
+        return x;
     }
 
     MedialDiagram& m_;
