@@ -642,7 +642,7 @@ private:
         const __m128i CX = _mm_set1_epi16(static_cast<std::int16_t>(cx)), CY = _mm_set1_epi16(static_cast<std::int16_t>(cy));
         const __m128i YV = _mm_set1_epi16(static_cast<std::int16_t>(Y)), LIM = _mm_set1_epi16(static_cast<std::int16_t>(lim));
         const __m128i lane = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7), zero = _mm_setzero_si128();
-        const __m128i ndy = _mm_sub_epi16(CY, YV);
+        const __m128i NDY = _mm_sub_epi16(CY, YV);  // the same for every pixel
         for (; kRight ? x + 7 <= to : x - 7 >= to; x += 8 * step) {
             const std::int32_t x0 = kRight ? x : x - 7;  // the eight pixels x0 .. x0 + 7
             const __m128i vfx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x0));
@@ -651,7 +651,7 @@ private:
             const __m128i X = _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x0 + 1)), _mm_add_epi16(lane, lane));
             const __m128i odx = _mm_sub_epi16(vfx, X), ody = _mm_sub_epi16(vfy, YV), ndx = _mm_sub_epi16(CX, X);
             const __m128i olo = _mm_unpacklo_epi16(odx, ody), ohi = _mm_unpackhi_epi16(odx, ody);
-            const __m128i nlo = _mm_unpacklo_epi16(ndx, ndy), nhi = _mm_unpackhi_epi16(ndx, ndy);
+            const __m128i nlo = _mm_unpacklo_epi16(ndx, NDY), nhi = _mm_unpackhi_epi16(ndx, NDY);
             const __m128i o0 = _mm_madd_epi16(olo, olo), o1 = _mm_madd_epi16(ohi, ohi);
             const __m128i n0 = _mm_madd_epi16(nlo, nlo), n1 = _mm_madd_epi16(nhi, nhi);
             const __m128i lt = _mm_packs_epi32(_mm_cmplt_epi32(n0, o0), _mm_cmplt_epi32(n1, o1));
