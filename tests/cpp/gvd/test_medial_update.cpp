@@ -198,3 +198,25 @@ TEST_CASE("an update reports what it touched and rejects bad input") {
     CHECK_THROWS_WITH_AS(update_occupancy(m, std::vector<std::uint8_t>(3, 0)), doctest::Contains("3 pixels"),
                          dvoronoi::InputError);
 }
+
+TEST_CASE("for_each_difference lists every pixel whose occupancy differs, in order") {
+    std::mt19937 rng(7);
+    for (std::size_t n : {0, 1, 63, 64, 65, 127, 128, 200, 1000}) {
+        for (int density : {0, 1, 50}) {  // differing bytes per 1,000
+            std::vector<std::uint8_t> a(n), b(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                a[i] = static_cast<std::uint8_t>(rng() % 2 == 0 ? 0 : (rng() % 2 == 0 ? 1 : 255));  // nonzero bytes differ in value
+                b[i] = static_cast<std::uint8_t>(a[i] == 0 ? 0 : 1 + rng() % 255);
+                if (static_cast<int>(rng() % 1000) < density) b[i] = b[i] == 0 ? 1 : 0;
+            }
+            for (const bool vs_zero : {false, true}) {
+                std::vector<std::size_t> want, got;
+                for (std::size_t i = 0; i < n; ++i)
+                    if ((a[i] != 0) != (!vs_zero && b[i] != 0)) want.push_back(i);
+                detail::for_each_difference(a.data(), vs_zero ? nullptr : b.data(), n, [&](std::size_t i) { got.push_back(i); });
+                INFO("n " << n << ", density " << density << ", against zero " << vs_zero);
+                CHECK(got == want);
+            }
+        }
+    }
+}
