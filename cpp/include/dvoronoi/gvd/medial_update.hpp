@@ -674,7 +674,7 @@ private:
                 std::uint64_t* w = touched_.row_for_writing(r);
                 w[x0 / 64] |= took << (x0 % 64);
                 if (x0 % 64 > 56) w[x0 / 64 + 1] |= took >> (64 - x0 % 64);
-                stats.feature_changes += static_cast<std::uint64_t>(__builtin_popcount(static_cast<unsigned>(took)));
+                stats.feature_changes += static_cast<std::uint64_t>(popcount(took));
             }
             if (stop >= 0) return x0 + stop;
         }

@@ -87,6 +87,17 @@ inline std::int32_t highest_bit(std::uint64_t w) {
 #endif
 }
 
+/// The number of set bits of w.
+inline std::int32_t popcount(std::uint64_t w) {
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_popcountll(w);
+#else
+    std::int32_t n = 0;
+    for (; w != 0; w &= w - 1) ++n;
+    return n;
+#endif
+}
+
 /// The squares whose closed extent holds a point (x, y) given in doubled units: columns c0 .. c1 and
 /// square rows j0 .. j1 (counted from the bottom); one of each when the coordinate is odd (inside a
 /// square), two when it is even (on the line between two).
@@ -253,13 +264,7 @@ public:
     }
     std::size_t count() const {
         std::size_t n = 0;
-        for (std::uint64_t w : w_) {
-#if defined(__GNUC__) || defined(__clang__)
-            n += static_cast<std::size_t>(__builtin_popcountll(w));
-#else
-            for (; w; w &= w - 1) ++n;
-#endif
-        }
+        for (std::uint64_t w : w_) n += static_cast<std::size_t>(popcount(w));
         return n;
     }
     /// Row-major 0/1 bytes into `out` (rows x cols), eight pixels at a time, rows split over
