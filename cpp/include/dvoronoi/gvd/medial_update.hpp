@@ -145,6 +145,7 @@ public:
         return out;
     }
     bool empty() const { return rows_.empty(); }
+    std::size_t words_per_row() const { return stride_; }
 
     /// The mask grown by each pixel's four neighbours (inside the map), whole words at a time.
     SparseRowMask dilated4() const {
@@ -367,9 +368,9 @@ private:
     /// free (and a pixel with none was occupied: it stays so or was freed). Only the pixels whose old
     /// nearest pixel was freed change: from the middle between lo and the first freed pixel a to the
     /// middle between the last one b and hi (ties went below, as in a build's pass 1).
-    std::vector<std::pair<std::int32_t, std::int32_t>> remove_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
+    SparseRowMask remove_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
         const std::int32_t H = g_.rows;
-        std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
+        SparseRowMask cells(H, g_.cols);  // the pixels whose pass-1 value changed
         for (std::size_t k = 0; k < cr.size();) {
             const std::int32_t c = cr[k].first, a = cr[k].second;
             auto v = [&](std::int32_t r) -> std::int32_t { return f_.vgap[f_.at(r, c)]; };
@@ -390,7 +391,7 @@ private:
                 std::int16_t& cur = f_.vgap[f_.at(r, c)];
                 if (cur != nv) {
                     cur = nv;
-                    cells.push_back({r, c});
+                    cells.set(r, c);
                 }
             }
             stats.column_cells += static_cast<std::uint64_t>(last - first + 1);
@@ -403,14 +404,14 @@ private:
     /// at the first pixel that keeps its offset: the run's distance grows by one a row and the kept
     /// side's shrinks by one, so no pixel beyond changes either. A column's new pixels get offset 0
     /// first, so the walks read the offsets only (0: occupied).
-    std::vector<std::pair<std::int32_t, std::int32_t>> add_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
+    SparseRowMask add_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
         const std::int32_t H = g_.rows;
-        std::vector<std::pair<std::int32_t, std::int32_t>> cells;  // (row, column) whose pass-1 value changed
+        SparseRowMask cells(H, g_.cols);  // the pixels whose pass-1 value changed
         auto put = [&](std::int32_t r, std::int32_t c, std::int32_t v) {
             std::int16_t& cur = f_.vgap[f_.at(r, c)];
             if (cur == v) return;
             cur = static_cast<std::int16_t>(v);
-            cells.push_back({r, c});
+            cells.set(r, c);
         };
         for (std::size_t k = 0; k < cr.size();) {
             const std::int32_t c = cr[k].first, a = cr[k].second;
@@ -449,20 +450,17 @@ private:
         return out;
     }
 
-    /// (row, column) cells, column by column, to rows with ascending unique columns: a stable bucketing
-    /// by row keeps each row's columns in order.
-    RowCells by_row(const std::vector<std::pair<std::int32_t, std::int32_t>>& cells) const {
+    /// The cells of a mask as rows with ascending columns, rows ascending.
+    static RowCells by_row(const SparseRowMask& cells) {
         RowCells out;
-        for (const auto& [r, c] : bucketed(cells, 0, g_.rows)) {
-            if (out.rows.empty() || out.rows.back() != r) {
-                if (!out.rows.empty()) out.start.push_back(out.cols.size());
-                out.rows.push_back(r);
-                out.cols.push_back(c);
-            } else if (out.cols.back() != c) {  // a cell reached from the runs above and below it comes twice
-                out.cols.push_back(c);
-            }
+        out.rows = cells.rows();
+        for (const std::int32_t r : out.rows) {
+            const std::uint64_t* w = cells.row(r);
+            for (std::size_t k = 0; k < cells.words_per_row(); ++k)
+                for (std::uint64_t word = w[k]; word != 0; word &= word - 1)
+                    out.cols.push_back(static_cast<std::int32_t>(k * 64) + lowest_bit(word));
+            out.start.push_back(out.cols.size());
         }
-        if (!out.rows.empty()) out.start.push_back(out.cols.size());
         return out;
     }
 
