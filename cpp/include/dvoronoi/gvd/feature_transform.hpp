@@ -103,6 +103,7 @@ public:
         push_edge(top, cb + 1, cv[cb - ca], yv(cb));  // the last edge sees column cb only
         top_ = top;
         k_ = 0;
+        cv_from_ = ca;
     }
 
     /// build() for a whole free run [s, t] (columns s-1 and t+1 occupied or outside, offset 0 in the
@@ -132,7 +133,7 @@ public:
         push_edge(top, t + 1, 0, Y_);
         top_ = top;
         k_ = 0;
-        run_s_ = s;
+        cv_from_ = s;
     }
 
     /// After build_run: the nearest points of the run's pixels s .. t into fx[x], fy[x], segment by
@@ -140,7 +141,8 @@ public:
     /// smaller (ties stay with the smaller edge); the values differ by a linear function of X, so that
     /// pixel is found by one division, and the pixels between two such starts take edge k without a
     /// comparison along the envelope. Each pixel's own column (dx = 0) wins ties against edges to its
-    /// right only, as in query(). The same answers as walking the envelope pixel by pixel.
+    /// right only, as in query(). The same answers as walking the envelope pixel by pixel. After
+    /// build(), for free pixels s .. t inside [ca, cb], the same answers as query().
     void fill_run(std::int32_t s, std::int32_t t, std::int16_t* fx, std::int16_t* fy) const {
         std::int32_t x = s;
         for (std::size_t k = 0; k < top_ && x <= t; ++k) {
@@ -153,7 +155,7 @@ public:
 #endif
             for (; x < end; ++x) {
                 const std::int64_t X = 2 * x + 1, sq = (X - e2) * (X - e2) + off;
-                const std::int64_t own = cv_[static_cast<std::size_t>(x - run_s_)];
+                const std::int64_t own = cv_[static_cast<std::size_t>(x - cv_from_)];
                 const bool mine = own < sq || (own == sq && e2 > X);
                 fx[x] = static_cast<std::int16_t>(mine ? X : e2);
                 fy[x] = static_cast<std::int16_t>(mine ? feature_y(Y_, vg_[x]) : ey);
@@ -217,7 +219,7 @@ private:
             const __m128i d = _mm_sub_epi16(X, e2v);
             const __m128i dlo = _mm_unpacklo_epi16(d, zero), dhi = _mm_unpackhi_epi16(d, zero);
             const __m128i sqlo = _mm_add_epi32(_mm_madd_epi16(dlo, dlo), offv), sqhi = _mm_add_epi32(_mm_madd_epi16(dhi, dhi), offv);
-            const __m128i* own = reinterpret_cast<const __m128i*>(&cv_[static_cast<std::size_t>(x - run_s_)]);
+            const __m128i* own = reinterpret_cast<const __m128i*>(&cv_[static_cast<std::size_t>(x - cv_from_)]);
             const __m128i ownlo = _mm_loadu_si128(own), ownhi = _mm_loadu_si128(own + 1);
             // the own column wins when nearer, or as near with the edge to the right (e2 > X)
             const __m128i right = _mm_cmpgt_epi16(e2v, X);
@@ -286,7 +288,7 @@ private:
     std::vector<std::int32_t> he_, hy_;
     std::vector<std::int32_t> cv_;  // the columns' V (build: from ca, build_run: from s)
     std::size_t top_ = 0, k_ = 0;
-    std::int32_t run_s_ = 0;  // build_run: the run's first column
+    std::int32_t cv_from_ = 0;  // the column whose V is cv_[0]
 };
 
 /// Pass 2 over row r: each free run [s, t] against the squares of columns s-1 .. t+1 (the

@@ -464,6 +464,12 @@ private:
         return out;
     }
 
+    /// Removals: pixel (r, x) takes the nearest point n, and its block's clearance bound grows to it.
+    void take(std::int32_t r, std::int32_t x, const Candidate2& n, std::int32_t* bound) {
+        store(r, x, n);
+        if (bound) bound[x / kBlock] = std::max(bound[x / kBlock], static_cast<std::int32_t>(n.sq));  // < 2^31: sides <= 16383
+    }
+
     void set_feature(std::int32_t r, std::int32_t x, std::int32_t fx, std::int32_t fy) {
         const std::size_t i = f_.at(r, x);
         if (f_.fx[i] == fx && f_.fy[i] == fy) return;
@@ -523,11 +529,9 @@ private:
         const std::int16_t* vg = &f_.vgap[base];
         // clearances grow only here (additions bring points closer): the blocks' bounds follow
         std::int32_t* bound = m_.block_sq.empty() ? nullptr : &m_.block_sq[static_cast<std::size_t>(r / kBlock * ((W + kBlock - 1) / kBlock))];
-        auto take = [&](std::int32_t x, const Candidate2& nc) {
-            store(r, x, nc);
-            if (bound) bound[x / kBlock] = std::max(bound[x / kBlock], static_cast<std::int32_t>(nc.sq));  // < 2^31: sides <= 16383
+        auto take_if_new = [&](std::int32_t x, const Candidate2& nc) {
+            if (nc.x != fx[x] || nc.y != fy[x]) take(r, x, nc, bound);
         };
-        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1;
         std::int32_t from = 0, built = -1;  // built: the first column of the run build_run holds
         for (std::size_t a = 0; a < n;) {
             std::size_t b = a;
@@ -546,30 +550,69 @@ private:
             const std::int32_t hi = x2 < W && (a == n || fx[x2] < 2 * cols[a]) ? fx[x2] : 2 * W;
             // columns whose squares [2e, 2e + 2] meet [lo, hi]
             const std::int32_t ca = std::max({s - 1, x1 - R, (lo + 1) / 2 - 1}), cb = std::min({t + 1, x2 - 1 + R, hi / 2});
-            if (built != s && kWindowCost * (cb - ca + 1) < kRunCost * (t - s + 1)) {
+            const bool window = built != s && kWindowCost * (cb - ca + 1) < kRunCost * (t - s + 1);
+            if (window) {
                 env_.build(g_, f_, r, ca, cb);
-                for (std::int32_t x = x1; x < x2; ++x) {
-                    const Candidate2 nc = env_.query(x);
-                    if (nc.x != fx[x] || nc.y != fy[x]) take(x, nc);
-                }
                 built = -1;
-                continue;
+            } else if (built != s) {
+                env_.build_run(g_, f_, r, s, t);
+                built = s;
             }
-            if (built != s) {
+            // pixels among the envelope's own columns segment by segment, any others one by one
+            const std::int32_t fa = window ? std::max(x1, ca) : x1, fb = window ? std::min(x2 - 1, cb) : x2 - 1;
+            for (std::int32_t x = x1; x < std::min(fa, x2); ++x) take_if_new(x, env_.query(x));
+            if (fa <= fb) {
                 if (run_x_.size() < static_cast<std::size_t>(W)) {
                     run_x_.resize(static_cast<std::size_t>(W));
                     run_y_.resize(static_cast<std::size_t>(W));
                 }
-                env_.build_run(g_, f_, r, s, t);
-                built = s;
+                env_.fill_run(fa, fb, run_x_.data(), run_y_.data());
+                take_filled(r, fa, fb, bound);
             }
-            env_.fill_run(x1, x2 - 1, run_x_.data(), run_y_.data());  // a part of the run
-            for (std::int32_t x = x1; x < x2; ++x) {
-                const std::int32_t nx = run_x_[static_cast<std::size_t>(x)], ny = run_y_[static_cast<std::size_t>(x)];
-                if (nx == fx[x] && ny == fy[x]) continue;
-                const std::int64_t dx = nx - (2 * x + 1), dy = ny - Y;
-                take(x, {dx * dx + dy * dy, nx, ny});
-            }
+            for (std::int32_t x = std::max(fb + 1, x1); x < x2; ++x) take_if_new(x, env_.query(x));
+        }
+    }
+
+    /// Removals: pixels x0 .. x1 of row r take the nearest points fill_run put in run_x_ / run_y_
+    /// where they differ (and raise their blocks' clearance bounds), eight at a time with SSE2.
+    void take_filled(std::int32_t r, std::int32_t x0, std::int32_t x1, std::int32_t* bound) {
+        const std::size_t base = f_.at(r, 0);
+        std::int16_t* fx = &f_.fx[base];
+        std::int16_t* fy = &f_.fy[base];
+        const std::int16_t* nx = run_x_.data();
+        const std::int16_t* ny = run_y_.data();
+        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1;
+        std::int32_t x = x0;
+#if defined(__SSE2__)
+        const __m128i lane2 = _mm_setr_epi16(0, 2, 4, 6, 8, 10, 12, 14), YV = _mm_set1_epi16(static_cast<std::int16_t>(Y));
+        for (; x + 8 <= x1 + 1; x += 8) {
+            const __m128i vx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(nx + x)), vy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ny + x));
+            const __m128i same = _mm_and_si128(_mm_cmpeq_epi16(vx, _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x))),
+                                               _mm_cmpeq_epi16(vy, _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x))));
+            const auto differ = static_cast<std::uint64_t>(~_mm_movemask_epi8(_mm_packs_epi16(same, same)) & 0xff);
+            if (differ == 0) continue;
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x), vx);  // the same where they agree
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x), vy);
+            std::uint64_t* w = touched_.row_for_writing(r);
+            w[x / 64] |= differ << (x % 64);
+            if (x % 64 > 56) w[x / 64 + 1] |= differ >> (64 - x % 64);
+            stats.feature_changes += static_cast<std::uint64_t>(popcount(differ));
+            if (bound == nullptr) continue;
+            // the eight squares (pmaddwd, < 2^31); unchanged pixels are within their block's bound already
+            const __m128i dx = _mm_sub_epi16(vx, _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x + 1)), lane2));
+            const __m128i dy = _mm_sub_epi16(vy, YV);
+            const __m128i lo = _mm_madd_epi16(_mm_unpacklo_epi16(dx, dy), _mm_unpacklo_epi16(dx, dy));
+            const __m128i hi = _mm_madd_epi16(_mm_unpackhi_epi16(dx, dy), _mm_unpackhi_epi16(dx, dy));
+            alignas(16) std::int32_t sq[8];
+            _mm_store_si128(reinterpret_cast<__m128i*>(sq), lo);
+            _mm_store_si128(reinterpret_cast<__m128i*>(sq + 4), hi);
+            for (int k = 0; k < 8; ++k) bound[(x + k) / kBlock] = std::max(bound[(x + k) / kBlock], sq[k]);
+        }
+#endif
+        for (; x <= x1; ++x) {
+            if (nx[x] == fx[x] && ny[x] == fy[x]) continue;
+            const std::int64_t dx = nx[x] - (2 * x + 1), dy = ny[x] - Y;
+            take(r, x, {dx * dx + dy * dy, nx[x], ny[x]}, bound);
         }
     }
 
