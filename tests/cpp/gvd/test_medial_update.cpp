@@ -220,3 +220,40 @@ TEST_CASE("for_each_difference lists every pixel whose occupancy differs, in ord
         }
     }
 }
+
+TEST_CASE("updates on several workers give the full build's diagram") {
+    // Updates large enough to be split over the workers (rows in groups of block rows, re-marking in
+    // chunks of rows): the same nearest points, diagram and bounds as a build, for 2 and 3 workers.
+    for (unsigned seed = 0; seed < 6; ++seed) {
+        std::mt19937 rng(seed);
+        OccupancyGrid g(300 + static_cast<std::int32_t>(seed) * 13, 260 + static_cast<std::int32_t>(seed % 2) * 31);
+        for (int k = 0; k < 6; ++k) {  // walls, some touching the border
+            const int r0 = static_cast<int>(rng() % static_cast<unsigned>(g.rows)), c0 = static_cast<int>(rng() % static_cast<unsigned>(g.cols));
+            const bool across = rng() % 2 == 0;
+            for (int t = 0; t < 120; ++t) {
+                const int r = across ? r0 : std::min(g.rows - 1, r0 + t), c = across ? std::min(g.cols - 1, c0 + t) : c0;
+                g.occupied[g.at(r, c)] = 1;
+            }
+        }
+        MedialOptions o;
+        o.workers = 2 + static_cast<int>(seed % 2);
+        MedialDiagram m = medial_diagram(g, o);
+        for (int step = 0; step < 4; ++step) {
+            std::vector<std::size_t> px;
+            for (int b = 0; b < 16; ++b) {
+                const int side = 8 + static_cast<int>(rng() % 12);
+                const int r0 = static_cast<int>(rng() % static_cast<unsigned>(g.rows - side));
+                const int c0 = static_cast<int>(rng() % static_cast<unsigned>(g.cols - side));
+                for (int r = r0; r < r0 + side; ++r)
+                    for (int c = c0; c < c0 + side; ++c)
+                        if (!m.grid.occ(r, c)) px.push_back(g.at(r, c));
+            }
+            const UpdateStats added = set_pixels(m, px, true);
+            INFO("seed " << seed << ", step " << step << ", workers " << o.workers);
+            CHECK(added.column_cells > 3 * detail::Updater::kCellsPerWorker);  // large enough to split
+            require_same_as_full_build(m);
+            set_pixels(m, px, false);
+            require_same_as_full_build(m);
+        }
+    }
+}

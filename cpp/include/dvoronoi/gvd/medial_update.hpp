@@ -28,13 +28,16 @@
 #pragma once
 
 #include "dvoronoi/core/pages.hpp"
+#include "dvoronoi/core/parallel.hpp"
 #include "dvoronoi/gvd/medial_diagram.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -191,12 +194,308 @@ private:
     std::vector<std::int32_t> rows_;  // the live rows, in the order they were first set
 };
 
-class Updater {
+/// Step 2 of an update, row by row: a row's nearest points depend on its own pass-1 values only, so
+/// rows are independent and may run on several threads. Writes row r's nearest points, its touched
+/// bits (its row of `touched` must be set up already) and the clearance bounds of r's block row.
+class RowPass {
 public:
     // A column costs about three times as much in RowEnvelope::build as in build_run (measured in
     // instructions on three 2048 x 2048 maps); fill_run then reads only the pixels asked for.
     static constexpr std::int32_t kWindowCost = 3, kRunCost = 1;
+
+    RowPass(MedialDiagram& m, SparseRowMask& touched) : m_(m), g_(m.grid), f_(m.features), touched_(touched) {}
+
+    /// Removals in row r with changed columns `cols` (n, ascending; all free now). A pixel needs a
+    /// new nearest point only if its old one lies on no occupied square any more: on a changed
+    /// column's old pass-1 square, so its x lies in a run of changed columns' span, and nearest x only
+    /// grows along a row: one interval of pixels a run, found by a search out from the run, inside
+    /// the free run [s, t] that holds the changed columns. The interval's new points are found among
+    /// the columns of a window, or, when the window is not much smaller than the run, by pass 2 over
+    /// the whole run as a build runs it (a column costs less there). Two bounds make the window:
+    ///  - the pixels' own squares are at most 2k - 1 away (doubled units) and a column d pixels away
+    ///    is at least 2d - 1 away, so columns more than k away cannot win (ties included); nor can
+    ///    columns beyond an occupied pixel of the row (its edge is at distance 0 in the row);
+    ///  - nearest x grows along the row, so the new points' x lies between the final points of the
+    ///    pixels just left and right of the interval: only the columns whose squares reach that span
+    ///    can hold them (the pixel on the right is final unless a later run of the row recomputes it).
+    void remove_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
+        const std::int32_t W = g_.cols, j = g_.rows - 1 - r;
+        const std::size_t base = f_.at(r, 0);
+        const std::int16_t* fx = &f_.fx[base];
+        const std::int16_t* fy = &f_.fy[base];
+        const std::int16_t* vg = &f_.vgap[base];
+        // clearances grow only here (additions bring points closer): the blocks' bounds follow
+        std::int32_t* bound = m_.block_sq.empty() ? nullptr : &m_.block_sq[static_cast<std::size_t>(r / kBlock * ((W + kBlock - 1) / kBlock))];
+        auto take_if_new = [&](std::int32_t x, const Candidate2& nc) {
+            if (nc.x != fx[x] || nc.y != fy[x]) take(r, x, nc, bound);
+        };
+        std::int32_t from = 0, built = -1;  // built: the first column of the run build_run holds
+        for (std::size_t a = 0; a < n;) {
+            std::size_t b = a;
+            while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
+            const std::int32_t c = cols[a], xhi = 2 * cols[b] + 2;
+            a = b + 1;
+            const std::int32_t x1 = first_at_least(fx, from, W, 2 * c, c);
+            std::int32_t x2 = x1;  // pixels x1 .. x2 - 1
+            std::int32_t k = 0;    // their largest vertical offset
+            for (; x2 < W && fx[x2] <= xhi; ++x2) k = std::max<std::int32_t>(k, std::abs(static_cast<std::int32_t>(vg[x2])));
+            from = x2;
+            if (x1 == x2) continue;
+            const auto [s, t] = m_.bits.free_run(j, c);
+            const std::int32_t R = std::max(k, 1) + 1;
+            const std::int32_t lo = x1 > 0 ? fx[x1 - 1] : 0;  // the new points' x lies in [lo, hi]
+            const std::int32_t hi = x2 < W && (a == n || fx[x2] < 2 * cols[a]) ? fx[x2] : 2 * W;
+            // columns whose squares [2e, 2e + 2] meet [lo, hi]
+            const std::int32_t ca = std::max({s - 1, x1 - R, (lo + 1) / 2 - 1}), cb = std::min({t + 1, x2 - 1 + R, hi / 2});
+            const bool window = built != s && kWindowCost * (cb - ca + 1) < kRunCost * (t - s + 1);
+            if (window) {
+                env_.build(g_, f_, r, ca, cb);
+                built = -1;
+            } else if (built != s) {
+                env_.build_run(g_, f_, r, s, t);
+                built = s;
+            }
+            // pixels among the envelope's own columns segment by segment, any others one by one
+            const std::int32_t fa = window ? std::max(x1, ca) : x1, fb = window ? std::min(x2 - 1, cb) : x2 - 1;
+            for (std::int32_t x = x1; x < std::min(fa, x2); ++x) take_if_new(x, env_.query(x));
+            if (fa <= fb) {
+                if (run_x_.size() < static_cast<std::size_t>(W)) {
+                    run_x_.resize(static_cast<std::size_t>(W));
+                    run_y_.resize(static_cast<std::size_t>(W));
+                }
+                env_.fill_run(fa, fb, run_x_.data(), run_y_.data());
+                take_filled(r, fa, fb, bound);
+            }
+            for (std::int32_t x = std::max(fb + 1, x1); x < x2; ++x) take_if_new(x, env_.query(x));
+        }
+    }
+
+    /// Additions in row r with changed columns `cols` (n, ascending).
+    void add_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
+        const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
+        const std::size_t base = f_.at(r, 0);
+        const std::int16_t* vg = &f_.vgap[base];  // 0: occupied (the occupancy row is not read)
+        const std::int16_t* fx = &f_.fx[base];
+        const std::int16_t* fy = &f_.fy[base];
+        for (std::size_t k = 0; k < n; ++k)  // newly occupied pixels: their own centres
+            if (vg[cols[k]] == 0) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
+        std::size_t a = 0;
+        while (a < n) {
+            std::size_t b = a;
+            while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
+            const std::int32_t ca = cols[a], cb = cols[b];
+            env_.build(g_, f_, r, ca, cb);
+            auto offer = [&](std::int32_t x, const Candidate2& nc) {  // true when x took the run's square
+                const std::int64_t dx = fx[x] - (2 * x + 1), dy = fy[x] - Y;
+                if (nc < Candidate2{dx * dx + dy * dy, fx[x], fy[x]}) {
+                    store(r, x, nc);
+                    return true;
+                }
+                return false;
+            };
+            // Outside [ca, cb] a pixel's candidate is the edge whose segment holds it: the segments
+            // are walked along with the scan, each offered to its pixels at once.
+            std::size_t k = env_.segments() - 1;
+            std::int64_t begin = k > 0 ? env_.segment_end(k - 1) : std::numeric_limits<std::int64_t>::min();
+            for (std::int32_t x = ca - 1; x >= 0;) {  // leftwards: segment k holds pixels begin .. x
+                while (x < begin) begin = --k > 0 ? env_.segment_end(k - 1) : std::numeric_limits<std::int64_t>::min();
+                const Candidate2 e = env_.on_edge(k, x);
+                const auto lo = static_cast<std::int32_t>(std::max<std::int64_t>(begin, 0));
+                if (offer_segment<false>(r, x, lo, e.x, e.y, 2 * ca) >= lo) break;
+                x = lo - 1;
+            }
+            for (std::int32_t x = ca; x <= cb; ++x)
+                if (vg[x] != 0) offer(x, env_.query(x));
+            k = 0;
+            std::int64_t end = env_.segment_end(0);
+            for (std::int32_t x = cb + 1; x < W;) {  // rightwards: segment k holds pixels x .. end - 1
+                while (x >= end) end = env_.segment_end(++k);
+                const Candidate2 e = env_.on_edge(k, x);
+                const auto hi = static_cast<std::int32_t>(std::min<std::int64_t>(end, W) - 1);
+                if (offer_segment<true>(r, x, hi, e.x, e.y, 2 * cb + 2) <= hi) break;
+                x = hi + 1;
+            }
+            a = b + 1;
+        }
+    }
+
+    std::uint64_t feature_changes = 0;  ///< pixels whose nearest point changed
+
+private:
+    /// Removals: pixel (r, x) takes the nearest point n, and its block's clearance bound grows to it.
+    void take(std::int32_t r, std::int32_t x, const Candidate2& n, std::int32_t* bound) {
+        store(r, x, n);
+        if (bound) bound[x / kBlock] = std::max(bound[x / kBlock], static_cast<std::int32_t>(n.sq));  // < 2^31: sides <= 16383
+    }
+
+    void set_feature(std::int32_t r, std::int32_t x, std::int32_t fx, std::int32_t fy) {
+        const std::size_t i = f_.at(r, x);
+        if (f_.fx[i] == fx && f_.fy[i] == fy) return;
+        const std::int64_t dx = fx - (2 * x + 1), dy = fy - (2 * (g_.rows - 1 - r) + 1);
+        store(r, x, {dx * dx + dy * dy, fx, fy});
+    }
+
+    /// Pixel (r, x) takes the nearest point n (a different one), n.sq away.
+    void store(std::int32_t r, std::int32_t x, const Candidate2& n) {
+        const std::size_t i = f_.at(r, x);
+        f_.fx[i] = static_cast<std::int16_t>(n.x);
+        f_.fy[i] = static_cast<std::int16_t>(n.y);
+        touched_.set(r, x);
+        ++feature_changes;
+    }
+
+    /// The first x in [from, W) with fx[x] >= v (fx non-decreasing), searched outward from `guess`:
+    /// the answer is usually near it, and a binary search over the whole row reads a cache line a step.
+    static std::int32_t first_at_least(const std::int16_t* fx, std::int32_t from, std::int32_t W, std::int32_t v, std::int32_t guess) {
+        if (from >= W) return W;
+        std::int32_t lo = std::max(from, std::min(guess, W - 1)), hi = lo;  // the answer lies in (lo, hi]
+        if (fx[lo] >= v) {
+            for (std::int32_t step = 1; lo > from && fx[lo - 1] >= v; step *= 2) {
+                hi = lo;
+                lo = std::max(from, lo - step);
+                if (fx[lo] < v) break;
+            }
+            if (fx[lo] >= v) return lo;
+        } else {
+            for (std::int32_t step = 1; fx[hi] < v; step *= 2) {
+                lo = hi;
+                if (hi == W - 1) return W;
+                hi = std::min(W - 1, hi + step);
+            }
+        }
+        return static_cast<std::int32_t>(std::lower_bound(fx + lo + 1, fx + hi, v) - fx);
+    }
+
+    /// Removals: pixels x0 .. x1 of row r take the nearest points fill_run put in run_x_ / run_y_
+    /// where they differ (and raise their blocks' clearance bounds), eight at a time with SSE2.
+    void take_filled(std::int32_t r, std::int32_t x0, std::int32_t x1, std::int32_t* bound) {
+        const std::size_t base = f_.at(r, 0);
+        std::int16_t* fx = &f_.fx[base];
+        std::int16_t* fy = &f_.fy[base];
+        const std::int16_t* nx = run_x_.data();
+        const std::int16_t* ny = run_y_.data();
+        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1;
+        std::int32_t x = x0;
+#if defined(__SSE2__)
+        const __m128i lane2 = _mm_setr_epi16(0, 2, 4, 6, 8, 10, 12, 14), YV = _mm_set1_epi16(static_cast<std::int16_t>(Y));
+        for (; x + 8 <= x1 + 1; x += 8) {
+            const __m128i vx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(nx + x)), vy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ny + x));
+            const __m128i same = _mm_and_si128(_mm_cmpeq_epi16(vx, _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x))),
+                                               _mm_cmpeq_epi16(vy, _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x))));
+            const auto differ = static_cast<std::uint64_t>(~_mm_movemask_epi8(_mm_packs_epi16(same, same)) & 0xff);
+            if (differ == 0) continue;
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x), vx);  // the same where they agree
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x), vy);
+            std::uint64_t* w = touched_.row_for_writing(r);
+            w[x / 64] |= differ << (x % 64);
+            if (x % 64 > 56) w[x / 64 + 1] |= differ >> (64 - x % 64);
+            feature_changes += static_cast<std::uint64_t>(popcount(differ));
+            if (bound == nullptr) continue;
+            // the eight squares (pmaddwd, < 2^31); unchanged pixels are within their block's bound already
+            const __m128i dx = _mm_sub_epi16(vx, _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x + 1)), lane2));
+            const __m128i dy = _mm_sub_epi16(vy, YV);
+            const __m128i lo = _mm_madd_epi16(_mm_unpacklo_epi16(dx, dy), _mm_unpacklo_epi16(dx, dy));
+            const __m128i hi = _mm_madd_epi16(_mm_unpackhi_epi16(dx, dy), _mm_unpackhi_epi16(dx, dy));
+            alignas(16) std::int32_t sq[8];
+            _mm_store_si128(reinterpret_cast<__m128i*>(sq), lo);
+            _mm_store_si128(reinterpret_cast<__m128i*>(sq + 4), hi);
+            for (int k = 0; k < 8; ++k) bound[(x + k) / kBlock] = std::max(bound[(x + k) / kBlock], sq[k]);
+        }
+#endif
+        for (; x <= x1; ++x) {
+            if (nx[x] == fx[x] && ny[x] == fy[x]) continue;
+            const std::int64_t dx = nx[x] - (2 * x + 1), dy = ny[x] - Y;
+            take(r, x, {dx * dx + dy * dy, nx[x], ny[x]}, bound);
+        }
+    }
+
+    /// Additions: pixels `from` .. `to` of row r (rightwards when kRight, else leftwards) lie on one
+    /// segment of the changed columns' envelope, whose nearest point is (cx, cy). Each free pixel takes
+    /// it when it beats the pixel's own (ties: the smaller x, then y). Returns the first pixel that
+    /// keeps a point beyond the run (right: x beyond `lim`; left: below it), where the scan ends, or
+    /// the pixel past `to`. Eight pixels at a time with SSE2: offsets fit 16 bits and two squares sum
+    /// below 2^31 (sides <= 16383), as in a build's fill_run.
+    template <bool kRight>
+    std::int32_t offer_segment(std::int32_t r, std::int32_t from, std::int32_t to, std::int32_t cx, std::int32_t cy, std::int32_t lim) {
+        const std::size_t base = f_.at(r, 0);
+        std::int16_t* fx = &f_.fx[base];
+        std::int16_t* fy = &f_.fy[base];
+        const std::int16_t* vg = &f_.vgap[base];
+        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1, step = kRight ? 1 : -1;
+        std::int32_t x = from;
+#if defined(__SSE2__)
+        const __m128i CX = _mm_set1_epi16(static_cast<std::int16_t>(cx)), CY = _mm_set1_epi16(static_cast<std::int16_t>(cy));
+        const __m128i YV = _mm_set1_epi16(static_cast<std::int16_t>(Y)), LIM = _mm_set1_epi16(static_cast<std::int16_t>(lim));
+        const __m128i lane = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7), zero = _mm_setzero_si128();
+        const __m128i NDY = _mm_sub_epi16(CY, YV);  // the same for every pixel
+        for (; kRight ? x + 7 <= to : x - 7 >= to; x += 8 * step) {
+            const std::int32_t x0 = kRight ? x : x - 7;  // the eight pixels x0 .. x0 + 7
+            const __m128i vfx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x0));
+            const __m128i vfy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x0));
+            const __m128i vvg = _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x0));
+            const __m128i X = _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x0 + 1)), _mm_add_epi16(lane, lane));
+            const __m128i odx = _mm_sub_epi16(vfx, X), ody = _mm_sub_epi16(vfy, YV), ndx = _mm_sub_epi16(CX, X);
+            const __m128i olo = _mm_unpacklo_epi16(odx, ody), ohi = _mm_unpackhi_epi16(odx, ody);
+            const __m128i nlo = _mm_unpacklo_epi16(ndx, NDY), nhi = _mm_unpackhi_epi16(ndx, NDY);
+            const __m128i o0 = _mm_madd_epi16(olo, olo), o1 = _mm_madd_epi16(ohi, ohi);
+            const __m128i n0 = _mm_madd_epi16(nlo, nlo), n1 = _mm_madd_epi16(nhi, nhi);
+            const __m128i lt = _mm_packs_epi32(_mm_cmplt_epi32(n0, o0), _mm_cmplt_epi32(n1, o1));
+            const __m128i eq = _mm_packs_epi32(_mm_cmpeq_epi32(n0, o0), _mm_cmpeq_epi32(n1, o1));
+            const __m128i tie = _mm_or_si128(_mm_cmplt_epi16(CX, vfx), _mm_and_si128(_mm_cmpeq_epi16(CX, vfx), _mm_cmplt_epi16(CY, vfy)));
+            __m128i take = _mm_andnot_si128(_mm_cmpeq_epi16(vvg, zero), _mm_or_si128(lt, _mm_and_si128(eq, tie)));
+            const __m128i beyond = kRight ? _mm_cmpgt_epi16(vfx, LIM) : _mm_cmplt_epi16(vfx, LIM);
+            const int stops = _mm_movemask_epi8(_mm_packs_epi16(_mm_andnot_si128(take, beyond), zero));
+            std::int32_t stop = -1;  // the lane where the scan ends
+            if (stops != 0) {
+                stop = kRight ? lowest_bit(static_cast<std::uint64_t>(stops)) : highest_bit(static_cast<std::uint64_t>(stops));
+                // only the lanes the scan reaches before it
+                take = _mm_and_si128(take, kRight ? _mm_cmplt_epi16(lane, _mm_set1_epi16(static_cast<std::int16_t>(stop)))
+                                                  : _mm_cmpgt_epi16(lane, _mm_set1_epi16(static_cast<std::int16_t>(stop))));
+            }
+            const auto took = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(take, zero)));
+            if (took != 0) {
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x0), _mm_or_si128(_mm_and_si128(take, CX), _mm_andnot_si128(take, vfx)));
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x0), _mm_or_si128(_mm_and_si128(take, CY), _mm_andnot_si128(take, vfy)));
+                std::uint64_t* w = touched_.row_for_writing(r);
+                w[x0 / 64] |= took << (x0 % 64);
+                if (x0 % 64 > 56) w[x0 / 64 + 1] |= took >> (64 - x0 % 64);
+                feature_changes += static_cast<std::uint64_t>(popcount(took));
+            }
+            if (stop >= 0) return x0 + stop;
+        }
+#endif
+        for (; kRight ? x <= to : x >= to; x += step) {
+            bool took = false;
+            if (vg[x] != 0) {
+                const std::int64_t X = 2 * x + 1;
+                const std::int64_t odx = fx[x] - X, ody = fy[x] - Y, ndx = cx - X, ndy = cy - Y;
+                const std::int64_t o = odx * odx + ody * ody, n = ndx * ndx + ndy * ndy;
+                if (n < o || (n == o && (cx < fx[x] || (cx == fx[x] && cy < fy[x])))) {
+                    fx[x] = static_cast<std::int16_t>(cx);
+                    fy[x] = static_cast<std::int16_t>(cy);
+                    touched_.set(r, x);
+                    ++feature_changes;
+                    took = true;
+                }
+            }
+            if (!took && (kRight ? fx[x] > lim : fx[x] < lim)) return x;
+        }
+        return x;
+    }
+
+    MedialDiagram& m_;
+    OccupancyGrid& g_;
+    FeatureMap& f_;
+    SparseRowMask& touched_;
+    RowEnvelope env_;
+    std::vector<std::int16_t> run_x_, run_y_;  // remove_row: nearest points of a run, by column
+};
+
+class Updater {
+public:
     static constexpr std::size_t kAhead = 2;  // rows whose first cache lines are fetched ahead
+    static constexpr std::size_t kCellsPerWorker = 4096;  // changed pass-1 values below which one thread works
+    static constexpr std::size_t kRowsPerWorker = 64;     // rows to re-mark below which one thread works
 
     explicit Updater(MedialDiagram& m) : m_(m), g_(m.grid), f_(m.features), touched_(m.grid.rows, m.grid.cols) {}
 
@@ -221,21 +520,38 @@ public:
         for (auto& p : by_c) std::swap(p.first, p.second);
         for (const auto& [r, c] : rc) changed_.push_back(g_.at(r, c));
         const RowCells cells = by_row(occupied ? add_columns(by_c) : remove_columns(by_c));
+        // Rows go to the workers in groups of whole block rows (kBlock rows share clearance bounds);
+        // their touched rows are set up first, so the workers write only their own rows.
+        std::vector<std::size_t> groups;  // indices into cells.rows where a block row starts
         for (std::size_t k = 0; k < cells.rows.size(); ++k) {
-            const std::int32_t* cols = cells.cols.data() + cells.start[k];
-            const std::size_t n = cells.start[k + 1] - cells.start[k];
-            if (k + kAhead < cells.rows.size()) {  // rows lie 2 W bytes apart: no hardware prefetch
-                const std::size_t q = k + kAhead;
-                for (const std::size_t e : {cells.start[q], cells.start[q + 1] - 1}) {
-                    const std::size_t i = f_.at(cells.rows[q], cells.cols[e]);
-                    ::dvoronoi::detail::prefetch(&f_.vgap[i]);
-                    ::dvoronoi::detail::prefetch(&f_.fx[i]);
-                    ::dvoronoi::detail::prefetch(&f_.fy[i]);
-                }
-            }
-            if (occupied) add_row(cells.rows[k], cols, n);
-            else remove_row(cells.rows[k], cols, n);
+            touched_.row_for_writing(cells.rows[k]);
+            if (k == 0 || cells.rows[k] / kBlock != cells.rows[k - 1] / kBlock) groups.push_back(k);
         }
+        groups.push_back(cells.rows.size());
+        std::atomic<std::uint64_t> feature_changes{0};
+        const auto n_groups = static_cast<std::int32_t>(groups.size() - 1);
+        // a few rows are not worth a thread's wake-up
+        const int workers = cells.cols.size() < kCellsPerWorker ? 1 : std::min(m_.options.workers, n_groups);
+        run_chunks(workers, n_groups, 1, [this] { return RowPass(m_, touched_); }, [&](RowPass& pass, std::int32_t g0, std::int32_t g1) {
+            const std::size_t end = groups[static_cast<std::size_t>(g1)];
+            for (std::size_t k = groups[static_cast<std::size_t>(g0)]; k < end; ++k) {
+                if (k + kAhead < end) {  // rows lie 2 W bytes apart: no hardware prefetch
+                    const std::size_t q = k + kAhead;
+                    for (const std::size_t e : {cells.start[q], cells.start[q + 1] - 1}) {
+                        const std::size_t i = f_.at(cells.rows[q], cells.cols[e]);
+                        ::dvoronoi::detail::prefetch(&f_.vgap[i]);
+                        ::dvoronoi::detail::prefetch(&f_.fx[i]);
+                        ::dvoronoi::detail::prefetch(&f_.fy[i]);
+                    }
+                }
+                const std::int32_t* cols = cells.cols.data() + cells.start[k];
+                const std::size_t n = cells.start[k + 1] - cells.start[k];
+                if (occupied) pass.add_row(cells.rows[k], cols, n);
+                else pass.remove_row(cells.rows[k], cols, n);
+            }
+            feature_changes += std::exchange(pass.feature_changes, 0);
+        });
+        stats.feature_changes += feature_changes.load();
     }
 
     /// Rechecks the diagram where the changes can reach it. A pixel's membership is a function of
@@ -245,14 +561,24 @@ public:
         if (changed_.empty()) return;
         SparseRowMask redo = touched_.dilated4();  // touched pixels and their 4-neighbours (they share a pair)
         find_boxed(redo);
-        RowMarker marker(m_);
-        for (const std::int32_t r : redo.rows())  // runs of set bits
-            for (std::int32_t a = redo.find(r, 0, true); a < g_.cols; a = redo.find(r, a, true)) {
-                const std::int32_t b = redo.find(r, a, false);
-                stats.mask_checks += static_cast<std::uint64_t>(b - a);
-                marker.mark_segment(r, a, b - 1);
-                a = b;
-            }
+        const std::vector<std::int32_t> rows = redo.rows();  // a row's marks are its own: rows go to the workers
+        std::atomic<std::uint64_t> checks{0};
+        const int workers = rows.size() < kRowsPerWorker ? 1 : m_.options.workers;
+        run_chunks(workers, static_cast<std::int32_t>(rows.size()), 16, [this] { return RowMarker(m_); },
+                   [&](RowMarker& marker, std::int32_t k0, std::int32_t k1) {
+                       std::uint64_t n = 0;
+                       for (std::int32_t k = k0; k < k1; ++k) {
+                           const std::int32_t r = rows[static_cast<std::size_t>(k)];
+                           for (std::int32_t a = redo.find(r, 0, true); a < g_.cols; a = redo.find(r, a, true)) {  // runs of set bits
+                               const std::int32_t b = redo.find(r, a, false);
+                               n += static_cast<std::uint64_t>(b - a);
+                               marker.mark_segment(r, a, b - 1);
+                               a = b;
+                           }
+                       }
+                       checks += n;
+                   });
+        stats.mask_checks += checks.load();
     }
 
     UpdateStats stats;
@@ -464,286 +790,9 @@ private:
         return out;
     }
 
-    /// Removals: pixel (r, x) takes the nearest point n, and its block's clearance bound grows to it.
-    void take(std::int32_t r, std::int32_t x, const Candidate2& n, std::int32_t* bound) {
-        store(r, x, n);
-        if (bound) bound[x / kBlock] = std::max(bound[x / kBlock], static_cast<std::int32_t>(n.sq));  // < 2^31: sides <= 16383
-    }
-
-    void set_feature(std::int32_t r, std::int32_t x, std::int32_t fx, std::int32_t fy) {
-        const std::size_t i = f_.at(r, x);
-        if (f_.fx[i] == fx && f_.fy[i] == fy) return;
-        const std::int64_t dx = fx - (2 * x + 1), dy = fy - (2 * (g_.rows - 1 - r) + 1);
-        store(r, x, {dx * dx + dy * dy, fx, fy});
-    }
-
-    /// Pixel (r, x) takes the nearest point n (a different one), n.sq away.
-    void store(std::int32_t r, std::int32_t x, const Candidate2& n) {
-        const std::size_t i = f_.at(r, x);
-        f_.fx[i] = static_cast<std::int16_t>(n.x);
-        f_.fy[i] = static_cast<std::int16_t>(n.y);
-        touched_.set(r, x);
-        ++stats.feature_changes;
-    }
-
-    /// The first x in [from, W) with fx[x] >= v (fx non-decreasing), searched outward from `guess`:
-    /// the answer is usually near it, and a binary search over the whole row reads a cache line a step.
-    static std::int32_t first_at_least(const std::int16_t* fx, std::int32_t from, std::int32_t W, std::int32_t v, std::int32_t guess) {
-        if (from >= W) return W;
-        std::int32_t lo = std::max(from, std::min(guess, W - 1)), hi = lo;  // the answer lies in (lo, hi]
-        if (fx[lo] >= v) {
-            for (std::int32_t step = 1; lo > from && fx[lo - 1] >= v; step *= 2) {
-                hi = lo;
-                lo = std::max(from, lo - step);
-                if (fx[lo] < v) break;
-            }
-            if (fx[lo] >= v) return lo;
-        } else {
-            for (std::int32_t step = 1; fx[hi] < v; step *= 2) {
-                lo = hi;
-                if (hi == W - 1) return W;
-                hi = std::min(W - 1, hi + step);
-            }
-        }
-        return static_cast<std::int32_t>(std::lower_bound(fx + lo + 1, fx + hi, v) - fx);
-    }
-
-    /// Removals in row r with changed columns `cols` (n, ascending; all free now). A pixel needs a
-    /// new nearest point only if its old one lies on no occupied square any more: on a changed
-    /// column's old pass-1 square, so its x lies in a run of changed columns' span, and nearest x only
-    /// grows along a row: one interval of pixels a run, found by a search out from the run, inside
-    /// the free run [s, t] that holds the changed columns. The interval's new points are found among
-    /// the columns of a window, or, when the window is not much smaller than the run, by pass 2 over
-    /// the whole run as a build runs it (a column costs less there). Two bounds make the window:
-    ///  - the pixels' own squares are at most 2k - 1 away (doubled units) and a column d pixels away
-    ///    is at least 2d - 1 away, so columns more than k away cannot win (ties included); nor can
-    ///    columns beyond an occupied pixel of the row (its edge is at distance 0 in the row);
-    ///  - nearest x grows along the row, so the new points' x lies between the final points of the
-    ///    pixels just left and right of the interval: only the columns whose squares reach that span
-    ///    can hold them (the pixel on the right is final unless a later run of the row recomputes it).
-    void remove_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
-        const std::int32_t W = g_.cols, j = g_.rows - 1 - r;
-        const std::size_t base = f_.at(r, 0);
-        const std::int16_t* fx = &f_.fx[base];
-        const std::int16_t* fy = &f_.fy[base];
-        const std::int16_t* vg = &f_.vgap[base];
-        // clearances grow only here (additions bring points closer): the blocks' bounds follow
-        std::int32_t* bound = m_.block_sq.empty() ? nullptr : &m_.block_sq[static_cast<std::size_t>(r / kBlock * ((W + kBlock - 1) / kBlock))];
-        auto take_if_new = [&](std::int32_t x, const Candidate2& nc) {
-            if (nc.x != fx[x] || nc.y != fy[x]) take(r, x, nc, bound);
-        };
-        std::int32_t from = 0, built = -1;  // built: the first column of the run build_run holds
-        for (std::size_t a = 0; a < n;) {
-            std::size_t b = a;
-            while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
-            const std::int32_t c = cols[a], xhi = 2 * cols[b] + 2;
-            a = b + 1;
-            const std::int32_t x1 = first_at_least(fx, from, W, 2 * c, c);
-            std::int32_t x2 = x1;  // pixels x1 .. x2 - 1
-            std::int32_t k = 0;    // their largest vertical offset
-            for (; x2 < W && fx[x2] <= xhi; ++x2) k = std::max<std::int32_t>(k, std::abs(static_cast<std::int32_t>(vg[x2])));
-            from = x2;
-            if (x1 == x2) continue;
-            const auto [s, t] = m_.bits.free_run(j, c);
-            const std::int32_t R = std::max(k, 1) + 1;
-            const std::int32_t lo = x1 > 0 ? fx[x1 - 1] : 0;  // the new points' x lies in [lo, hi]
-            const std::int32_t hi = x2 < W && (a == n || fx[x2] < 2 * cols[a]) ? fx[x2] : 2 * W;
-            // columns whose squares [2e, 2e + 2] meet [lo, hi]
-            const std::int32_t ca = std::max({s - 1, x1 - R, (lo + 1) / 2 - 1}), cb = std::min({t + 1, x2 - 1 + R, hi / 2});
-            const bool window = built != s && kWindowCost * (cb - ca + 1) < kRunCost * (t - s + 1);
-            if (window) {
-                env_.build(g_, f_, r, ca, cb);
-                built = -1;
-            } else if (built != s) {
-                env_.build_run(g_, f_, r, s, t);
-                built = s;
-            }
-            // pixels among the envelope's own columns segment by segment, any others one by one
-            const std::int32_t fa = window ? std::max(x1, ca) : x1, fb = window ? std::min(x2 - 1, cb) : x2 - 1;
-            for (std::int32_t x = x1; x < std::min(fa, x2); ++x) take_if_new(x, env_.query(x));
-            if (fa <= fb) {
-                if (run_x_.size() < static_cast<std::size_t>(W)) {
-                    run_x_.resize(static_cast<std::size_t>(W));
-                    run_y_.resize(static_cast<std::size_t>(W));
-                }
-                env_.fill_run(fa, fb, run_x_.data(), run_y_.data());
-                take_filled(r, fa, fb, bound);
-            }
-            for (std::int32_t x = std::max(fb + 1, x1); x < x2; ++x) take_if_new(x, env_.query(x));
-        }
-    }
-
-    /// Removals: pixels x0 .. x1 of row r take the nearest points fill_run put in run_x_ / run_y_
-    /// where they differ (and raise their blocks' clearance bounds), eight at a time with SSE2.
-    void take_filled(std::int32_t r, std::int32_t x0, std::int32_t x1, std::int32_t* bound) {
-        const std::size_t base = f_.at(r, 0);
-        std::int16_t* fx = &f_.fx[base];
-        std::int16_t* fy = &f_.fy[base];
-        const std::int16_t* nx = run_x_.data();
-        const std::int16_t* ny = run_y_.data();
-        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1;
-        std::int32_t x = x0;
-#if defined(__SSE2__)
-        const __m128i lane2 = _mm_setr_epi16(0, 2, 4, 6, 8, 10, 12, 14), YV = _mm_set1_epi16(static_cast<std::int16_t>(Y));
-        for (; x + 8 <= x1 + 1; x += 8) {
-            const __m128i vx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(nx + x)), vy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ny + x));
-            const __m128i same = _mm_and_si128(_mm_cmpeq_epi16(vx, _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x))),
-                                               _mm_cmpeq_epi16(vy, _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x))));
-            const auto differ = static_cast<std::uint64_t>(~_mm_movemask_epi8(_mm_packs_epi16(same, same)) & 0xff);
-            if (differ == 0) continue;
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x), vx);  // the same where they agree
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x), vy);
-            std::uint64_t* w = touched_.row_for_writing(r);
-            w[x / 64] |= differ << (x % 64);
-            if (x % 64 > 56) w[x / 64 + 1] |= differ >> (64 - x % 64);
-            stats.feature_changes += static_cast<std::uint64_t>(popcount(differ));
-            if (bound == nullptr) continue;
-            // the eight squares (pmaddwd, < 2^31); unchanged pixels are within their block's bound already
-            const __m128i dx = _mm_sub_epi16(vx, _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x + 1)), lane2));
-            const __m128i dy = _mm_sub_epi16(vy, YV);
-            const __m128i lo = _mm_madd_epi16(_mm_unpacklo_epi16(dx, dy), _mm_unpacklo_epi16(dx, dy));
-            const __m128i hi = _mm_madd_epi16(_mm_unpackhi_epi16(dx, dy), _mm_unpackhi_epi16(dx, dy));
-            alignas(16) std::int32_t sq[8];
-            _mm_store_si128(reinterpret_cast<__m128i*>(sq), lo);
-            _mm_store_si128(reinterpret_cast<__m128i*>(sq + 4), hi);
-            for (int k = 0; k < 8; ++k) bound[(x + k) / kBlock] = std::max(bound[(x + k) / kBlock], sq[k]);
-        }
-#endif
-        for (; x <= x1; ++x) {
-            if (nx[x] == fx[x] && ny[x] == fy[x]) continue;
-            const std::int64_t dx = nx[x] - (2 * x + 1), dy = ny[x] - Y;
-            take(r, x, {dx * dx + dy * dy, nx[x], ny[x]}, bound);
-        }
-    }
-
-    /// Additions in row r with changed columns `cols` (n, ascending).
-    void add_row(std::int32_t r, const std::int32_t* cols, std::size_t n) {
-        const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
-        const std::size_t base = f_.at(r, 0);
-        const std::int16_t* vg = &f_.vgap[base];  // 0: occupied (the occupancy row is not read)
-        const std::int16_t* fx = &f_.fx[base];
-        const std::int16_t* fy = &f_.fy[base];
-        for (std::size_t k = 0; k < n; ++k)  // newly occupied pixels: their own centres
-            if (vg[cols[k]] == 0) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
-        std::size_t a = 0;
-        while (a < n) {
-            std::size_t b = a;
-            while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
-            const std::int32_t ca = cols[a], cb = cols[b];
-            env_.build(g_, f_, r, ca, cb);
-            auto offer = [&](std::int32_t x, const Candidate2& nc) {  // true when x took the run's square
-                const std::int64_t dx = fx[x] - (2 * x + 1), dy = fy[x] - Y;
-                if (nc < Candidate2{dx * dx + dy * dy, fx[x], fy[x]}) {
-                    store(r, x, nc);
-                    return true;
-                }
-                return false;
-            };
-            // Outside [ca, cb] a pixel's candidate is the edge whose segment holds it: the segments
-            // are walked along with the scan, each offered to its pixels at once.
-            std::size_t k = env_.segments() - 1;
-            std::int64_t begin = k > 0 ? env_.segment_end(k - 1) : std::numeric_limits<std::int64_t>::min();
-            for (std::int32_t x = ca - 1; x >= 0;) {  // leftwards: segment k holds pixels begin .. x
-                while (x < begin) begin = --k > 0 ? env_.segment_end(k - 1) : std::numeric_limits<std::int64_t>::min();
-                const Candidate2 e = env_.on_edge(k, x);
-                const auto lo = static_cast<std::int32_t>(std::max<std::int64_t>(begin, 0));
-                if (offer_segment<false>(r, x, lo, e.x, e.y, 2 * ca) >= lo) break;
-                x = lo - 1;
-            }
-            for (std::int32_t x = ca; x <= cb; ++x)
-                if (vg[x] != 0) offer(x, env_.query(x));
-            k = 0;
-            std::int64_t end = env_.segment_end(0);
-            for (std::int32_t x = cb + 1; x < W;) {  // rightwards: segment k holds pixels x .. end - 1
-                while (x >= end) end = env_.segment_end(++k);
-                const Candidate2 e = env_.on_edge(k, x);
-                const auto hi = static_cast<std::int32_t>(std::min<std::int64_t>(end, W) - 1);
-                if (offer_segment<true>(r, x, hi, e.x, e.y, 2 * cb + 2) <= hi) break;
-                x = hi + 1;
-            }
-            a = b + 1;
-        }
-    }
-
-    /// Additions: pixels `from` .. `to` of row r (rightwards when kRight, else leftwards) lie on one
-    /// segment of the changed columns' envelope, whose nearest point is (cx, cy). Each free pixel takes
-    /// it when it beats the pixel's own (ties: the smaller x, then y). Returns the first pixel that
-    /// keeps a point beyond the run (right: x beyond `lim`; left: below it), where the scan ends, or
-    /// the pixel past `to`. Eight pixels at a time with SSE2: offsets fit 16 bits and two squares sum
-    /// below 2^31 (sides <= 16383), as in a build's fill_run.
-    template <bool kRight>
-    std::int32_t offer_segment(std::int32_t r, std::int32_t from, std::int32_t to, std::int32_t cx, std::int32_t cy, std::int32_t lim) {
-        const std::size_t base = f_.at(r, 0);
-        std::int16_t* fx = &f_.fx[base];
-        std::int16_t* fy = &f_.fy[base];
-        const std::int16_t* vg = &f_.vgap[base];
-        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1, step = kRight ? 1 : -1;
-        std::int32_t x = from;
-#if defined(__SSE2__)
-        const __m128i CX = _mm_set1_epi16(static_cast<std::int16_t>(cx)), CY = _mm_set1_epi16(static_cast<std::int16_t>(cy));
-        const __m128i YV = _mm_set1_epi16(static_cast<std::int16_t>(Y)), LIM = _mm_set1_epi16(static_cast<std::int16_t>(lim));
-        const __m128i lane = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7), zero = _mm_setzero_si128();
-        const __m128i NDY = _mm_sub_epi16(CY, YV);  // the same for every pixel
-        for (; kRight ? x + 7 <= to : x - 7 >= to; x += 8 * step) {
-            const std::int32_t x0 = kRight ? x : x - 7;  // the eight pixels x0 .. x0 + 7
-            const __m128i vfx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x0));
-            const __m128i vfy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x0));
-            const __m128i vvg = _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x0));
-            const __m128i X = _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x0 + 1)), _mm_add_epi16(lane, lane));
-            const __m128i odx = _mm_sub_epi16(vfx, X), ody = _mm_sub_epi16(vfy, YV), ndx = _mm_sub_epi16(CX, X);
-            const __m128i olo = _mm_unpacklo_epi16(odx, ody), ohi = _mm_unpackhi_epi16(odx, ody);
-            const __m128i nlo = _mm_unpacklo_epi16(ndx, NDY), nhi = _mm_unpackhi_epi16(ndx, NDY);
-            const __m128i o0 = _mm_madd_epi16(olo, olo), o1 = _mm_madd_epi16(ohi, ohi);
-            const __m128i n0 = _mm_madd_epi16(nlo, nlo), n1 = _mm_madd_epi16(nhi, nhi);
-            const __m128i lt = _mm_packs_epi32(_mm_cmplt_epi32(n0, o0), _mm_cmplt_epi32(n1, o1));
-            const __m128i eq = _mm_packs_epi32(_mm_cmpeq_epi32(n0, o0), _mm_cmpeq_epi32(n1, o1));
-            const __m128i tie = _mm_or_si128(_mm_cmplt_epi16(CX, vfx), _mm_and_si128(_mm_cmpeq_epi16(CX, vfx), _mm_cmplt_epi16(CY, vfy)));
-            __m128i take = _mm_andnot_si128(_mm_cmpeq_epi16(vvg, zero), _mm_or_si128(lt, _mm_and_si128(eq, tie)));
-            const __m128i beyond = kRight ? _mm_cmpgt_epi16(vfx, LIM) : _mm_cmplt_epi16(vfx, LIM);
-            const int stops = _mm_movemask_epi8(_mm_packs_epi16(_mm_andnot_si128(take, beyond), zero));
-            std::int32_t stop = -1;  // the lane where the scan ends
-            if (stops != 0) {
-                stop = kRight ? lowest_bit(static_cast<std::uint64_t>(stops)) : highest_bit(static_cast<std::uint64_t>(stops));
-                // only the lanes the scan reaches before it
-                take = _mm_and_si128(take, kRight ? _mm_cmplt_epi16(lane, _mm_set1_epi16(static_cast<std::int16_t>(stop)))
-                                                  : _mm_cmpgt_epi16(lane, _mm_set1_epi16(static_cast<std::int16_t>(stop))));
-            }
-            const auto took = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(take, zero)));
-            if (took != 0) {
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x0), _mm_or_si128(_mm_and_si128(take, CX), _mm_andnot_si128(take, vfx)));
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x0), _mm_or_si128(_mm_and_si128(take, CY), _mm_andnot_si128(take, vfy)));
-                std::uint64_t* w = touched_.row_for_writing(r);
-                w[x0 / 64] |= took << (x0 % 64);
-                if (x0 % 64 > 56) w[x0 / 64 + 1] |= took >> (64 - x0 % 64);
-                stats.feature_changes += static_cast<std::uint64_t>(popcount(took));
-            }
-            if (stop >= 0) return x0 + stop;
-        }
-#endif
-        for (; kRight ? x <= to : x >= to; x += step) {
-            bool took = false;
-            if (vg[x] != 0) {
-                const std::int64_t X = 2 * x + 1;
-                const std::int64_t odx = fx[x] - X, ody = fy[x] - Y, ndx = cx - X, ndy = cy - Y;
-                const std::int64_t o = odx * odx + ody * ody, n = ndx * ndx + ndy * ndy;
-                if (n < o || (n == o && (cx < fx[x] || (cx == fx[x] && cy < fy[x])))) {
-                    fx[x] = static_cast<std::int16_t>(cx);
-                    fy[x] = static_cast<std::int16_t>(cy);
-                    touched_.set(r, x);
-                    ++stats.feature_changes;
-                    took = true;
-                }
-            }
-            if (!took && (kRight ? fx[x] > lim : fx[x] < lim)) return x;
-        }
-        return x;
-    }
-
     MedialDiagram& m_;
     OccupancyGrid& g_;
     FeatureMap& f_;
-    RowEnvelope env_;
-    std::vector<std::int16_t> run_x_, run_y_;  // remove_row: nearest points of a run, by column
     std::vector<std::size_t> changed_;         // pixels whose occupancy flipped
     SparseRowMask touched_;                    // pixels whose occupancy or nearest point changed
 };
