@@ -728,8 +728,10 @@ private:
     /// Pass 1 after additions: offsets only shrink, so from each run of new pixels of a column the
     /// walk goes outward while the run is nearer than the offset a pixel has (ties: below). It stops
     /// at the first pixel that keeps its offset: the run's distance grows by one a row and the kept
-    /// side's shrinks by one, so no pixel beyond changes either. A column's new pixels get offset 0
-    /// first, so the walks read the offsets only (0: occupied).
+    /// side's shrinks by one, so no pixel beyond changes either. New pixels get offset 0 first, so the
+    /// walks read the offsets only (0: occupied). A walk reads and writes its own column only, and a
+    /// column's runs walk in ascending order. Neighbouring columns with the same run (a blob's) walk
+    /// together row by row: a row's offsets share a cache line, a column's lie a row apart.
     SparseRowMask add_columns(const std::vector<std::pair<std::int32_t, std::int32_t>>& cr) {
         const std::int32_t H = g_.rows;
         SparseRowMask cells(H, g_.cols);  // the pixels whose pass-1 value changed
@@ -739,27 +741,56 @@ private:
             cur = static_cast<std::int16_t>(v);
             cells.set(r, c);
         };
+        struct Run { std::int32_t a, b, c; };  // new pixels a .. b of column c
+        std::vector<Run> runs;
         for (std::size_t k = 0; k < cr.size();) {
-            const std::int32_t c = cr[k].first, a = cr[k].second;
-            if (k == 0 || cr[k - 1].first != c)  // a new column (cells go out column by column)
-                for (std::size_t q = k; q < cr.size() && cr[q].first == c; ++q) put(cr[q].second, c, 0);
             std::size_t e = k + 1;
-            while (e < cr.size() && cr[e].first == c && cr[e].second == cr[e - 1].second + 1) ++e;
-            const std::int32_t b = cr[e - 1].second;  // new pixels a .. b of column c
-            std::int32_t r = a - 1;
-            for (; r >= 0; --r) {  // above the run: the run is below, at a - r
-                const std::int32_t v = f_.vgap[f_.at(r, c)];
-                if (v == 0 || (v < 0 && -v < a - r)) break;
-                put(r, c, a - r);
-            }
-            std::int32_t s = b + 1;
-            for (; s < H; ++s) {  // below the run: the run is above, at s - b
-                const std::int32_t v = f_.vgap[f_.at(s, c)];
-                if (v == 0 || (v > 0 && v <= s - b)) break;
-                put(s, c, b - s);
-            }
-            stats.column_cells += static_cast<std::uint64_t>(s - r - 1);
+            while (e < cr.size() && cr[e].first == cr[k].first && cr[e].second == cr[e - 1].second + 1) ++e;
+            runs.push_back({cr[k].second, cr[e - 1].second, cr[k].first});
+            for (std::size_t q = k; q < e; ++q) put(cr[q].second, cr[q].first, 0);
             k = e;
+        }
+        // bands: the same run in consecutive columns; ascending a keeps each column's runs in order
+        std::sort(runs.begin(), runs.end(), [](const Run& x, const Run& y) {
+            return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.c < y.c);
+        });
+        std::vector<std::int32_t> active, stop(static_cast<std::size_t>(g_.cols));
+        for (std::size_t k = 0; k < runs.size();) {
+            std::size_t e = k + 1;
+            while (e < runs.size() && runs[e].a == runs[k].a && runs[e].b == runs[k].b && runs[e].c == runs[e - 1].c + 1) ++e;
+            const std::int32_t a = runs[k].a, b = runs[k].b, c0 = runs[k].c, c1 = runs[e - 1].c;
+            k = e;
+            // above the run: the run is below, at a - r; a column stops at its first kept offset
+            active.clear();
+            for (std::int32_t c = c0; c <= c1; ++c) active.push_back(c);
+            for (std::int32_t r = a - 1; !active.empty(); --r) {
+                std::size_t keep = 0;
+                for (const std::int32_t c : active) {
+                    const std::int32_t v = r < 0 ? 0 : f_.vgap[f_.at(r, c)];
+                    if (v == 0 || (v < 0 && -v < a - r)) {
+                        stop[static_cast<std::size_t>(c)] = r;
+                        continue;
+                    }
+                    put(r, c, a - r);
+                    active[keep++] = c;
+                }
+                active.resize(keep);
+            }
+            // below the run: the run is above, at s - b
+            for (std::int32_t c = c0; c <= c1; ++c) active.push_back(c);
+            for (std::int32_t s = b + 1; !active.empty(); ++s) {
+                std::size_t keep = 0;
+                for (const std::int32_t c : active) {
+                    const std::int32_t v = s >= H ? 0 : f_.vgap[f_.at(s, c)];
+                    if (v == 0 || (v > 0 && v <= s - b)) {
+                        stats.column_cells += static_cast<std::uint64_t>(s - stop[static_cast<std::size_t>(c)] - 1);
+                        continue;
+                    }
+                    put(s, c, b - s);
+                    active[keep++] = c;
+                }
+                active.resize(keep);
+            }
         }
         return cells;
     }
