@@ -349,11 +349,13 @@ private:
         const OccupancyGrid& g = m_.grid;
         const FeatureMap& f = m_.features;
         const std::size_t i = f.at(pr, pc), j = f.at(qr, qc);
-        if (g.occupied[i] || g.occupied[j]) return 0;
         const std::int32_t ax = f.fx[i], ay = f.fy[i], bx = f.fx[j], by = f.fy[j];
+        const std::int64_t px = 2 * pc + 1, py = 2 * (g.rows - 1 - pr) + 1, qx = 2 * qc + 1, qy = 2 * (g.rows - 1 - qr) + 1;
+        // an occupied pixel is its own nearest point, a free one never is (the occupancy bytes are
+        // not read: an update's pairs lie on rows out of cache)
+        if ((ax == px && ay == py) || (bx == qx && by == qy)) return 0;
         const std::int64_t dx = ax - bx, dy = ay - by, d2 = dx * dx + dy * dy;
         if (d2 <= rule_.sep2) return 0;
-        const std::int64_t px = 2 * pc + 1, py = 2 * (g.rows - 1 - pr) + 1, qx = 2 * qc + 1, qy = 2 * (g.rows - 1 - qr) + 1;
         auto sq = [](std::int64_t x, std::int64_t y, std::int64_t u, std::int64_t v) { return (x - u) * (x - u) + (y - v) * (y - v); };
         const std::int64_t sp = sq(px, py, bx, by) - sq(px, py, ax, ay), sq_ = sq(qx, qy, ax, ay) - sq(qx, qy, bx, by);
         const int boxed = d2 <= rule_.prune2 ? kBoxed : 0;
