@@ -493,7 +493,10 @@ private:
 
 class Updater {
 public:
-    static constexpr std::size_t kAhead = 2;  // rows whose first cache lines are fetched ahead
+    static constexpr std::size_t kAhead = 2;  // rows fetched ahead of the row pass
+    // pixels beyond a row's changed columns fetched too: most scans and windows end within them
+    // (on three 2048 x 2048 maps, with other work between updates: 64-160 save 5-10 % of an update)
+    static constexpr std::int32_t kAheadMargin = 128;
     static constexpr std::size_t kCellsPerWorker = 4096;  // changed pass-1 values below which one thread works
     static constexpr std::size_t kRowsPerWorker = 64;     // rows to re-mark below which one thread works
 
@@ -535,10 +538,12 @@ public:
         run_chunks(workers, n_groups, 1, [this] { return RowPass(m_, touched_); }, [&](RowPass& pass, std::int32_t g0, std::int32_t g1) {
             const std::size_t end = groups[static_cast<std::size_t>(g1)];
             for (std::size_t k = groups[static_cast<std::size_t>(g0)]; k < end; ++k) {
-                if (k + kAhead < end) {  // rows lie 2 W bytes apart: no hardware prefetch
+                if (k + kAhead < end) {  // rows lie 2 W bytes apart: no hardware prefetch across them
                     const std::size_t q = k + kAhead;
-                    for (const std::size_t e : {cells.start[q], cells.start[q + 1] - 1}) {
-                        const std::size_t i = f_.at(cells.rows[q], cells.cols[e]);
+                    const std::int32_t c0 = std::max(0, cells.cols[cells.start[q]] - kAheadMargin);
+                    const std::int32_t c1 = std::min(g_.cols - 1, cells.cols[cells.start[q + 1] - 1] + kAheadMargin);
+                    for (std::int32_t c = c0; c <= c1; c += 32) {  // a cache line of each array
+                        const std::size_t i = f_.at(cells.rows[q], c);
                         ::dvoronoi::detail::prefetch(&f_.vgap[i]);
                         ::dvoronoi::detail::prefetch(&f_.fx[i]);
                         ::dvoronoi::detail::prefetch(&f_.fy[i]);
