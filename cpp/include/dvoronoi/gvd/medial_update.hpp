@@ -549,6 +549,10 @@ public:
                         ::dvoronoi::detail::prefetch(&f_.fx[i]);
                         ::dvoronoi::detail::prefetch(&f_.fy[i]);
                     }
+                    if (!occupied) {  // removals look for the free run in the bits (512 columns a line)
+                        const std::uint64_t* w = m_.bits.row_words(g_.rows - 1 - cells.rows[q]);
+                        for (std::int32_t c = c0 + 1; c <= c1 + 1 + 511; c += 512) ::dvoronoi::detail::prefetch(w + c / 64);
+                    }
                 }
                 const std::int32_t* cols = cells.cols.data() + cells.start[k];
                 const std::size_t n = cells.start[k + 1] - cells.start[k];
