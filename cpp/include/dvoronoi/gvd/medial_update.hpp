@@ -304,8 +304,18 @@ public:
                 if (offer_segment<false>(r, x, lo, e.x, e.y, 2 * ca) >= lo) break;
                 x = lo - 1;
             }
-            for (std::int32_t x = ca; x <= cb; ++x)
-                if (vg[x] != 0) offer(x, env_.query(x));
+            // inside [ca, cb], the run's pixels segment by segment as a build fills them
+            if (run_x_.size() < static_cast<std::size_t>(W)) {
+                run_x_.resize(static_cast<std::size_t>(W));
+                run_y_.resize(static_cast<std::size_t>(W));
+            }
+            env_.fill_run(ca, cb, run_x_.data(), run_y_.data());
+            for (std::int32_t x = ca; x <= cb; ++x) {
+                if (vg[x] == 0) continue;
+                const std::int32_t nx = run_x_[static_cast<std::size_t>(x)], ny = run_y_[static_cast<std::size_t>(x)];
+                const std::int64_t dx = nx - (2 * x + 1), dy = ny - Y;
+                offer(x, {dx * dx + dy * dy, nx, ny});
+            }
             k = 0;
             std::int64_t end = env_.segment_end(0);
             for (std::int32_t x = cb + 1; x < W;) {  // rightwards: segment k holds pixels x .. end - 1
