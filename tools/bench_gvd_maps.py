@@ -22,7 +22,7 @@ Routes, all from the same ``(H, W)`` bool occupancy array (True = occupied, row 
     build has the occupancy-grid API (``hasattr(dvoronoi, "OccupancyGrid")``).
 
 Then incremental updates (``set_occupied`` / ``set_free`` of 20 square blobs of 1% of the width) against
-the full build, and what the diagram keeps in memory.
+the full build (on one worker, and on two), and what the diagram keeps in memory.
 
 Every route runs ``--repeat`` times, interleaved (all routes see the same load); the table gives the
 best and the median wall time and dvoronoi's time over each route's (best against best). Benchmarks
@@ -241,37 +241,42 @@ def main() -> None:
 
 
 def updates(rows, a, routes) -> None:
-    """Incremental updates as ROS navigation uses them: 20 square blobs of 1% of the map's width put at
+    """Incremental updates as ROS navigation uses them: 20 square blobs of 1% of the width put at
     random places (set_occupied), then taken away (set_free); median of --repeat rounds, against the
-    full build's best time (one worker)."""
+    full build's best time (one worker), and the same rounds on a result built with two workers."""
     import dvoronoi as dv
 
-    print("\n## Incremental updates (one worker): 20 square blobs of 1% of the width added, then removed\n")
-    print("| map | full build (best) | add (median) | remove (median) | add / build | remove / build | pixels touched (add) |")
-    print("|---|---|---|---|---|---|---|")
+    print("\n## Incremental updates: 20 square blobs of 1% of the width added, then removed\n")
+    print("| map | full build (best, 1 worker) | add (median) | remove (median) | add / build | remove / build "
+          "| add / remove, 2 workers | pixels touched (add) |")
+    print("|---|---|---|---|---|---|---|---|")
     rng = np.random.default_rng(a.seed)
     for map_name, occ, times, _masks in rows:
         h, w = occ.shape
         side = max(1, w // 100)
-        gv = dv.grid_voronoi(occ, workers=1)
-        t_add, t_rem, touched = [], [], 0
+        gvs = {k: dv.grid_voronoi(occ, workers=k) for k in (1, 2)}
+        t_add = {1: [], 2: []}
+        t_rem = {1: [], 2: []}
+        touched = 0
         for _ in range(a.repeat):
             blob = np.zeros_like(occ)
             for _b in range(20):
                 r, c = rng.integers(0, h - side), rng.integers(0, w - side)
                 blob[r:r + side, c:c + side] = True
             blob &= ~occ
-            t0 = time.perf_counter()
-            st = gv.set_occupied(blob)
-            t_add.append(time.perf_counter() - t0)
-            t0 = time.perf_counter()
-            gv.set_free(blob)
-            t_rem.append(time.perf_counter() - t0)
+            for k, gv in gvs.items():
+                t0 = time.perf_counter()
+                st = gv.set_occupied(blob)
+                t_add[k].append(time.perf_counter() - t0)
+                t0 = time.perf_counter()
+                gv.set_free(blob)
+                t_rem[k].append(time.perf_counter() - t0)
             touched = st["feature_changes"]
         build = min(times[routes[2][0]])
-        ma, mr = statistics.median(t_add), statistics.median(t_rem)
+        ma, mr = statistics.median(t_add[1]), statistics.median(t_rem[1])
+        ma2, mr2 = statistics.median(t_add[2]), statistics.median(t_rem[2])
         print(f"| {map_name} | {1e3 * build:.1f} ms | {1e3 * ma:.2f} ms | {1e3 * mr:.2f} ms | {ma / build:.2f} | "
-              f"{mr / build:.2f} | {touched} |")
+              f"{mr / build:.2f} | {1e3 * ma2:.2f} / {1e3 * mr2:.2f} ms | {touched} |")
     print("\nMemory: a map's diagram keeps the occupancy (1 byte a pixel), the column pass (2), the nearest "
           "points (4), the diagram, the box-judged pixels and the occupancy as bits (1/8 each): 7.375 bytes a pixel, 124 MB for "
           "4096 x 4096 (a float64 distance map alone is 8 bytes a pixel, 134 MB; OpenCV's float32 distances "
