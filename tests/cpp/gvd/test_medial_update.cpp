@@ -23,6 +23,21 @@ void require_same_as_full_build(const MedialDiagram& m) {
     }
 }
 
+/// The free pixels of `count` square blobs at random places, sides min_side .. min_side + sides - 1
+/// (a pixel of two blobs comes twice: an update skips pixels already so).
+std::vector<std::size_t> free_blob_pixels(const MedialDiagram& m, std::mt19937& rng, int count, int min_side, int sides) {
+    std::vector<std::size_t> px;
+    for (int b = 0; b < count; ++b) {
+        const int side = min_side + static_cast<int>(rng() % static_cast<unsigned>(sides));
+        const int r0 = static_cast<int>(rng() % static_cast<unsigned>(m.grid.rows - side));
+        const int c0 = static_cast<int>(rng() % static_cast<unsigned>(m.grid.cols - side));
+        for (int r = r0; r < r0 + side; ++r)
+            for (int c = c0; c < c0 + side; ++c)
+                if (!m.grid.occ(r, c)) px.push_back(m.grid.at(r, c));
+    }
+    return px;
+}
+
 }  // namespace
 
 TEST_CASE("after any sequence of additions and removals the diagram is the full build's") {
@@ -73,15 +88,7 @@ TEST_CASE("blobs put into open space and next to walls: the diagram is the full 
         o.prune_length = prune[seed % 4];
         MedialDiagram m = medial_diagram(g, o);
         for (int step = 0; step < 8; ++step) {
-            std::vector<std::size_t> px;
-            for (int b = 0; b < 3; ++b) {
-                const int side = 2 + static_cast<int>(rng() % 5);
-                const int r0 = static_cast<int>(rng() % static_cast<unsigned>(g.rows - side));
-                const int c0 = static_cast<int>(rng() % static_cast<unsigned>(g.cols - side));
-                for (int r = r0; r < r0 + side; ++r)
-                    for (int c = c0; c < c0 + side; ++c)
-                        if (!m.grid.occ(r, c)) px.push_back(g.at(r, c));
-            }
+            const std::vector<std::size_t> px = free_blob_pixels(m, rng, 3, 2, 5);
             set_pixels(m, px, true);
             INFO("seed " << seed << ", step " << step << ", added");
             require_same_as_full_build(m);
@@ -239,15 +246,7 @@ TEST_CASE("updates on several workers give the full build's diagram") {
         o.workers = 2 + static_cast<int>(seed % 2);
         MedialDiagram m = medial_diagram(g, o);
         for (int step = 0; step < 4; ++step) {
-            std::vector<std::size_t> px;
-            for (int b = 0; b < 16; ++b) {
-                const int side = 8 + static_cast<int>(rng() % 12);
-                const int r0 = static_cast<int>(rng() % static_cast<unsigned>(g.rows - side));
-                const int c0 = static_cast<int>(rng() % static_cast<unsigned>(g.cols - side));
-                for (int r = r0; r < r0 + side; ++r)
-                    for (int c = c0; c < c0 + side; ++c)
-                        if (!m.grid.occ(r, c)) px.push_back(g.at(r, c));
-            }
+            const std::vector<std::size_t> px = free_blob_pixels(m, rng, 16, 8, 12);
             const UpdateStats added = set_pixels(m, px, true);
             INFO("seed " << seed << ", step " << step << ", workers " << o.workers);
             CHECK(added.column_cells > 3 * detail::Updater::kCellsPerWorker);  // large enough to split
