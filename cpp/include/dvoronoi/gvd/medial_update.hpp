@@ -114,6 +114,12 @@ public:
           words_(stride_ * static_cast<std::size_t>(rows)), live_(static_cast<std::size_t>(rows), 0) {}
 
     void set(std::int32_t r, std::int32_t c) { row_for_writing(r)[c / 64] |= std::uint64_t{1} << (c % 64); }
+    /// Sets the pixels c + k of row r for the bits k of `bits` (< 256), eight pixels at once.
+    void set_eight(std::int32_t r, std::int32_t c, std::uint64_t bits) {
+        std::uint64_t* w = row_for_writing(r);
+        w[c / 64] |= bits << (c % 64);
+        if (c % 64 > 56) w[c / 64 + 1] |= bits >> (64 - c % 64);
+    }
     /// Row r's words, zeroed if the row had none set yet.
     std::uint64_t* row_for_writing(std::int32_t r) {
         std::uint64_t* w = words_.data() + static_cast<std::size_t>(r) * stride_;
@@ -203,7 +209,9 @@ public:
     // instructions on three 2048 x 2048 maps); fill_run then reads only the pixels asked for.
     static constexpr std::int32_t kWindowCost = 3, kRunCost = 1;
 
-    RowPass(MedialDiagram& m, SparseRowMask& touched) : m_(m), g_(m.grid), f_(m.features), touched_(touched) {}
+    RowPass(MedialDiagram& m, SparseRowMask& touched)
+        : m_(m), g_(m.grid), f_(m.features), touched_(touched), run_x_(static_cast<std::size_t>(m.grid.cols)),
+          run_y_(static_cast<std::size_t>(m.grid.cols)) {}
 
     /// Removals in row r with changed columns `cols` (n, ascending; all free now). A pixel needs a
     /// new nearest point only if its old one lies on no occupied square any more: on a changed
@@ -259,10 +267,6 @@ public:
             const std::int32_t fa = window ? std::max(x1, ca) : x1, fb = window ? std::min(x2 - 1, cb) : x2 - 1;
             for (std::int32_t x = x1; x < std::min(fa, x2); ++x) take_if_new(x, env_.query(x));
             if (fa <= fb) {
-                if (run_x_.size() < static_cast<std::size_t>(W)) {
-                    run_x_.resize(static_cast<std::size_t>(W));
-                    run_y_.resize(static_cast<std::size_t>(W));
-                }
                 env_.fill_run(fa, fb, run_x_.data(), run_y_.data());
                 take_filled(r, fa, fb, bound);
             }
@@ -305,10 +309,6 @@ public:
                 x = lo - 1;
             }
             // inside [ca, cb], the run's pixels segment by segment as a build fills them
-            if (run_x_.size() < static_cast<std::size_t>(W)) {
-                run_x_.resize(static_cast<std::size_t>(W));
-                run_y_.resize(static_cast<std::size_t>(W));
-            }
             env_.fill_run(ca, cb, run_x_.data(), run_y_.data());
             for (std::int32_t x = ca; x <= cb; ++x) {
                 if (vg[x] == 0) continue;
@@ -396,9 +396,7 @@ private:
             if (differ == 0) continue;
             _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x), vx);  // the same where they agree
             _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x), vy);
-            std::uint64_t* w = touched_.row_for_writing(r);
-            w[x / 64] |= differ << (x % 64);
-            if (x % 64 > 56) w[x / 64 + 1] |= differ >> (64 - x % 64);
+            touched_.set_eight(r, x, differ);
             feature_changes += static_cast<std::uint64_t>(popcount(differ));
             if (bound == nullptr) continue;
             // the eight squares (pmaddwd, < 2^31); unchanged pixels are within their block's bound already
@@ -466,9 +464,7 @@ private:
             if (took != 0) {
                 _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x0), _mm_or_si128(_mm_and_si128(take, CX), _mm_andnot_si128(take, vfx)));
                 _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x0), _mm_or_si128(_mm_and_si128(take, CY), _mm_andnot_si128(take, vfy)));
-                std::uint64_t* w = touched_.row_for_writing(r);
-                w[x0 / 64] |= took << (x0 % 64);
-                if (x0 % 64 > 56) w[x0 / 64 + 1] |= took >> (64 - x0 % 64);
+                touched_.set_eight(r, x0, took);
                 feature_changes += static_cast<std::uint64_t>(popcount(took));
             }
             if (stop >= 0) return x0 + stop;
@@ -498,7 +494,7 @@ private:
     FeatureMap& f_;
     SparseRowMask& touched_;
     RowEnvelope env_;
-    std::vector<std::int16_t> run_x_, run_y_;  // remove_row: nearest points of a run, by column
+    std::vector<std::int16_t> run_x_, run_y_;  // nearest points fill_run gives, by column
 };
 
 class Updater {
