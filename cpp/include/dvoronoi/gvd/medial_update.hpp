@@ -25,6 +25,10 @@
 //     changed pixel (searched in the blocks of pixels whose largest clearance reaches that far,
 //     MedialDiagram::block_sq; skipped where no unchanged wall is that near). They are re-marked in
 //     row segments, vectorised as a build marks rows.
+// Steps 2 and 3 work row by row, so a large update splits its rows over the diagram's workers.
+// What an update touches is kept as row-sparse bit masks (SparseRowMask): its cost follows the
+// change, not the map. Its rows lie far apart in memory, out of the hardware prefetcher's sight:
+// the column walks and the row pass fetch ahead.
 #pragma once
 
 #include "dvoronoi/core/pages.hpp"
