@@ -157,7 +157,6 @@ public:
         std::sort(out.begin(), out.end());
         return out;
     }
-    bool empty() const { return rows_.empty(); }
     std::size_t words_per_row() const { return stride_; }
 
     /// The mask grown by each pixel's four neighbours (inside the map), whole words at a time.
@@ -186,15 +185,7 @@ public:
     }
 
     /// The first column >= c of row r (a set row) whose bit is v, or cols.
-    std::int32_t find(std::int32_t r, std::int32_t c, bool v) const {
-        const std::uint64_t* w = row(r);
-        while (c < cols_) {
-            const std::uint64_t word = (v ? w[c / 64] : ~w[c / 64]) >> (c % 64);
-            if (word != 0) return std::min(cols_, c + lowest_bit(word));
-            c = (c / 64 + 1) * 64;
-        }
-        return cols_;
-    }
+    std::int32_t find(std::int32_t r, std::int32_t c, bool v) const { return find_in_row(row(r), cols_, c, v, cols_); }
 
 private:
     std::int32_t cols_;
@@ -283,8 +274,6 @@ public:
         const std::int32_t W = g_.cols, Y = 2 * (g_.rows - 1 - r) + 1;
         const std::size_t base = f_.at(r, 0);
         const std::int16_t* vg = &f_.vgap[base];  // 0: occupied (the occupancy row is not read)
-        const std::int16_t* fx = &f_.fx[base];
-        const std::int16_t* fy = &f_.fy[base];
         for (std::size_t k = 0; k < n; ++k)  // newly occupied pixels: their own centres
             if (vg[cols[k]] == 0) set_feature(r, cols[k], 2 * cols[k] + 1, Y);
         std::size_t a = 0;
@@ -293,14 +282,6 @@ public:
             while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
             const std::int32_t ca = cols[a], cb = cols[b];
             env_.build(g_, f_, r, ca, cb);
-            auto offer = [&](std::int32_t x, const Candidate2& nc) {  // true when x took the run's square
-                const std::int64_t dx = fx[x] - (2 * x + 1), dy = fy[x] - Y;
-                if (nc < Candidate2{dx * dx + dy * dy, fx[x], fy[x]}) {
-                    store(r, x, nc);
-                    return true;
-                }
-                return false;
-            };
             // Outside [ca, cb] a pixel's candidate is the edge whose segment holds it: the segments
             // are walked along with the scan, each offered to its pixels at once.
             std::size_t k = env_.segments() - 1;
@@ -318,7 +299,7 @@ public:
                 if (vg[x] == 0) continue;
                 const std::int32_t nx = run_x_[static_cast<std::size_t>(x)], ny = run_y_[static_cast<std::size_t>(x)];
                 const std::int64_t dx = nx - (2 * x + 1), dy = ny - Y;
-                offer(x, {dx * dx + dy * dy, nx, ny});
+                offer(r, x, {dx * dx + dy * dy, nx, ny});
             }
             k = 0;
             std::int64_t end = env_.segment_end(0);
@@ -475,22 +456,21 @@ private:
         }
 #endif
         for (; kRight ? x <= to : x >= to; x += step) {
-            bool took = false;
-            if (vg[x] != 0) {
-                const std::int64_t X = 2 * x + 1;
-                const std::int64_t odx = fx[x] - X, ody = fy[x] - Y, ndx = cx - X, ndy = cy - Y;
-                const std::int64_t o = odx * odx + ody * ody, n = ndx * ndx + ndy * ndy;
-                if (n < o || (n == o && (cx < fx[x] || (cx == fx[x] && cy < fy[x])))) {
-                    fx[x] = static_cast<std::int16_t>(cx);
-                    fy[x] = static_cast<std::int16_t>(cy);
-                    touched_.set(r, x);
-                    ++feature_changes;
-                    took = true;
-                }
-            }
+            const std::int64_t ndx = cx - (2 * x + 1), ndy = cy - Y;
+            const bool took = vg[x] != 0 && offer(r, x, {ndx * ndx + ndy * ndy, cx, cy});
             if (!took && (kRight ? fx[x] > lim : fx[x] < lim)) return x;
         }
         return x;
+    }
+
+    /// Additions: pixel (r, x) takes the candidate nc when it beats the pixel's nearest point (ties:
+    /// the smaller x, then y); true when it did.
+    bool offer(std::int32_t r, std::int32_t x, const Candidate2& nc) {
+        const std::size_t i = f_.at(r, x);
+        const std::int64_t dx = f_.fx[i] - (2 * x + 1), dy = f_.fy[i] - (2 * (g_.rows - 1 - r) + 1);
+        if (!(nc < Candidate2{dx * dx + dy * dy, f_.fx[i], f_.fy[i]})) return false;
+        store(r, x, nc);
+        return true;
     }
 
     MedialDiagram& m_;

@@ -98,6 +98,17 @@ inline std::int32_t popcount(std::uint64_t w) {
 #endif
 }
 
+/// The first column in [c, stop) of a row of bits `w` (`cols` bits, stop <= cols) whose bit is v,
+/// a word at a time; when there is none, a column >= stop (cols at most).
+inline std::int32_t find_in_row(const std::uint64_t* w, std::int32_t cols, std::int32_t c, bool v, std::int32_t stop) {
+    while (c < stop) {
+        const std::uint64_t word = (v ? w[c / 64] : ~w[c / 64]) >> (c % 64);
+        if (word != 0) return std::min(cols, c + lowest_bit(word));
+        c = (c / 64 + 1) * 64;
+    }
+    return std::min(cols, std::max(c, stop));
+}
+
 /// The squares whose closed extent holds a point (x, y) given in doubled units: columns c0 .. c1 and
 /// square rows j0 .. j1 (counted from the bottom); one of each when the coordinate is odd (inside a
 /// square), two when it is even (on the line between two).
@@ -240,14 +251,7 @@ public:
     /// The first column >= c of row r whose bit is v (cols when there is none); the search stops
     /// at column `end` (default: the row's end) and then returns a column >= end.
     std::int32_t find(std::int32_t r, std::int32_t c, bool v, std::int32_t end = -1) const {
-        const std::uint64_t* w = row_words(r);
-        const std::int32_t stop = end < 0 ? cols_ : std::min(end, cols_);
-        while (c < stop) {
-            const std::uint64_t word = (v ? w[c / 64] : ~w[c / 64]) >> (c % 64);
-            if (word != 0) return std::min(cols_, c + lowest_bit(word));
-            c = (c / 64 + 1) * 64;
-        }
-        return std::max(c, stop);
+        return find_in_row(row_words(r), cols_, c, v, end < 0 ? cols_ : std::min(end, cols_));
     }
     /// Pixels (r, a .. b) emptied.
     void clear(std::int32_t r, std::int32_t a, std::int32_t b) {
