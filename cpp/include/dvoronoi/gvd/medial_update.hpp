@@ -529,21 +529,7 @@ public:
         run_chunks(workers, n_groups, 1, [this] { return RowPass(m_, touched_); }, [&](RowPass& pass, std::int32_t g0, std::int32_t g1) {
             const std::size_t end = groups[static_cast<std::size_t>(g1)];
             for (std::size_t k = groups[static_cast<std::size_t>(g0)]; k < end; ++k) {
-                if (k + kAhead < end) {  // rows lie 2 W bytes apart: no hardware prefetch across them
-                    const std::size_t q = k + kAhead;
-                    const std::int32_t c0 = std::max(0, cells.cols[cells.start[q]] - kAheadMargin);
-                    const std::int32_t c1 = std::min(g_.cols - 1, cells.cols[cells.start[q + 1] - 1] + kAheadMargin);
-                    for (std::int32_t c = c0; c <= c1; c += 32) {  // a cache line of each array
-                        const std::size_t i = f_.at(cells.rows[q], c);
-                        ::dvoronoi::detail::prefetch(&f_.vgap[i]);
-                        ::dvoronoi::detail::prefetch(&f_.fx[i]);
-                        ::dvoronoi::detail::prefetch(&f_.fy[i]);
-                    }
-                    if (!occupied) {  // removals look for the free run in the bits (512 columns a line)
-                        const std::uint64_t* w = m_.bits.row_words(g_.rows - 1 - cells.rows[q]);
-                        for (std::int32_t c = c0 + 1; c <= c1 + 1 + 511; c += 512) ::dvoronoi::detail::prefetch(w + c / 64);
-                    }
-                }
+                if (k + kAhead < end) fetch_cells_row(cells, k + kAhead, occupied);
                 const std::int32_t* cols = cells.cols.data() + cells.start[k];
                 const std::size_t n = cells.start[k + 1] - cells.start[k];
                 if (occupied) pass.add_row(cells.rows[k], cols, n);
@@ -795,6 +781,23 @@ private:
             }
         }
         return cells;
+    }
+
+    /// Fetches what the row pass reads of cells row q: its rows lie 2 W bytes apart, out of the
+    /// hardware prefetcher's sight.
+    void fetch_cells_row(const RowCells& cells, std::size_t q, bool occupied) const {
+        const std::int32_t c0 = std::max(0, cells.cols[cells.start[q]] - kAheadMargin);
+        const std::int32_t c1 = std::min(g_.cols - 1, cells.cols[cells.start[q + 1] - 1] + kAheadMargin);
+        for (std::int32_t c = c0; c <= c1; c += 32) {  // a cache line of each array
+            const std::size_t i = f_.at(cells.rows[q], c);
+            ::dvoronoi::detail::prefetch(&f_.vgap[i]);
+            ::dvoronoi::detail::prefetch(&f_.fx[i]);
+            ::dvoronoi::detail::prefetch(&f_.fy[i]);
+        }
+        if (!occupied) {  // removals look for the free run in the bits (512 columns a line)
+            const std::uint64_t* w = m_.bits.row_words(g_.rows - 1 - cells.rows[q]);
+            for (std::int32_t c = c0 + 1; c <= c1 + 1 + 511; c += 512) ::dvoronoi::detail::prefetch(w + c / 64);
+        }
     }
 
     /// Fetches the pass-1 values of columns c0 .. c1 of row r (a walk's rows lie 2 W bytes apart,
