@@ -239,9 +239,8 @@ public:
             const std::int32_t c = cols[a], xhi = 2 * cols[b] + 2;
             a = b + 1;
             const std::int32_t x1 = first_at_least(fx, from, W, 2 * c, c);
-            std::int32_t x2 = x1;  // pixels x1 .. x2 - 1
-            std::int32_t k = 0;    // their largest vertical offset
-            for (; x2 < W && fx[x2] <= xhi; ++x2) k = std::max<std::int32_t>(k, std::abs(static_cast<std::int32_t>(vg[x2])));
+            std::int32_t k = 0;  // the largest vertical offset of pixels x1 .. x2 - 1
+            const std::int32_t x2 = interval_end(fx, vg, x1, W, xhi, k);
             from = x2;
             if (x1 == x2) continue;
             const auto [s, t] = m_.bits.free_run(j, c);
@@ -295,12 +294,7 @@ public:
             }
             // inside [ca, cb], the run's pixels segment by segment as a build fills them
             env_.fill_run(ca, cb, run_x_.data(), run_y_.data());
-            for (std::int32_t x = ca; x <= cb; ++x) {
-                if (vg[x] == 0) continue;
-                const std::int32_t nx = run_x_[static_cast<std::size_t>(x)], ny = run_y_[static_cast<std::size_t>(x)];
-                const std::int64_t dx = nx - (2 * x + 1), dy = ny - Y;
-                offer(r, x, {dx * dx + dy * dy, nx, ny});
-            }
+            offer_filled(r, ca, cb);
             k = 0;
             std::int64_t end = env_.segment_end(0);
             for (std::int32_t x = cb + 1; x < W;) {  // rightwards: segment k holds pixels x .. end - 1
@@ -359,6 +353,28 @@ private:
             }
         }
         return static_cast<std::int32_t>(std::lower_bound(fx + lo + 1, fx + hi, v) - fx);
+    }
+
+    /// Removals: the first x >= x0 with fx[x] > xhi (fx non-decreasing), or W; k becomes the largest
+    /// |vg| over the pixels before it. Eight pixels at a time with SSE2 (the intervals run for
+    /// dozens of pixels in open space).
+    static std::int32_t interval_end(const std::int16_t* fx, const std::int16_t* vg, std::int32_t x0, std::int32_t W, std::int32_t xhi,
+                                     std::int32_t& k) {
+        std::int32_t x = x0;
+#if defined(__SSE2__)
+        const __m128i lim = _mm_set1_epi16(static_cast<std::int16_t>(xhi)), zero = _mm_setzero_si128();
+        __m128i most = zero;
+        for (; x + 8 <= W; x += 8) {
+            if (_mm_movemask_epi8(_mm_cmpgt_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x)), lim)) != 0) break;
+            const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x));
+            most = _mm_max_epi16(most, _mm_max_epi16(v, _mm_sub_epi16(zero, v)));  // |v| <= 16383
+        }
+        alignas(16) std::int16_t lanes[8];
+        _mm_store_si128(reinterpret_cast<__m128i*>(lanes), most);
+        for (const std::int16_t l : lanes) k = std::max<std::int32_t>(k, l);
+#endif
+        for (; x < W && fx[x] <= xhi; ++x) k = std::max<std::int32_t>(k, std::abs(static_cast<std::int32_t>(vg[x])));
+        return x;
     }
 
     /// Removals: pixels x0 .. x1 of row r take the nearest points fill_run put in run_x_ / run_y_
@@ -420,22 +436,12 @@ private:
         const __m128i CX = _mm_set1_epi16(static_cast<std::int16_t>(cx)), CY = _mm_set1_epi16(static_cast<std::int16_t>(cy));
         const __m128i YV = _mm_set1_epi16(static_cast<std::int16_t>(Y)), LIM = _mm_set1_epi16(static_cast<std::int16_t>(lim));
         const __m128i lane = _mm_setr_epi16(0, 1, 2, 3, 4, 5, 6, 7), zero = _mm_setzero_si128();
-        const __m128i NDY = _mm_sub_epi16(CY, YV);  // the same for every pixel
         for (; kRight ? x + 7 <= to : x - 7 >= to; x += 8 * step) {
             const std::int32_t x0 = kRight ? x : x - 7;  // the eight pixels x0 .. x0 + 7
             const __m128i vfx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x0));
             const __m128i vfy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x0));
             const __m128i vvg = _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x0));
-            const __m128i X = _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x0 + 1)), _mm_add_epi16(lane, lane));
-            const __m128i odx = _mm_sub_epi16(vfx, X), ody = _mm_sub_epi16(vfy, YV), ndx = _mm_sub_epi16(CX, X);
-            const __m128i olo = _mm_unpacklo_epi16(odx, ody), ohi = _mm_unpackhi_epi16(odx, ody);
-            const __m128i nlo = _mm_unpacklo_epi16(ndx, NDY), nhi = _mm_unpackhi_epi16(ndx, NDY);
-            const __m128i o0 = _mm_madd_epi16(olo, olo), o1 = _mm_madd_epi16(ohi, ohi);
-            const __m128i n0 = _mm_madd_epi16(nlo, nlo), n1 = _mm_madd_epi16(nhi, nhi);
-            const __m128i lt = _mm_packs_epi32(_mm_cmplt_epi32(n0, o0), _mm_cmplt_epi32(n1, o1));
-            const __m128i eq = _mm_packs_epi32(_mm_cmpeq_epi32(n0, o0), _mm_cmpeq_epi32(n1, o1));
-            const __m128i tie = _mm_or_si128(_mm_cmplt_epi16(CX, vfx), _mm_and_si128(_mm_cmpeq_epi16(CX, vfx), _mm_cmplt_epi16(CY, vfy)));
-            __m128i take = _mm_andnot_si128(_mm_cmpeq_epi16(vvg, zero), _mm_or_si128(lt, _mm_and_si128(eq, tie)));
+            __m128i take = beats(vfx, vfy, vvg, x0, YV, CX, CY);
             const __m128i beyond = kRight ? _mm_cmpgt_epi16(vfx, LIM) : _mm_cmplt_epi16(vfx, LIM);
             const int stops = _mm_movemask_epi8(_mm_packs_epi16(_mm_andnot_si128(take, beyond), zero));
             std::int32_t stop = -1;  // the lane where the scan ends
@@ -461,6 +467,59 @@ private:
             if (!took && (kRight ? fx[x] > lim : fx[x] < lim)) return x;
         }
         return x;
+    }
+
+#if defined(__SSE2__)
+    /// Additions, eight pixels x0 .. x0 + 7 of a row (pixel centres' y YV) with nearest points
+    /// (vfx, vfy) and pass-1 offsets vvg: the lanes where the candidates (CX, CY) beat the pixel's
+    /// point (ties: the smaller x, then y) and the pixel is free. Offsets fit 16 bits and two squares
+    /// sum below 2^31 (sides <= 16383): pmaddwd squares, as in a build's fill_run.
+    static __m128i beats(__m128i vfx, __m128i vfy, __m128i vvg, std::int32_t x0, __m128i YV, __m128i CX, __m128i CY) {
+        const __m128i X = _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x0 + 1)), _mm_setr_epi16(0, 2, 4, 6, 8, 10, 12, 14));
+        const __m128i odx = _mm_sub_epi16(vfx, X), ody = _mm_sub_epi16(vfy, YV);
+        const __m128i ndx = _mm_sub_epi16(CX, X), ndy = _mm_sub_epi16(CY, YV);
+        const __m128i olo = _mm_unpacklo_epi16(odx, ody), ohi = _mm_unpackhi_epi16(odx, ody);
+        const __m128i nlo = _mm_unpacklo_epi16(ndx, ndy), nhi = _mm_unpackhi_epi16(ndx, ndy);
+        const __m128i o0 = _mm_madd_epi16(olo, olo), o1 = _mm_madd_epi16(ohi, ohi);
+        const __m128i n0 = _mm_madd_epi16(nlo, nlo), n1 = _mm_madd_epi16(nhi, nhi);
+        const __m128i lt = _mm_packs_epi32(_mm_cmplt_epi32(n0, o0), _mm_cmplt_epi32(n1, o1));
+        const __m128i eq = _mm_packs_epi32(_mm_cmpeq_epi32(n0, o0), _mm_cmpeq_epi32(n1, o1));
+        const __m128i tie = _mm_or_si128(_mm_cmplt_epi16(CX, vfx), _mm_and_si128(_mm_cmpeq_epi16(CX, vfx), _mm_cmplt_epi16(CY, vfy)));
+        return _mm_andnot_si128(_mm_cmpeq_epi16(vvg, _mm_setzero_si128()), _mm_or_si128(lt, _mm_and_si128(eq, tie)));
+    }
+#endif
+
+    /// Additions: pixels x0 .. x1 of row r take the nearest points fill_run put in run_x_ / run_y_
+    /// where those beat their own (free pixels only), eight at a time with SSE2.
+    void offer_filled(std::int32_t r, std::int32_t x0, std::int32_t x1) {
+        const std::size_t base = f_.at(r, 0);
+        std::int16_t* fx = &f_.fx[base];
+        std::int16_t* fy = &f_.fy[base];
+        const std::int16_t* vg = &f_.vgap[base];
+        const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1;
+        std::int32_t x = x0;
+#if defined(__SSE2__)
+        const __m128i YV = _mm_set1_epi16(static_cast<std::int16_t>(Y)), zero = _mm_setzero_si128();
+        for (; x + 8 <= x1 + 1; x += 8) {
+            const __m128i vfx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x));
+            const __m128i vfy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x));
+            const __m128i nx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(run_x_.data() + x));
+            const __m128i ny = _mm_loadu_si128(reinterpret_cast<const __m128i*>(run_y_.data() + x));
+            const __m128i take = beats(vfx, vfy, _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x)), x, YV, nx, ny);
+            const auto took = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(take, zero)));
+            if (took == 0) continue;
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x), _mm_or_si128(_mm_and_si128(take, nx), _mm_andnot_si128(take, vfx)));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x), _mm_or_si128(_mm_and_si128(take, ny), _mm_andnot_si128(take, vfy)));
+            touched_.set_eight(r, x, took);
+            feature_changes += static_cast<std::uint64_t>(popcount(took));
+        }
+#endif
+        for (; x <= x1; ++x) {
+            if (vg[x] == 0) continue;
+            const std::int32_t nx = run_x_[static_cast<std::size_t>(x)], ny = run_y_[static_cast<std::size_t>(x)];
+            const std::int64_t dx = nx - (2 * x + 1), dy = ny - Y;
+            offer(r, x, {dx * dx + dy * dy, nx, ny});
+        }
     }
 
     /// Additions: pixel (r, x) takes the candidate nc when it beats the pixel's nearest point (ties:
