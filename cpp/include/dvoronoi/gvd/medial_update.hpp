@@ -280,6 +280,17 @@ public:
             std::size_t b = a;
             while (b + 1 < n && cols[b + 1] == cols[b] + 1) ++b;
             const std::int32_t ca = cols[a], cb = cols[b];
+            a = b + 1;
+            if (std::all_of(vg + ca + 1, vg + cb + 1, [&](std::int16_t v) { return v == vg[ca]; })) {
+                // The common run (a blob's columns above or below it): one offset, so the envelope
+                // is its two end edges (build() drops the flat ones between) and each pixel of the run
+                // takes its own column's square, strictly nearer than either edge.
+                const std::int32_t y = feature_y(Y, vg[ca]);
+                if (ca > 0) offer_segment<false>(r, ca - 1, 0, 2 * ca, y, 2 * ca);
+                if (vg[ca] != 0) offer_filled<true>(r, ca, cb, y);  // else all newly occupied
+                if (cb + 1 < W) offer_segment<true>(r, cb + 1, W - 1, 2 * cb + 2, y, 2 * cb + 2);
+                continue;
+            }
             env_.build(g_, f_, r, ca, cb);
             // Outside [ca, cb] a pixel's candidate is the edge whose segment holds it: the segments
             // are walked along with the scan, each offered to its pixels at once.
@@ -294,7 +305,7 @@ public:
             }
             // inside [ca, cb], the run's pixels segment by segment as a build fills them
             env_.fill_run(ca, cb, run_x_.data(), run_y_.data());
-            offer_filled(r, ca, cb);
+            offer_filled<false>(r, ca, cb);
             k = 0;
             std::int64_t end = env_.segment_end(0);
             for (std::int32_t x = cb + 1; x < W;) {  // rightwards: segment k holds pixels x .. end - 1
@@ -304,7 +315,6 @@ public:
                 if (offer_segment<true>(r, x, hi, e.x, e.y, 2 * cb + 2) <= hi) break;
                 x = hi + 1;
             }
-            a = b + 1;
         }
     }
 
@@ -490,8 +500,10 @@ private:
 #endif
 
     /// Additions: pixels x0 .. x1 of row r take the nearest points fill_run put in run_x_ / run_y_
-    /// where those beat their own (free pixels only), eight at a time with SSE2.
-    void offer_filled(std::int32_t r, std::int32_t x0, std::int32_t x1) {
+    /// (kOwn: the points (2x + 1, y) of their own columns) where those beat their own (free pixels
+    /// only), eight at a time with SSE2.
+    template <bool kOwn>
+    void offer_filled(std::int32_t r, std::int32_t x0, std::int32_t x1, std::int32_t y = 0) {
         const std::size_t base = f_.at(r, 0);
         std::int16_t* fx = &f_.fx[base];
         std::int16_t* fy = &f_.fy[base];
@@ -503,8 +515,9 @@ private:
         for (; x + 8 <= x1 + 1; x += 8) {
             const __m128i vfx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x));
             const __m128i vfy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x));
-            const __m128i nx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(run_x_.data() + x));
-            const __m128i ny = _mm_loadu_si128(reinterpret_cast<const __m128i*>(run_y_.data() + x));
+            const __m128i nx = kOwn ? _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x + 1)), _mm_setr_epi16(0, 2, 4, 6, 8, 10, 12, 14))
+                                    : _mm_loadu_si128(reinterpret_cast<const __m128i*>(run_x_.data() + x));
+            const __m128i ny = kOwn ? _mm_set1_epi16(static_cast<std::int16_t>(y)) : _mm_loadu_si128(reinterpret_cast<const __m128i*>(run_y_.data() + x));
             const __m128i take = beats(vfx, vfy, _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x)), x, YV, nx, ny);
             const auto took = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(take, zero)));
             if (took == 0) continue;
@@ -516,7 +529,7 @@ private:
 #endif
         for (; x <= x1; ++x) {
             if (vg[x] == 0) continue;
-            const std::int32_t nx = run_x_[static_cast<std::size_t>(x)], ny = run_y_[static_cast<std::size_t>(x)];
+            const std::int32_t nx = kOwn ? 2 * x + 1 : run_x_[static_cast<std::size_t>(x)], ny = kOwn ? y : run_y_[static_cast<std::size_t>(x)];
             const std::int64_t dx = nx - (2 * x + 1), dy = ny - Y;
             offer(r, x, {dx * dx + dy * dy, nx, ny});
         }
