@@ -145,7 +145,12 @@ public:
     /// build(), for free pixels s .. t inside [ca, cb], the same answers as query().
     void fill_run(std::int32_t s, std::int32_t t, std::int16_t* fx, std::int16_t* fy) const {
         std::int32_t x = s;
-        for (std::size_t k = 0; k < top_ && x <= t; ++k) {
+        // the segment holding s: edge k + 1 takes s when its value there is strictly smaller (a
+        // product, not first_beaten's division: an update fills a few pixels of a wide envelope)
+        const std::int64_t X4 = 4 * (2 * std::int64_t{s} + 1);
+        std::size_t k0 = 0;
+        while (k0 + 1 < top_ && hA_[k0 + 1] - X4 * he_[k0 + 1] < hA_[k0] - X4 * he_[k0]) ++k0;
+        for (std::size_t k = k0; k < top_ && x <= t; ++k) {
             std::int32_t end = t + 1;  // the first pixel that edge k + 1 takes
             if (k + 1 < top_) end = std::min<std::int64_t>(end, first_beaten(k));
             const std::int64_t e2 = 2 * std::int64_t{he_[k]}, off = hA_[k] - e2 * e2;
