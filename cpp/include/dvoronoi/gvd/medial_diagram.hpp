@@ -162,7 +162,9 @@ private:
             for (int b = 0; b < 2; ++b) {
                 if ((a == 1 && cs[1] == cs[0]) || (b == 1 && js[1] == js[0])) continue;
                 const std::int32_t c = cs[a], j = js[b];
-                if (c < c0_ || c > c1_ || j < j0_ || j > j1_ || !g.blocked(g.rows - 1 - j, c)) continue;
+                if (c < c0_ || c > c1_ || j < j0_ || j > j1_) continue;
+                // the bits when the diagram keeps them: the bytes of a box far away are out of cache
+                if (!(bits_ ? bits_->test(j, c) : g.blocked(g.rows - 1 - j, c))) continue;
                 out[static_cast<std::size_t>(n++)] = c;
                 out[static_cast<std::size_t>(n++)] = j;
             }

@@ -147,6 +147,11 @@ public:
         const std::uint64_t m = std::uint64_t{1} << (bit % 64);
         word = v ? (word | m) : (word & ~m);
     }
+    /// Is square (j, c) occupied or outside (-1 <= j <= rows, -1 <= c <= cols)?
+    bool test(std::int32_t j, std::int32_t c) const {
+        const std::size_t bit = static_cast<std::size_t>(c + 1);
+        return (w_[static_cast<std::size_t>(j + 1) * stride_ + bit / 64] >> (bit % 64) & 1) != 0;
+    }
     /// Square row j's words (column c is bit c + 1).
     const std::uint64_t* row_words(std::int32_t j) const { return &w_[static_cast<std::size_t>(j + 1) * stride_]; }
     /// Bits of columns c0 .. c0 + n - 1 (n <= 64, -1 <= c0, c0 + n - 1 <= cols) of square row j.
