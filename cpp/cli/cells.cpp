@@ -59,8 +59,7 @@ int run_cells(const CellsOptions& o) {
     const Method method = parse_method(o.method);
     const bool to_stdout = o.output.empty() || o.output == "-";
     const Format format = to_stdout ? Format::Json : output_format(o.output, "-o/--output");
-    if (!to_stdout && !o.svg.empty() && o.output == o.svg)
-        throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
+    check_outputs_differ(o.output, o.svg);
 
     const io::PointFile file = read_points_argument(o.points, o.columns, true);
 

@@ -12,6 +12,7 @@
 #include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -66,6 +67,21 @@ inline std::string lower_extension(const std::string& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     return ext;
+}
+
+/// Refuses an --svg path naming the -o/--output file (as spelt, or another path to it: ./a.json, an
+/// absolute path, a link): both would be written and one lost.
+inline void check_outputs_differ(const std::string& output, const std::string& svg) {
+    if (output.empty() || output == "-" || svg.empty()) return;
+    namespace fs = std::filesystem;
+    auto resolved = [](const std::string& p) {  // links and dots resolved as far as the path exists
+        std::error_code ec;
+        const fs::path c = fs::weakly_canonical(fs::absolute(fs::path(p), ec), ec);
+        return ec ? fs::path(p).lexically_normal() : c;
+    };
+    std::error_code ec;
+    const bool same = fs::equivalent(output, svg, ec) || resolved(output) == resolved(svg);
+    if (same || output == svg) throw UsageError("--svg: same file as -o/--output ('" + svg + "')");
 }
 
 /// The format of an output path, from its extension. \throws UsageError naming `option`.

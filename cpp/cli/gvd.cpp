@@ -9,6 +9,7 @@
 #include "dvoronoi/io/medial_export.hpp"
 #include "dvoronoi/io/occupancy_map.hpp"
 
+#include <filesystem>
 #include <thread>
 
 #include "dvoronoi/gvd/grid_voronoi.hpp"
@@ -54,7 +55,7 @@ bool check_common(const GvdCliOptions& o) {
     const bool to_stdout = o.output.empty() || o.output == "-";
     if (!to_stdout && lower_extension(o.output) != ".json")
         throw UsageError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
-    if (!to_stdout && !o.svg.empty() && o.output == o.svg) throw UsageError("--svg: same file as -o/--output ('" + o.svg + "')");
+    check_outputs_differ(o.output, o.svg);
     return to_stdout;
 }
 
@@ -105,6 +106,8 @@ int run_map(const GvdCliOptions& o) {
 
 int run_gvd(const GvdCliOptions& o) {
     if (is_map_file(o.obstacles)) return run_map(o);
+    if (std::filesystem::is_directory(o.obstacles))
+        throw UsageError("'" + o.obstacles + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
     if (o.grid < 1) throw UsageError("--grid: required for obstacle files, at least 1, got " + std::to_string(o.grid));
     const bool to_stdout = check_common(o);
 

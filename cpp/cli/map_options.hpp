@@ -55,6 +55,8 @@ struct MapOptions {
         if ((ext == ".yaml" || ext == ".yml") && (resolution_given || !origin.empty()))
             throw InputError("--resolution/--origin: a map_server YAML brings its own resolution and origin");
         if (!origin.empty() && origin.size() != 2) throw InputError("--origin: expects X Y");
+        for (double v : origin)
+            if (!std::isfinite(v)) throw InputError("--origin: coordinates must be finite, got " + num(v));
         if (!std::isfinite(min_separation) || min_separation < 1.0)
             throw InputError("--min-separation: must be a finite number >= 1 (pixels), got " + num(min_separation));
         if (!std::isfinite(prune_length) || prune_length < 0.0 || prune_length > 256.0)

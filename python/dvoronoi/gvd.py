@@ -325,6 +325,13 @@ def _is_map(source: Any) -> bool:
         return True
     if isinstance(source, (str, os.PathLike)):
         return os.fspath(source).lower().endswith(MAP_EXTENSIONS)
+    if isinstance(source, (list, tuple)) and source and all(isinstance(row, (list, tuple)) for row in source):
+        # nested lists of True/False are an occupancy grid (obstacle documents hold coordinates)
+        try:
+            a = np.asarray(source)
+        except ValueError:  # ragged
+            return False
+        return a.ndim == 2 and a.dtype == bool
     return False
 
 
@@ -384,7 +391,7 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
             raise ValueError("area: an occupancy grid's area is the map itself; do not pass area=")
         if cells is not None:
             raise ValueError("cells: an occupancy grid's diagram grid is its pixel grid; do not pass cells=")
-        grid = as_occupancy_grid(obstacles, resolution, origin, unknown, occupied_thresh)
+        grid = as_occupancy_grid(obstacles, resolution, origin, unknown, occupied_thresh, copy=False)
         if diagram in (None, "medial"):
             return medial_voronoi(grid, robot_radius, n_workers, min_separation, prune_length, occupied_thresh, unknown)
         H, W = grid.shape

@@ -104,8 +104,18 @@ class OccupancyGrid:
     ``unknown="free"``.
     """
 
+    occupied: np.ndarray
+    resolution: float
+    origin: Tuple[float, float]
+    unknown_pixels: int
+
     def __init__(self, data: Any, resolution: float = 1.0, origin: Sequence[float] = (0.0, 0.0), *,
                  occupied_thresh: float = 0.65, unknown: str = "occupied") -> None:
+        self._set(data, resolution, origin, occupied_thresh, unknown)
+        self.occupied = np.array(self.occupied, dtype=bool, order="C")  # its own: the caller may edit theirs
+
+    def _set(self, data: Any, resolution: float, origin: Sequence[float], occupied_thresh: float, unknown: str) -> None:
+        """__init__ without the copy (for a build, which copies the occupancy into C++ and keeps none)."""
         if unknown not in ("occupied", "free"):
             raise ValueError(f'unknown must be "occupied" or "free", got {unknown!r}')
         t = float(occupied_thresh)
@@ -189,8 +199,9 @@ def _as_bytes(occupied: np.ndarray) -> np.ndarray:
 
 
 def as_occupancy_grid(source: Any, resolution: Optional[float], origin: Optional[Sequence[float]], unknown: str,
-                      occupied_thresh: float) -> OccupancyGrid:
-    """An OccupancyGrid from a grid, a map file path or an array."""
+                      occupied_thresh: float, copy: bool = True) -> OccupancyGrid:
+    """An OccupancyGrid from a grid, a map file path or an array (copied unless `copy` is False: for a
+    build, which copies the occupancy into C++ and keeps none of it)."""
     if isinstance(source, OccupancyGrid):
         if resolution is not None or origin is not None:
             raise ValueError("resolution and origin come with the OccupancyGrid; do not pass them again")
@@ -198,24 +209,45 @@ def as_occupancy_grid(source: Any, resolution: Optional[float], origin: Optional
     if isinstance(source, (str, os.PathLike)):
         return OccupancyGrid.load(source, unknown=unknown, resolution=resolution, origin=origin,
                                   occupied_thresh=occupied_thresh)
-    return OccupancyGrid(source, 1.0 if resolution is None else resolution, (0.0, 0.0) if origin is None else origin,
-                         occupied_thresh=occupied_thresh, unknown=unknown)
+    res, org = 1.0 if resolution is None else resolution, (0.0, 0.0) if origin is None else origin
+    if copy:
+        return OccupancyGrid(source, res, org, occupied_thresh=occupied_thresh, unknown=unknown)
+    g = OccupancyGrid.__new__(OccupancyGrid)
+    g._set(source, res, org, occupied_thresh, unknown)
+    return g
 
 
 def _pixel_indices(pixels: Any, shape: Tuple[int, int], name: str) -> np.ndarray:
-    """Linear indices (int64) of (row, col) pairs, checked against the map; an H x W bool mask is
-    returned as its bytes (uint8 view), for the C++ side to scan."""
+    """Linear indices (int64) of (row, col) pairs — a (k, 2) array, a list of pairs, one pair, or the
+    (rows, cols) tuple np.nonzero gives — checked against the map; an H x W bool mask is returned as
+    its bytes (uint8 view), for the C++ side to scan. Anything else is refused: a (2, k) array or an
+    integer mask would be read as other pixels."""
     H, W = shape
-    a = np.asarray(pixels)
+    if isinstance(pixels, tuple) and len(pixels) == 2 and all(isinstance(p, np.ndarray) for p in pixels):
+        rows, cols = (np.asarray(p) for p in pixels)  # numpy's index arrays (np.nonzero, np.where)
+        if rows.ndim != 1 or rows.shape != cols.shape:
+            raise ValueError(f"{name}: a (rows, cols) tuple needs two 1-d arrays of one length, got shapes "
+                             f"{rows.shape} and {cols.shape}")
+        a = np.stack([rows, cols], axis=1) if rows.size else np.empty((0, 2), dtype=np.int64)
+    else:
+        a = np.asarray(pixels)
     if a.dtype == bool:
         if a.shape != shape:
             raise ValueError(f"{name}: a mask must have the map's shape {shape}, got {a.shape}")
         return np.ascontiguousarray(a).view(np.uint8)
     if a.size == 0:
         return np.empty(0, dtype=np.int64)
+    if a.ndim == 1 and a.shape[0] == 2:
+        a = a.reshape(1, 2)  # one pair
+    if a.ndim != 2 or a.shape[1] != 2:
+        hint = " (an integer mask? pass mask.astype(bool))" if a.shape == shape else \
+            (" (np.nonzero's rows and columns as one array? pass np.nonzero(mask) itself, or the bool mask)"
+             if a.ndim == 2 and a.shape[0] == 2 else "")
+        raise ValueError(f"{name} must be (row, col) pairs of shape (k, 2) or an H x W bool mask, got shape "
+                         f"{a.shape}{hint}")
     if a.dtype.kind not in "iu" and not (a.dtype.kind == "f" and np.all(a == np.round(a))):
         raise TypeError(f"{name} must be (row, col) integer pairs or an H x W bool mask, got dtype {a.dtype}")
-    a = a.astype(np.int64).reshape(-1, 2) if a.ndim != 2 or a.shape[1] != 2 else a.astype(np.int64)
+    a = a.astype(np.int64)
     bad = (a[:, 0] < 0) | (a[:, 0] >= H) | (a[:, 1] < 0) | (a[:, 1] >= W)
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
@@ -247,11 +279,17 @@ class OccupancyVoronoi:
     # -- the map and the diagram ---------------------------------------------------------------
     @property
     def grid(self) -> OccupancyGrid:
-        """The occupancy grid as it is now (after updates)."""
-        if "occupancy" not in self._cache:
-            self._grid.occupied = self._core.occupancy
-            self._cache["occupancy"] = self._grid.occupied
-        return self._grid
+        """The occupancy grid as it is now: a snapshot with a read-only ``occupied`` array (the
+        diagram's own copy lives in C++). After an update, read ``grid`` again for the new map; a
+        snapshot taken before keeps showing the map it was taken of."""
+        if "grid" not in self._cache:
+            occ = self._core.occupancy
+            occ.flags.writeable = False
+            snap = OccupancyGrid.__new__(OccupancyGrid)
+            snap.occupied, snap.resolution, snap.origin = occ, self._grid.resolution, self._grid.origin
+            snap.unknown_pixels = self._grid.unknown_pixels
+            self._cache["grid"] = snap  # type: ignore[assignment]
+        return self._cache["grid"]  # type: ignore[return-value]
 
     @property
     def shape(self) -> Tuple[int, int]:
@@ -324,6 +362,10 @@ class OccupancyVoronoi:
         """Replace the map's occupancy (same shape; any form :class:`OccupancyGrid` accepts, or an
         OccupancyGrid) and recompute only what the change can affect. Returns what was touched."""
         if isinstance(new_occupancy, OccupancyGrid):
+            if new_occupancy.resolution != self.resolution or tuple(new_occupancy.origin) != tuple(self.origin):
+                raise ValueError(f"new_occupancy has resolution {new_occupancy.resolution} and origin "
+                                 f"{tuple(new_occupancy.origin)}, the map has {self.resolution} and {tuple(self.origin)}: "
+                                 "an update changes occupancy only (build a new diagram for another frame)")
             occ = new_occupancy.occupied
         else:  # read as the map was: the build's threshold and unknown rule
             occ = _occupied(new_occupancy, self.options.get("occupied_thresh", 0.65), self.options.get("unknown", "occupied"))

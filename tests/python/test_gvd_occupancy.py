@@ -580,3 +580,86 @@ def test_medial_diagram_of_an_obstacle_document():
     assert not inside.any()
     route = gv.path((50, 60), (50, 90))
     assert len(route) >= 2 and LineString(route).distance(Polygon(u)) > 2.0
+
+
+# -- the second review's findings ------------------------------------------------------------------
+
+def test_pixel_lists_are_pairs_or_bool_masks_never_reinterpreted():
+    occ = np.zeros((20, 20), bool)
+    want = np.zeros_like(occ)
+    want[5, 7] = want[6, 9] = want[12, 3] = True
+    for pixels in (np.nonzero(want), np.argwhere(want), [tuple(p) for p in np.argwhere(want)], want):
+        gv = dv.grid_voronoi(occ)
+        gv.set_occupied(pixels)
+        assert np.array_equal(gv.grid.occupied, want), type(pixels)
+    gv = dv.grid_voronoi(occ)
+    gv.set_occupied((4, 11))  # one pair
+    assert np.argwhere(gv.grid.occupied).tolist() == [[4, 11]]
+    with pytest.raises(ValueError, match=r"shape \(2, 3\).*np.nonzero"):
+        gv.set_occupied(np.array([[1, 2, 0], [3, 4, 0]]))
+    with pytest.raises(ValueError, match=r"integer mask\? pass mask.astype\(bool\)"):
+        gv.set_occupied(want.astype(np.uint8))
+    with pytest.raises(ValueError, match=r"two 1-d arrays of one length"):
+        gv.set_free((np.array([1, 2]), np.array([3])))
+    assert np.argwhere(gv.grid.occupied).tolist() == [[4, 11]]  # nothing changed by the refused calls
+
+
+def test_grid_is_a_read_only_snapshot_and_grids_own_their_array():
+    occ = np.zeros((30, 40), bool)
+    occ[10:20, 15:18] = True
+    gv = dv.grid_voronoi(occ)
+    held = gv.grid
+    with pytest.raises(ValueError, match="read-only"):
+        held.occupied[:, 20:23] = True
+    gv.set_occupied([(1, 1)])
+    assert not held.occupied[1, 1] and gv.grid.occupied[1, 1]  # the snapshot keeps its map
+    back = pickle.loads(pickle.dumps(gv))
+    assert np.array_equal(back.diagram_mask, gv.diagram_mask) and np.array_equal(back.grid.occupied, gv.grid.occupied)
+    # a grid made from the caller's array keeps its own copy; the caller's grid is never touched
+    arr = occ.copy()
+    g = dv.OccupancyGrid(arr, resolution=0.5)
+    arr[0, 0] = True
+    assert not g.occupied[0, 0]
+    gv = dv.grid_voronoi(g)
+    gv.set_occupied([(2, 2)])
+    assert not g.occupied[2, 2] and gv.grid.occupied[2, 2]
+    with pytest.raises(ValueError, match=r"resolution 1.0 and origin .* the map has 0.5"):
+        gv.update(dv.OccupancyGrid(occ))
+    gv.update(dv.OccupancyGrid(occ, resolution=0.5))
+    assert not gv.grid.occupied[2, 2]
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(resolution=1e308), r"resolution 1e\+308 is out of range"),
+    (dict(resolution=1e-320), r"resolution 9.99.*e-321 is out of range"),
+    (dict(origin=(1e308, 0.0)), r"origin \(1e\+308, 0\) lies more than 2\^40 pixels"),
+    (dict(resolution=1e-9, origin=(5e3, 5.0)), r"lies more than 2\^40 pixels"),
+])
+def test_map_coordinates_must_tell_pixels_apart(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        dv.grid_voronoi(np.zeros((5, 7), bool), **kwargs)
+    gv = dv.grid_voronoi(np.zeros((5, 7), bool), resolution=1e-6, origin=(1e5 * 1e-6, -3.0))  # in range
+    assert np.isfinite(gv.nearest_points).all() and np.isfinite(gv.clearance_at(gv.points)).all()
+
+
+def test_nested_lists_of_booleans_are_a_map_and_json_names_a_missing_folder(tmp_path):
+    gv = dv.grid_voronoi([[False] * 6, [False, True, True, False, False, False], [False] * 6])
+    assert gv.shape == (3, 6) and gv.grid.occupied.sum() == 2
+    with pytest.raises(FileNotFoundError, match=r"nowhere.*x\.json: the folder .*nowhere does not exist"):
+        gv.to_json(tmp_path / "nowhere" / "x.json")
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.skipif(not CLI, reason="DVORONOI_CLI not set")
+def test_cli_outputs_to_one_file_by_two_names_and_bad_map_arguments(tmp_path):
+    (tmp_path / "a.map").write_text("type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n")
+    for svg in ("./same.json", str(tmp_path / "same.json"), "sub/../same.json"):
+        (tmp_path / "sub").mkdir(exist_ok=True)
+        p = subprocess.run([CLI, "gvd", "a.map", "-q", "-o", "same.json", "--svg", svg], capture_output=True, text=True,
+                           cwd=tmp_path)
+        assert p.returncode == 2 and "--svg: same file as -o/--output" in p.stderr, (svg, p.stderr)
+        assert not (tmp_path / "same.json").exists()
+    p = subprocess.run([CLI, "gvd", str(tmp_path)], capture_output=True, text=True)
+    assert p.returncode == 2 and "is a folder: give a map file" in p.stderr, p.stderr
+    p = subprocess.run([CLI, "gvd", "a.map", "--origin", "nan", "0", "-q"], capture_output=True, text=True, cwd=tmp_path)
+    assert p.returncode == 2 and "--origin: coordinates must be finite" in p.stderr, p.stderr
