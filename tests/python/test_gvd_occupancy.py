@@ -268,8 +268,8 @@ def test_ros_yaml_pgm_png_and_movingai(tmp_path):
     gv = dv.grid_voronoi(tmp_path / "m.yaml")
     assert np.array_equal(gv.diagram_mask, dv.grid_voronoi(dv.OccupancyGrid(expect, 0.05, (-1, 2.5))).diagram_mask)
     if _core._has_png:
-        import matplotlib.image as mpimg
-        mpimg.imsave(tmp_path / "m.png", img, cmap="gray", vmin=0, vmax=255)
+        from PIL import Image  # a grey PNG (matplotlib writes RGBA, whose alpha map_server averages in)
+        Image.fromarray(img, "L").save(tmp_path / "m.png")
         assert np.array_equal(dv.OccupancyGrid.load(tmp_path / "m.png").occupied, expect)
     rows = ["".join("@" if v else "." for v in row) for row in expect]
     rows[0] = "G" + rows[0][1:] if not expect[0, 0] else rows[0]
@@ -524,14 +524,17 @@ def test_ros_message_rows_start_at_the_bottom():
 @pytest.mark.skipif(not _core._has_png, reason="built without libpng")
 def test_png_colours_are_averaged_as_map_server_does(tmp_path):
     import matplotlib.image as mpimg
+    # map_server's trinary mode averages every channel, alpha included: v = (R + G + B + A) / 4
     rgba = np.ones((2, 3, 4))
-    rgba[0, 0, :3] = (0, 1, 0)        # green: mean 1/3, occupancy 2/3 > 0.65: occupied
-    rgba[0, 1, :3] = (1, 0, 0)        # red: the same
-    rgba[0, 2, 3] = 0.0               # transparent white: alpha ignored, free
-    rgba[1, 0, :3] = 0.0              # black: occupied
-    mpimg.imsave(tmp_path / "c.png", rgba)
+    rgba[0, 0, :3] = (0, 1, 0)        # opaque green: v = 1/2, occupancy 1/2: unknown
+    rgba[0, 1, :3] = (1, 0, 0)        # opaque red: the same
+    rgba[0, 2, 3] = 0.0               # transparent white: v = 3/4, occupancy 1/4: unknown
+    rgba[1, 0, :3] = 0.0              # opaque black: v = 1/4, occupancy 3/4: occupied
+    mpimg.imsave(tmp_path / "c.png", rgba)  # opaque white elsewhere: free
     g = dv.OccupancyGrid.load(tmp_path / "c.png")
-    assert g.occupied.tolist() == [[True, True, False], [True, False, False]]
+    assert g.occupied.tolist() == [[True, True, True], [True, False, False]] and g.unknown_pixels == 3
+    free = dv.OccupancyGrid.load(tmp_path / "c.png", unknown="free")
+    assert free.occupied.tolist() == [[False, False, False], [True, False, False]]
 
 
 def test_labelled_diagram_of_a_file_reads_it_as_the_medial_one(tmp_path):

@@ -1,11 +1,21 @@
 // Occupancy-grid map files: ROS map_server YAML (with its PGM or PNG image), PGM (P2/P5), PNG and the
 // MovingAI benchmark `.map` text format (docs/spec.md, "Grid diagram on occupancy grids").
 //
-// Grey images follow map_server's trinary rule: with v the grey level scaled to [0, 1] (the mean of
-// the colour channels, alpha ignored), the occupancy probability is p = 1 - v (p = v with `negate`); p > occupied_thresh is
-// occupied, p < free_thresh free, anything between unknown. Unknown pixels count as occupied unless
-// the caller says otherwise. MovingAI maps: `.` and `G` free, `@ O T S W` blocked, any other character
-// an error naming the line and column.
+// Grey images follow map_server's trinary rule (ROS1 map_server's image_loader.cpp, nav2's
+// map_io.cpp): v is the mean of all the pixel's channels as stored, scaled to [0, 1]; the occupancy
+// probability is p = 1 - v (p = v with `negate`); p > occupied_thresh is occupied, p < free_thresh
+// free, anything between unknown. Alpha counts as a channel ("Alpha will be averaged in with color
+// channels when using trinary mode"), and a grey+alpha pixel is R = G = B = grey plus alpha as
+// map_server sees it: v = (r + g + b + a) / 4 and (3 grey + a) / 4, so a transparent pixel reads
+// darker. Unknown pixels count as occupied unless the caller says otherwise. MovingAI maps: `.` and
+// `G` free, `@ O T S W` blocked, any other character an error naming the line and column.
+//
+// PNG samples are read as stored, as map_server does: no gamma, sRGB or ICC conversion (gAMA, cHRM,
+// sRGB and iCCP are ignored); 1, 2 and 4-bit grey is scaled to 8 bits, a palette is looked up (its
+// tRNS entries give alpha). 16-bit samples keep their precision, v = s / 65535 as for 16-bit PGM
+// (nav2 reads them at full precision; ROS1 keeps the high byte, which can differ only for a pixel
+// within 1/255 of a threshold). A tRNS colour key on a grey or RGB image is not a channel: SDL_image,
+// ROS1's loader, makes it a colour key, and it is ignored here.
 //
 // Errors: InputError whose message starts with `FILE:` (and `LINE:` for text formats). PNG needs
 // libpng: the CLI and the Python module are built with it when CMake finds it
@@ -15,8 +25,11 @@
 #include "dvoronoi/gvd/occupancy_grid.hpp"
 #include "dvoronoi/io/quote.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -31,10 +44,10 @@ namespace dvoronoi::io {
 
 struct MapReadOptions {
     bool unknown_occupied = true;  ///< unknown pixels (between the thresholds) count as occupied
-    double resolution = 1.0;       ///< map units per pixel (images without YAML)
-    Vec2 origin = Vec2(0.0, 0.0);  ///< lower-left corner (images without YAML)
-    double occupied_thresh = 0.65;
-    double free_thresh = 0.196;
+    double resolution = 1.0;       ///< map units per pixel (images without YAML); finite, > 0
+    Vec2 origin = Vec2(0.0, 0.0);  ///< lower-left corner (images without YAML); finite
+    double occupied_thresh = 0.65; ///< in [0, 1]
+    double free_thresh = 0.196;    ///< in [0, 1], at most occupied_thresh
     bool negate = false;
 };
 
@@ -64,6 +77,41 @@ inline std::string lower_ext(const std::string& path) {
     return e;
 }
 
+/// The shortest decimal that reads back as `v` (messages quote the caller's numbers).
+inline std::string shortest(double v) {
+    char buf[40];
+    for (int digits = 6; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+        if (!std::isfinite(v) || std::strtod(buf, nullptr) == v) break;
+    }
+    return buf;
+}
+
+/// One check of the options, whoever gave them (the caller or a YAML): the key at fault and `why`
+/// ("KEY: ..."), or nullptr. NaN fails every comparison below, so it is refused too.
+inline const char* bad_read_option(const MapReadOptions& o, std::string& why) {
+    if (!(std::isfinite(o.resolution) && o.resolution > 0.0)) {
+        why = "resolution: must be a positive finite number, got " + shortest(o.resolution);
+        return "resolution";
+    }
+    if (!std::isfinite(o.origin.x()) || !std::isfinite(o.origin.y())) {
+        why = "origin: must be finite, got (" + shortest(o.origin.x()) + ", " + shortest(o.origin.y()) + ")";
+        return "origin";
+    }
+    for (const char* key : {"occupied_thresh", "free_thresh"}) {
+        const double t = key[0] == 'o' ? o.occupied_thresh : o.free_thresh;
+        if (!(t >= 0.0 && t <= 1.0)) {
+            why = std::string(key) + ": expected a number in [0, 1], got " + shortest(t);
+            return key;
+        }
+    }
+    if (o.free_thresh > o.occupied_thresh) {
+        why = "free_thresh is larger than occupied_thresh (" + shortest(o.free_thresh) + " > " + shortest(o.occupied_thresh) + ")";
+        return "free_thresh";
+    }
+    return nullptr;
+}
+
 /// Grey levels in [0, 1] (row 0 at the top) to occupancy by map_server's trinary rule.
 inline LoadedMap from_grey(const std::vector<double>& grey, std::int32_t h, std::int32_t w, const MapReadOptions& o) {
     LoadedMap out;
@@ -84,6 +132,14 @@ inline void check_size(const std::string& path, long long w, long long h) {
     if (w < 1 || h < 1 || w > gvd::kMaxMapSide || h > gvd::kMaxMapSide)
         throw InputError(path + ": image of " + std::to_string(w) + " x " + std::to_string(h) +
                          " pixels: each side must be between 1 and " + std::to_string(gvd::kMaxMapSide));
+}
+
+/// "LINE:COLUMN" (1-based) of byte `pos` of a text file.
+inline std::string line_column(const std::string& data, std::size_t pos) {
+    std::size_t line = 1, start = 0;
+    for (std::size_t i = 0; i < pos && i < data.size(); ++i)
+        if (data[i] == '\n') ++line, start = i + 1;
+    return std::to_string(line) + ":" + std::to_string(pos - start + 1);
 }
 
 /// PGM, binary (P5) or plain (P2): grey levels in [0, 1].
@@ -139,10 +195,24 @@ inline std::vector<double> read_pgm(const std::string& path, std::int32_t& h, st
             grey[i] = static_cast<double>(std::min<unsigned>(v, static_cast<unsigned>(maxval))) / static_cast<double>(maxval);
         }
     } else {
+        // Plain PGM is text: its pixel errors name the line and column, as the other text formats do.
         for (std::size_t i = 0; i < n; ++i) {
-            while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
-            if (pos >= data.size()) throw InputError(path + ": truncated PGM data (" + std::to_string(i) + " of " + std::to_string(n) + " pixels)");
-            const long long v = number("pixel value", 0);
+            for (;;) {  // whitespace and, as netpbm allows, comments between the values
+                while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+                if (pos >= data.size() || data[pos] != '#') break;
+                while (pos < data.size() && data[pos] != '\n' && data[pos] != '\r') ++pos;
+            }
+            if (pos >= data.size())
+                throw InputError(path + ":" + line_column(data, pos) + ": truncated PGM data (" + std::to_string(i) + " of " +
+                                 std::to_string(n) + " pixels)");
+            const std::size_t start = pos;
+            while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos])) && data[pos] != '#') ++pos;
+            const std::string t = data.substr(start, pos - start);
+            char* end = nullptr;
+            const long long v = std::strtoll(t.c_str(), &end, 10);
+            if (t.empty() || *end != '\0' || v < 0 || !std::isdigit(static_cast<unsigned char>(t[0])))
+                throw InputError(path + ":" + line_column(data, start) + ": bad PGM pixel value '" + printable(t) + "' (pixel " +
+                                 std::to_string(i + 1) + " of " + std::to_string(n) + ")");
             grey[i] = static_cast<double>(std::min(v, maxval)) / static_cast<double>(maxval);
         }
     }
@@ -166,26 +236,96 @@ inline void check_png_data(const std::string& path, const std::string& data, std
                          std::to_string(data.size()) + ")");
 }
 
+/// What libpng's callbacks share: the file's bytes and libpng's last error message. Trivially
+/// destructible, like every local of the functions libpng may longjmp out of.
+struct PngSource {
+    const char* data;
+    std::size_t size;
+    std::size_t pos;
+    char message[200];
+};
+
+inline void png_read_memory(png_structp png, png_bytep out, png_size_t n) {
+    auto* src = static_cast<PngSource*>(png_get_io_ptr(png));
+    if (src->size - src->pos < n) png_error(png, "the file ends inside a chunk");
+    std::memcpy(out, src->data + src->pos, n);
+    src->pos += n;
+}
+
+inline void png_keep_error(png_structp png, png_const_charp message) {
+    auto* src = static_cast<PngSource*>(png_get_error_ptr(png));
+    std::snprintf(src->message, sizeof src->message, "%s", message != nullptr ? message : "libpng error");
+    png_longjmp(png, 1);
+}
+
+inline void png_no_warning(png_structp, png_const_charp) {}  // libpng would print to stderr
+
+// libpng reports errors by longjmp to png_jmpbuf: the two steps below own nothing that needs
+// destroying, so a jump out of libpng back into them leaks nothing; the caller frees the structs.
+/// Reads the header and sets the transforms; false on a libpng error.
+inline bool png_start(png_structp png, png_infop info) {
+    if (setjmp(png_jmpbuf(png))) return false;
+#ifdef PNG_HANDLE_AS_UNKNOWN_SUPPORTED
+    // Colour management is not map_server's business: these chunks are skipped unread.
+    static const png_byte ignored[] = {'c', 'H', 'R', 'M', 0, 'g', 'A', 'M', 'A', 0, 'i', 'C', 'C', 'P', 0, 's', 'R', 'G', 'B', 0};
+    png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, ignored, 4);
+#endif
+    png_read_info(png, info);
+    const int colour = png_get_color_type(png, info);
+    if (colour == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);  // and its tRNS to alpha
+    if (colour == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8) png_set_expand_gray_1_2_4_to_8(png);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    return true;
+}
+
+/// Decodes the rows; false on a libpng error.
+inline bool png_rows(png_structp png, png_bytepp rows) {
+    if (setjmp(png_jmpbuf(png))) return false;
+    png_read_image(png, rows);
+    return true;
+}
+
 inline std::vector<double> read_png(const std::string& path, std::int32_t& h, std::int32_t& w) {
-    png_image img;
-    std::memset(&img, 0, sizeof img);
-    img.version = PNG_IMAGE_VERSION;
     const std::string data = read_bytes(path);
-    if (!png_image_begin_read_from_memory(&img, data.data(), data.size()))
-        throw InputError(path + ": not a readable PNG image (" + img.message + ")");
-    check_size(path, img.width, img.height);
-    check_png_data(path, data, img.width, img.height);
-    // As map_server reads images: the mean of the colour channels as stored, alpha ignored (libpng's
-    // own grey conversion would weight by luminance and composite alpha onto black).
-    img.format = PNG_FORMAT_RGBA;
-    std::vector<unsigned char> px(PNG_IMAGE_SIZE(img));
-    if (!png_image_finish_read(&img, nullptr, px.data(), 0, nullptr))
-        throw InputError(path + ": cannot decode PNG image (" + img.message + ")");
-    w = static_cast<std::int32_t>(img.width);
-    h = static_cast<std::int32_t>(img.height);
-    std::vector<double> grey(px.size() / 4);
-    for (std::size_t i = 0; i < grey.size(); ++i)
-        grey[i] = (px[4 * i] + px[4 * i + 1] + px[4 * i + 2]) / (3.0 * 255.0);
+    PngSource src{data.data(), data.size(), 0, {}};
+    if (data.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(data.data()), 0, 8) != 0)
+        throw InputError(path + ": not a readable PNG image (no PNG signature)");
+    struct Structs {
+        png_structp png = nullptr;
+        png_infop info = nullptr;
+        ~Structs() { png_destroy_read_struct(&png, info != nullptr ? &info : nullptr, nullptr); }
+    } s;
+    s.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &src, png_keep_error, png_no_warning);
+    if (s.png != nullptr) s.info = png_create_info_struct(s.png);
+    if (s.info == nullptr) throw InputError(path + ": cannot decode PNG image (out of memory)");
+    png_set_read_fn(s.png, &src, png_read_memory);
+    if (!png_start(s.png, s.info)) throw InputError(path + ": not a readable PNG image (" + printable(src.message) + ")");
+    const png_uint_32 width = png_get_image_width(s.png, s.info), height = png_get_image_height(s.png, s.info);
+    check_size(path, width, height);
+    check_png_data(path, data, width, height);
+    const int channels = png_get_channels(s.png, s.info);
+    const bool wide = png_get_bit_depth(s.png, s.info) == 16;
+    const std::size_t row_bytes = png_get_rowbytes(s.png, s.info);
+    if (channels < 1 || channels > 4 || row_bytes != static_cast<std::size_t>(width) * static_cast<std::size_t>(channels) * (wide ? 2 : 1))
+        throw InputError(path + ": cannot decode PNG image (unexpected pixel layout)");
+    std::vector<unsigned char> px(row_bytes * height);
+    std::vector<png_bytep> rows(height);
+    for (png_uint_32 r = 0; r < height; ++r) rows[r] = px.data() + r * row_bytes;
+    if (!png_rows(s.png, rows.data())) throw InputError(path + ": cannot decode PNG image (" + printable(src.message) + ")");
+    w = static_cast<std::int32_t>(width);
+    h = static_cast<std::int32_t>(height);
+    // map_server's mean over the channels as stored, alpha included; grey+alpha is R = G = B = grey.
+    const double top = wide ? 65535.0 : 255.0;
+    const double denominator = (channels == 2 ? 4 : channels) * top;
+    auto sample = [&](std::size_t k) { return wide ? static_cast<double>(px[2 * k] << 8 | px[2 * k + 1]) : static_cast<double>(px[k]); };
+    std::vector<double> grey(static_cast<std::size_t>(width) * height);
+    for (std::size_t i = 0; i < grey.size(); ++i) {
+        const std::size_t first = i * static_cast<std::size_t>(channels);
+        double sum = channels == 2 ? 2.0 * sample(first) : 0.0;
+        for (std::size_t c = 0; c < static_cast<std::size_t>(channels); ++c) sum += sample(first + c);
+        grey[i] = sum / denominator;
+    }
     return grey;
 }
 #endif
@@ -250,21 +390,215 @@ inline LoadedMap read_movingai(const std::string& path, const MapReadOptions& o)
     return out;
 }
 
+inline std::string yaml_trim(const std::string& s) {
+    const auto a = s.find_first_not_of(" \t\r\n");
+    if (a == std::string::npos) return std::string();
+    const auto b = s.find_last_not_of(" \t\r\n");
+    return s.substr(a, b - a + 1);
+}
+
+inline bool one_of(char c, const char* set) { return c != '\0' && std::strchr(set, c) != nullptr; }
+
+/// A quote opens a quoted scalar only where a scalar starts (`it's` is plain text).
+inline bool yaml_opens_quote(const std::string& s, std::size_t i) {
+    while (i > 0 && one_of(s[i - 1], " \t\r\n")) --i;
+    return i == 0 || one_of(s[i - 1], ":[{,-?");
+}
+
+/// Where a scan of a text stopped, so that it can go on when the text grows.
+struct YamlScan {
+    std::size_t next = 0;
+    char quote = 0;
+};
+
+/// Walks `s` from `st.next` past quoted scalars, calling `stop(i)` at every other character; the
+/// index where it returned true, or npos. Each character is looked at once over repeated calls.
+template <class Stop>
+std::size_t yaml_scan(const std::string& s, YamlScan& st, Stop&& stop) {
+    std::size_t i = st.next;
+    for (; i < s.size(); ++i) {
+        const char c = s[i];
+        if (st.quote != 0) {
+            if (st.quote == '"' && c == '\\') ++i;
+            else if (c == '\'' && st.quote == '\'' && i + 1 < s.size() && s[i + 1] == '\'') ++i;  // '' is a quote
+            else if (c == st.quote) st.quote = 0;
+        } else if ((c == '"' || c == '\'') && yaml_opens_quote(s, i)) {
+            st.quote = c;
+        } else if (stop(i)) {
+            st.next = i + 1;
+            return i;
+        }
+    }
+    st.next = i;
+    return std::string::npos;
+}
+
+template <class Stop>
+std::size_t yaml_scan(const std::string& s, std::size_t from, Stop&& stop) {
+    YamlScan st;
+    st.next = from;
+    return yaml_scan(s, st, stop);
+}
+
+/// `s` without its comment: `#` at the start or after a blank, outside quotes.
+inline std::string yaml_uncomment(const std::string& s) {
+    const std::size_t hash = yaml_scan(s, 0, [&](std::size_t i) { return s[i] == '#' && (i == 0 || one_of(s[i - 1], " \t")); });
+    return hash == std::string::npos ? s : s.substr(0, hash);
+}
+
+/// Finds the bracket closing the one at s[0] of a text that may grow between calls (the index, or
+/// npos): a flow collection read line by line costs one pass, not one per line.
+struct YamlCloser {
+    YamlScan scan;
+    int depth = 0;
+    std::size_t operator()(const std::string& s) {
+        return yaml_scan(s, scan, [&](std::size_t i) {
+            if (one_of(s[i], "[{")) ++depth;
+            else if (one_of(s[i], "]}")) return --depth == 0;
+            return false;
+        });
+    }
+};
+
+inline std::size_t yaml_close(const std::string& s) { return YamlCloser()(s); }
+
+/// The [begin, end) pieces of s[from, to) between the commas outside brackets and quotes.
+inline std::vector<std::pair<std::size_t, std::size_t>> yaml_split(const std::string& s, std::size_t from, std::size_t to) {
+    std::vector<std::pair<std::size_t, std::size_t>> pieces;
+    std::size_t start = from;
+    int depth = 0;
+    yaml_scan(s.substr(0, to), from, [&](std::size_t i) {
+        if (one_of(s[i], "[{")) ++depth;
+        else if (one_of(s[i], "]}")) --depth;
+        else if (s[i] == ',' && depth == 0) pieces.emplace_back(start, i), start = i + 1;
+        return false;
+    });
+    pieces.emplace_back(start, to);
+    return pieces;
+}
+
+/// The quoted scalar starting at s[i]: its text in `out`, and the index just past its closing quote.
+template <class Fail>
+std::size_t yaml_quoted(const std::string& s, std::size_t i, std::string& out, Fail&& fail) {
+    const char quote = s[i++];
+    out.clear();
+    while (i < s.size()) {
+        const char c = s[i++];
+        if (c == quote) {
+            if (quote == '\'' && i < s.size() && s[i] == '\'') {
+                out += '\'';
+                ++i;
+                continue;
+            }
+            return i;
+        }
+        if (c == '\\' && quote == '"' && i < s.size()) {
+            const char e = s[i++];
+            if (e == 't') out += '\t';
+            else if (one_of(e, "\"\\/ ")) out += e;
+            else fail("unsupported escape '\\" + printable(std::string(1, e)) + "' in a quoted string");
+            continue;
+        }
+        out += c;
+    }
+    fail("unterminated quoted string " + printable(s.substr(0, 40)));
+    return s.size();
+}
+
+/// A scalar value as text: unquoted, and refused if it is YAML this reader does not follow.
+template <class Fail>
+std::string yaml_scalar(const std::string& raw, const std::string& key, Fail&& fail) {
+    const std::string t = yaml_trim(raw);
+    if (t.empty()) return t;
+    if (t[0] == '"' || t[0] == '\'') {
+        std::string out;
+        const std::size_t end = yaml_quoted(t, 0, out, fail);
+        if (end != t.size()) fail(printable(key) + ": text after the quoted value in '" + printable(t) + "'");
+        return out;
+    }
+    if (one_of(t[0], "&*!|>%@`"))
+        fail(printable(key) + ": YAML anchors, aliases, tags and block scalars are not supported, got '" + printable(t) + "'");
+    if (one_of(t[0], "[{")) fail(printable(key) + ": expected a single value, got '" + printable(t) + "'");
+    return t;
+}
+
+/// Splits `key: value` (the key plain or quoted); false if `t` is no such pair.
+template <class Fail>
+bool yaml_key_value(const std::string& t, std::string& key, std::string& value, Fail&& fail) {
+    std::size_t colon = 0;
+    if (t[0] == '"' || t[0] == '\'') {
+        colon = yaml_quoted(t, 0, key, fail);
+        while (colon < t.size() && one_of(t[colon], " \t")) ++colon;
+        if (colon >= t.size() || t[colon] != ':') return false;
+    } else {
+        // a plain key ends at ': ' (`image: C:/maps/a.pgm`); `key:value`, which map_server's YAML
+        // parser would take for one scalar, is read as a pair too
+        colon = t.find(':');
+        for (std::size_t c = colon; c != std::string::npos; c = t.find(':', c + 1))
+            if (c + 1 == t.size() || one_of(t[c + 1], " \t\r\n")) {
+                colon = c;
+                break;
+            }
+        if (colon == std::string::npos) return false;
+        key = yaml_trim(t.substr(0, colon));
+    }
+    value = yaml_trim(t.substr(colon + 1));
+    return true;
+}
+
+/// A YAML 1.1 boolean as yaml-cpp reads one (y/yes/true/on and n/no/false/off, in lower case,
+/// Capitalised or UPPER CASE), or a number 0 or 1: 1 for true, 0 for false, -1 otherwise.
+inline int yaml_flag(const std::string& v) {
+    char* end = nullptr;
+    const double x = std::strtod(v.c_str(), &end);
+    if (!v.empty() && *end == '\0' && (x == 0.0 || x == 1.0)) return x == 1.0 ? 1 : 0;
+    auto all = [&](std::size_t from, bool upper) {
+        return std::all_of(v.begin() + static_cast<std::ptrdiff_t>(from), v.end(), [&](char c) {
+            return upper ? std::isupper(static_cast<unsigned char>(c)) != 0 : std::islower(static_cast<unsigned char>(c)) != 0;
+        });
+    };
+    if (v.empty() || !(all(0, false) || (std::isupper(static_cast<unsigned char>(v[0])) && (all(1, false) || all(1, true)))))
+        return -1;
+    std::string low = v;
+    for (char& c : low) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* t : {"y", "yes", "true", "on"})
+        if (low == t) return 1;
+    for (const char* f : {"n", "no", "false", "off"})
+        if (low == f) return 0;
+    return -1;
+}
+
+/// One key of map_server's flat mapping: its value's text on the key's line, or the items of a
+/// block list (`- x` lines) under it.
+struct YamlEntry {
+    std::string key, value;
+    int line = 0;
+    std::vector<std::pair<std::string, int>> items;  // text and line
+    int item_indent = -1;
+    int nested = 0;  // the first line indented under the key that is not one of its list items
+};
+
 /// map_server's YAML: `image`, `resolution`, `origin: [x, y, yaw]`, `negate`, `occupied_thresh`,
-/// `free_thresh`, `mode` (trinary; scale and raw are refused). A line-based reader of that flat schema.
+/// `free_thresh`, `mode` (trinary; scale and raw are refused). A reader of that flat schema in the
+/// YAML its files are written in: `key: value` lines or one flow mapping `{key: value, ...}`, plain
+/// or quoted scalars, `#` comments, `origin` as `[x, y, yaw]` or a block list of `- x` lines,
+/// `negate` as 0/1 or a YAML 1.1 boolean (as nav2 reads it), a UTF-8 byte order mark, `---` and `...`
+/// (the first document is read, as yaml-cpp's LoadFile does). Lines indented under a key that is not
+/// read are skipped with it. Anything else is an error naming the line. Written here, not with
+/// yaml-cpp: the schema is seven flat keys, and the CLI and the wheel carry no YAML dependency for it.
 inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
-    std::istringstream in(read_bytes(path));
-    std::string line, image;
+    std::string data = read_bytes(path);
+    if (data.compare(0, 3, "\xEF\xBB\xBF") == 0) data.erase(0, 3);
+    std::vector<std::string> lines;
+    for (std::size_t a = 0; a <= data.size();) {
+        std::size_t b = data.find('\n', a);
+        if (b == std::string::npos) b = data.size();
+        lines.push_back(data.substr(a, b - a));
+        a = b + 1;
+    }
     int lineno = 0;
-    bool has_resolution = false;
     auto fail = [&](const std::string& why) -> void {
         throw InputError(path + (lineno > 0 ? ":" + std::to_string(lineno) : std::string()) + ": " + why);
-    };
-    auto trim = [](std::string s) {
-        const auto a = s.find_first_not_of(" \t\r\n");
-        if (a == std::string::npos) return std::string();
-        const auto b = s.find_last_not_of(" \t\r\n");
-        return s.substr(a, b - a + 1);
     };
     auto number = [&](const std::string& key, const std::string& v) {
         char* end = nullptr;
@@ -272,50 +606,165 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
         if (v.empty() || *end != '\0' || !std::isfinite(x)) fail(printable(key) + ": expected a finite number, got '" + printable(v) + "'");
         return x;
     };
-    while (std::getline(in, line)) {
-        ++lineno;
-        const auto hash = line.find('#');
-        if (hash != std::string::npos) line = line.substr(0, hash);
-        line = trim(line);
-        if (line.empty()) continue;
-        const auto colon = line.find(':');
-        if (colon == std::string::npos) fail("expected 'key: value', got '" + printable(line) + "'");
-        const std::string key = trim(line.substr(0, colon));
-        std::string val = trim(line.substr(colon + 1));
-        if (val.size() >= 2 && (val.front() == '"' || val.front() == '\'') && val.back() == val.front())
-            val = val.substr(1, val.size() - 2);
-        if (key == "image") {
-            image = val;
-        } else if (key == "resolution") {
-            o.resolution = number(key, val);
-            if (!(o.resolution > 0)) fail("resolution: must be positive, got '" + printable(val) + "'");
-            has_resolution = true;
-        } else if (key == "origin") {
-            if (val.size() < 2 || val.front() != '[' || val.back() != ']') fail("origin: expected [x, y, yaw], got '" + printable(val) + "'");
+
+    std::vector<YamlEntry> entries;
+    int base = -1;               // the mapping's indentation
+    bool open = false;           // the last key's value is still to come (nothing after its colon)
+    bool started = false, flow = false;
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+        lineno = static_cast<int>(k) + 1;
+        std::string text = yaml_uncomment(lines[k]);
+        std::string t = yaml_trim(text);
+        if (t.empty() || (!started && t[0] == '%')) continue;  // a directive (%YAML 1.1) before `---`
+        const std::size_t indent = text.find_first_not_of(" \t");
+        if (indent == 0 && t.compare(0, 3, "---") == 0 && (t.size() == 3 || one_of(t[3], " \t"))) {
+            if (started) break;  // a second document
+            started = true;
+            t = yaml_trim(t.substr(3));
+            if (t.empty()) continue;
+            if (t[0] != '{') fail("expected a new line after '---', got '" + printable(t) + "'");
+        } else if (indent == 0 && t == "...") {
+            break;
+        }
+        started = true;
+        if (flow) fail("text after the flow mapping '{...}': '" + printable(t) + "'");
+        if (t[0] == '{' && entries.empty()) {
+            // one flow mapping, perhaps over several lines; `at` holds each character's line
+            std::string acc = t;
+            std::vector<int> at(acc.size(), lineno);
+            const int first = lineno;
+            YamlCloser closer;
+            std::size_t close = std::string::npos;
+            while ((close = closer(acc)) == std::string::npos) {
+                if (++k >= lines.size()) {
+                    lineno = first;
+                    fail("the flow mapping '{' is not closed");
+                }
+                const std::string more = "\n" + yaml_uncomment(lines[k]);
+                acc += more;
+                at.insert(at.end(), more.size(), static_cast<int>(k) + 1);
+            }
+            lineno = at[close];
+            if (!yaml_trim(acc.substr(close + 1)).empty())
+                fail("text after the flow mapping '{...}': '" + printable(yaml_trim(acc.substr(close + 1))) + "'");
+            for (const auto& [a, b] : yaml_split(acc, 1, close)) {
+                const std::string item = yaml_trim(acc.substr(a, b - a));
+                if (item.empty()) {
+                    if (b == close) continue;  // `{a: 1, }`
+                    lineno = at[a];
+                    fail("empty entry in the flow mapping");
+                }
+                YamlEntry e;
+                e.line = lineno = at[acc.find_first_not_of(" \t\r\n", a)];
+                if (!yaml_key_value(item, e.key, e.value, fail)) fail("expected 'key: value', got '" + printable(item) + "'");
+                entries.push_back(std::move(e));
+            }
+            flow = true;
+            continue;
+        }
+        const int ind = static_cast<int>(indent);
+        if (base < 0) base = ind;
+        const bool item = t[0] == '-' && (t.size() == 1 || one_of(t[1], " \t"));
+        if (!entries.empty() && ind >= base && (ind > base || (item && open))) {
+            // under the last key: its list items, or lines that matter only if the key is read
+            YamlEntry& e = entries.back();
+            if (item && open && e.nested == 0 && (e.items.empty() || ind == e.item_indent)) {
+                e.item_indent = ind;
+                e.items.emplace_back(yaml_trim(t.substr(1)), lineno);
+            } else if (e.nested == 0) {
+                e.nested = lineno;
+            }
+            continue;
+        }
+        if (ind != base) fail("unexpected indentation (expected the flat 'key: value' lines of a map_server YAML)");
+        YamlEntry e;
+        e.line = lineno;
+        // a key that is a collection, complex (`? `), an anchor or a tag is not map_server's schema
+        if (item || one_of(t[0], "[{?&*!|>%@`") || !yaml_key_value(t, e.key, e.value, fail))
+            fail("expected 'key: value', got '" + printable(t) + "'");
+        // a flow list may go on over the next lines
+        YamlCloser closer;
+        if (!e.value.empty() && one_of(e.value[0], "[{"))
+            while (closer(e.value) == std::string::npos) {
+                if (k + 1 == lines.size()) fail(printable(e.key) + ": '" + e.value.substr(0, 1) + "' is not closed");
+                e.value += " " + yaml_trim(yaml_uncomment(lines[++k]));
+            }
+        open = e.value.empty();
+        entries.push_back(std::move(e));
+    }
+    static const char* const read_keys[] = {"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode"};
+    int key_line[7] = {0, 0, 0, 0, 0, 0, 0};
+    auto key_index = [&](const std::string& key) -> int {
+        for (int i = 0; i < 7; ++i)
+            if (key == read_keys[i]) return i;
+        return -1;
+    };
+    std::string image;
+    for (const YamlEntry& e : entries) {
+        lineno = e.line;
+        const int ki = key_index(e.key);
+        if (ki < 0) continue;  // other keys: ignored, as map_server does
+        if (key_line[ki] != 0) fail("duplicate key '" + e.key + "' (first at line " + std::to_string(key_line[ki]) + ")");
+        key_line[ki] = e.line;
+        if (e.nested != 0) {
+            if (e.value.empty()) fail(e.key + ": expected " + (e.key == "origin" ? "[x, y, yaw] or a list of numbers" : "a value on the key's line"));
+            yaml_scalar(e.value, e.key, fail);  // a block scalar (`|`, `>`) says so
+            lineno = e.nested;
+            fail(e.key + ": unexpected indented line under its value");
+        }
+        if (e.key == "origin") {
+            std::vector<std::pair<std::string, int>> items = e.items;
+            if (items.empty()) {
+                if (e.value.size() < 2 || e.value.front() != '[' || yaml_close(e.value) != e.value.size() - 1)
+                    fail("origin: expected [x, y, yaw], got '" + printable(e.value) + "'");
+                const auto pieces = yaml_split(e.value, 1, e.value.size() - 1);
+                for (std::size_t i = 0; i < pieces.size(); ++i) {
+                    const std::string piece = yaml_trim(e.value.substr(pieces[i].first, pieces[i].second - pieces[i].first));
+                    if (piece.empty() && i + 1 == pieces.size() && i > 0) break;  // `[1, 2, 0, ]`
+                    items.emplace_back(piece, e.line);
+                }
+                if (items.size() == 1 && items[0].first.empty()) items.clear();  // `[]`
+            }
             std::vector<double> xs;
-            std::stringstream ss(val.substr(1, val.size() - 2));
-            std::string item;
-            while (std::getline(ss, item, ',')) xs.push_back(number("origin", trim(item)));
-            if (xs.size() != 3 && xs.size() != 2) fail("origin: expected [x, y, yaw], got '" + printable(val) + "'");
-            if (xs.size() == 3 && xs[2] != 0.0) fail("origin: a rotated map (yaw " + printable(trim(val)) + ") is not supported");
+            for (const auto& [text, line] : items) {
+                lineno = line;
+                xs.push_back(number("origin", yaml_scalar(text, "origin", fail)));
+            }
+            lineno = e.line;
+            if (xs.size() != 3 && xs.size() != 2)
+                fail("origin: expected [x, y, yaw], got " + std::to_string(xs.size()) + " number" + (xs.size() == 1 ? "" : "s"));
+            if (xs.size() == 3 && xs[2] != 0.0) fail("origin: a rotated map (yaw " + shortest(xs[2]) + ") is not supported");
             o.origin = Vec2(xs[0], xs[1]);
-        } else if (key == "negate") {
-            const double v = number(key, val);
-            if (v != 0.0 && v != 1.0) fail("negate: expected 0 or 1, got '" + printable(val) + "'");
-            o.negate = v != 0.0;
-        } else if (key == "occupied_thresh" || key == "free_thresh") {
-            const double v = number(key, val);
-            if (v < 0.0 || v > 1.0) fail(key + ": expected a number in [0, 1], got '" + printable(val) + "'");
-            (key == "occupied_thresh" ? o.occupied_thresh : o.free_thresh) = v;
-        } else if (key == "mode") {
+            continue;
+        }
+        if (!e.items.empty()) fail(e.key + ": expected a single value, got a list");
+        const std::string val = yaml_scalar(e.value, e.key, fail);
+        if (e.key == "image") {
+            if (val.empty()) fail("image: expected the image's file name");
+            image = val;
+        } else if (e.key == "resolution") {
+            o.resolution = number(e.key, val);
+        } else if (e.key == "negate") {
+            // an int for ROS1's map_server; an int or a boolean for nav2's
+            const int flag = yaml_flag(val);
+            if (flag < 0) fail("negate: expected 0, 1, true or false, got '" + printable(val) + "'");
+            o.negate = flag == 1;
+        } else if (e.key == "occupied_thresh" || e.key == "free_thresh") {
+            (e.key == "occupied_thresh" ? o.occupied_thresh : o.free_thresh) = number(e.key, val);
+        } else if (e.key == "mode") {
             // scale and raw give in-between pixels probabilities, not "unknown": no occupied/free rule here
             if (val != "trinary") fail("mode: '" + printable(val) + "' is not supported (trinary); convert the map or give the array");
-        }  // other keys: ignored, as map_server does
+        }
     }
     lineno = 0;
     if (image.empty()) fail("missing 'image'");
-    if (!has_resolution) fail("missing 'resolution'");
-    if (o.free_thresh > o.occupied_thresh) fail("free_thresh is larger than occupied_thresh");
+    if (key_line[1] == 0) fail("missing 'resolution'");
+    std::string why;
+    if (const char* key = bad_read_option(o, why)) {
+        lineno = key_line[key_index(key)];
+        if (lineno == 0 && std::string(key) == "free_thresh") lineno = key_line[key_index("occupied_thresh")];
+        fail(why);
+    }
     std::string img = image;
     if (img.front() != '/') {
         const auto slash = path.find_last_of('/');
@@ -349,28 +798,42 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
     return out;
 }
 
-}  // namespace detail
-
-/// Reads a map by its extension: `.yaml`/`.yml` (map_server), `.pgm`, `.png`, `.map` (MovingAI).
-/// \throws InputError naming the file (and line) for unreadable or malformed files.
-inline LoadedMap read_occupancy_map(const std::string& path, const MapReadOptions& o = {}) {
-    const std::string ext = detail::lower_ext(path);
-    if (ext == ".yaml" || ext == ".yml") return detail::read_ros_yaml(path, o);
-    if (ext == ".map") return detail::read_movingai(path, o);
+inline LoadedMap read_by_extension(const std::string& path, const std::string& ext, const MapReadOptions& o) {
+    if (ext == ".yaml" || ext == ".yml") return read_ros_yaml(path, o);
+    std::string why;
+    if (bad_read_option(o, why)) throw InputError(path + ": " + why);
+    if (ext == ".map") return read_movingai(path, o);
     std::int32_t h = 0, w = 0;
     if (ext == ".pgm") {
-        const auto grey = detail::read_pgm(path, h, w);
-        return detail::from_grey(grey, h, w, o);
+        const auto grey = read_pgm(path, h, w);
+        return from_grey(grey, h, w, o);
     }
     if (ext == ".png") {
 #ifdef DVORONOI_HAVE_PNG
-        const auto grey = detail::read_png(path, h, w);
-        return detail::from_grey(grey, h, w, o);
+        const auto grey = read_png(path, h, w);
+        return from_grey(grey, h, w, o);
 #else
         throw InputError(path + ": PNG maps need a build with libpng (install libpng-dev and rebuild), or convert to PGM");
 #endif
     }
     throw InputError(path + ": unknown map format '" + ext + "' (expected .yaml, .pgm, .png or .map)");
+}
+
+}  // namespace detail
+
+/// Reads a map by its extension: `.yaml`/`.yml` (map_server), `.pgm`, `.png`, `.map` (MovingAI).
+/// The options are checked first (resolution finite and positive, origin finite, thresholds in
+/// [0, 1] with free_thresh <= occupied_thresh); a YAML's own values are checked the same way, and the
+/// grid as the diagrams will (gvd::check_grid), so that a map they would refuse names its file here.
+/// \throws InputError naming the file (and line) for unreadable or malformed files or bad options.
+inline LoadedMap read_occupancy_map(const std::string& path, const MapReadOptions& o = {}) {
+    LoadedMap out = detail::read_by_extension(path, detail::lower_ext(path), o);
+    try {
+        gvd::check_grid(out.grid);
+    } catch (const InputError& e) {
+        throw InputError(path + ": " + e.what());
+    }
+    return out;
 }
 
 }  // namespace dvoronoi::io

@@ -1,0 +1,309 @@
+// Occupancy-map files: map_server's trinary rule on PGM images (checked against the rule written out
+// independently), the YAML forms map_server files use, the checks of the options, and error
+// locations (FILE:LINE, FILE:LINE:COLUMN for plain PGM). PNG is tested from Python (tests/python/
+// test_map_files_ros.py): these test executables are not linked with libpng.
+#include "dvoronoi/io/occupancy_map.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+using dvoronoi::InputError;
+using dvoronoi::io::LoadedMap;
+using dvoronoi::io::MapReadOptions;
+using dvoronoi::io::read_occupancy_map;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        std::random_device rd;
+        path = fs::temp_directory_path() / ("dvoronoi_om_" + std::to_string(rd()) + std::to_string(rd()));
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+    std::string write(const std::string& name, const std::string& bytes) const {
+        std::ofstream(path / name, std::ios::binary) << bytes;
+        return (path / name).string();
+    }
+};
+
+/// The message of the InputError that reading `path` throws ("" if none).
+std::string error_of(const std::string& path, const MapReadOptions& o = {}) {
+    try {
+        read_occupancy_map(path, o);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+/// map_server's trinary rule as image_loader.cpp writes it: 1 occupied, 0 free, -1 unknown.
+int map_server_cell(double colour_avg, bool negate, double occ_th = 0.65, double free_th = 0.196) {
+    const double occ = negate ? colour_avg / 255.0 : (255.0 - colour_avg) / 255.0;
+    return occ > occ_th ? 1 : occ < free_th ? 0 : -1;
+}
+
+/// A 1-row binary PGM holding `grey`.
+std::string pgm_row(const std::vector<int>& grey, int maxval = 255) {
+    std::string s = "P5\n" + std::to_string(grey.size()) + " 1\n" + std::to_string(maxval) + "\n";
+    for (int g : grey) {
+        if (maxval > 255) s += static_cast<char>(g >> 8);
+        s += static_cast<char>(g & 0xff);
+    }
+    return s;
+}
+
+std::vector<int> cells(const LoadedMap& m) { return std::vector<int>(m.grid.occupied.begin(), m.grid.occupied.end()); }
+
+const char* const kBase = "image: m.pgm\nresolution: 0.05\norigin: [1.5, -2.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+
+}  // namespace
+
+TEST_CASE("every 8-bit grey level follows map_server's trinary rule, with and without negate") {
+    TempDir d;
+    std::vector<int> grey(256);
+    for (int g = 0; g < 256; ++g) grey[static_cast<std::size_t>(g)] = g;
+    const std::string path = d.write("levels.pgm", pgm_row(grey));
+    for (bool negate : {false, true}) {
+        MapReadOptions o;
+        o.negate = negate;
+        o.unknown_occupied = false;
+        const LoadedMap m = read_occupancy_map(path, o);
+        std::size_t unknown = 0;
+        for (int g = 0; g < 256; ++g) {
+            const int want = map_server_cell(g, negate);
+            unknown += want == -1;
+            CHECK_MESSAGE(m.grid.occupied[static_cast<std::size_t>(g)] == (want == 1 ? 1 : 0), "grey ", g, " negate ", negate);
+        }
+        CHECK(m.unknown == unknown);
+        CHECK(unknown > 0);
+    }
+}
+
+TEST_CASE("16-bit PGM keeps its precision: v = s / 65535") {
+    TempDir d;
+    // p = 1 - s / 65535 against 0.65 and 0.196; 22938 and 52691 fall the other way if only the high
+    // byte were kept (89 and 205: occupied and unknown)
+    const std::vector<int> grey = {22937, 22938, 205 * 257, 52690, 52691, 65535};
+    const std::vector<int> want = {1, -1, -1, -1, 0, 0};
+    MapReadOptions o;
+    o.unknown_occupied = false;
+    const LoadedMap m = read_occupancy_map(d.write("w.pgm", pgm_row(grey, 65535)), o);
+    for (std::size_t i = 0; i < grey.size(); ++i) {
+        const double p = 1.0 - grey[i] / 65535.0;
+        REQUIRE((p > 0.65 ? 1 : p < 0.196 ? 0 : -1) == want[i]);  // the expectation is the rule's
+        CHECK_MESSAGE(m.grid.occupied[i] == (want[i] == 1 ? 1 : 0), "sample ", grey[i]);
+    }
+    CHECK(m.unknown == 3);
+}
+
+TEST_CASE("map_server YAML written in the forms yaml-cpp accepts") {
+    TempDir d;
+    std::vector<int> grey = {0, 205, 254, 254};
+    d.write("m.pgm", pgm_row(grey));
+    const std::string base = kBase;
+    auto replace = [&](const std::string& from, const std::string& to) {
+        std::string s = base;
+        s.replace(s.find(from), from.size(), to);
+        return s;
+    };
+    const std::vector<std::pair<const char*, std::string>> forms = {
+        {"plain", base},
+        {"negate: false", replace("negate: 0", "negate: false")},
+        {"negate: No", replace("negate: 0", "negate: No")},
+        {"negate: OFF", replace("negate: 0", "negate: OFF")},
+        {"block list origin", replace("origin: [1.5, -2.0, 0.0]", "origin:\n  - 1.5\n  - -2.0   # y\n  - 0.0")},
+        {"block list at the key's indentation", replace("origin: [1.5, -2.0, 0.0]", "origin:\n- 1.5\n- -2.0\n- 0.0")},
+        {"origin over two lines", replace("origin: [1.5, -2.0, 0.0]", "origin: [1.5,\n         -2.0, 0.0]")},
+        {"document markers", "---\n" + base + "...\n"},
+        {"directive and marker", "%YAML 1.1\n---   # the map\n" + base},
+        {"byte order mark", "\xEF\xBB\xBF" + base},
+        {"CRLF", [&] {
+             std::string s;
+             for (char c : base) s += c == '\n' ? std::string("\r\n") : std::string(1, c);
+             return s;
+         }()},
+        {"flow mapping", "{image: m.pgm, resolution: 0.05, origin: [1.5, -2.0, 0.0], negate: 0, occupied_thresh: 0.65, free_thresh: 0.196}\n"},
+        {"flow mapping over lines", "# header\n{image: \"m.pgm\",  # the image\n resolution: 0.05, origin: [1.5, -2.0, 0],\n extra: {a: [1, 2]}}\n"},
+        {"quoted values and keys", "'image': 'm.pgm'\n\"resolution\": \"0.05\"\norigin: ['1.5', \"-2.0\", 0]\n"},
+        {"nested mapping under an ignored key", base + "meta:\n  author: someone\n  tags:\n    - a\n    - b\nmode: trinary\n"},
+        {"a second document is not read", base + "---\nimage: elsewhere.pgm\n"},
+    };
+    for (const auto& [name, text] : forms) {
+        CAPTURE(name);
+        const std::string path = d.write("f.yaml", text);
+        const std::string err = error_of(path);
+        REQUIRE_MESSAGE(err.empty(), err);
+        const LoadedMap m = read_occupancy_map(path);
+        CHECK(m.grid.resolution == 0.05);
+        CHECK(m.grid.origin.x() == 1.5);
+        CHECK(m.grid.origin.y() == -2.0);
+        CHECK(m.image == (d.path / "m.pgm").string());
+        CHECK(m.unknown == 1);
+        CHECK(cells(m) == std::vector<int>{1, 1, 0, 0});
+    }
+    MapReadOptions free_unknown;
+    free_unknown.unknown_occupied = false;
+    for (const char* yes : {"1", "true", "True", "TRUE", "yes", "Yes", "y", "on", "On"}) {
+        CAPTURE(yes);
+        const LoadedMap m = read_occupancy_map(d.write("n.yaml", replace("negate: 0", std::string("negate: ") + yes)), free_unknown);
+        CHECK(cells(m) == std::vector<int>{0, 1, 1, 1});  // with negate p = v: 205 and 254 occupied
+    }
+}
+
+TEST_CASE("a '#' inside a quoted or plain value is not a comment") {
+    TempDir d;
+    d.write("a#1.pgm", pgm_row({0, 254}));
+    for (const char* text : {"image: 'a#1.pgm'  # c\nresolution: 1\n", "image: \"a#1.pgm\"\nresolution: 1\n", "image: a#1.pgm # c\nresolution: 1\n"}) {
+        CAPTURE(text);
+        const std::string err = error_of(d.write("q.yaml", text));
+        CHECK(err.empty());
+    }
+}
+
+TEST_CASE("YAML this reader does not follow is an error naming file and line, never a missing key") {
+    TempDir d;
+    d.write("m.pgm", pgm_row({0, 254}));
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"image: m.pgm\nresolution: 0.05\n  extra: 1\n", "f.yaml:3: resolution: unexpected indented line under its value"},
+        {"  image: m.pgm\nresolution: 0.05\n", "f.yaml:2: unexpected indentation"},
+        {"image: m.pgm\nresolution: &r 0.05\n", "f.yaml:2: resolution: YAML anchors, aliases, tags and block scalars are not supported"},
+        {"image: m.pgm\nresolution: !!float 0.05\n", "f.yaml:2: resolution: YAML anchors"},
+        {"image: |\n  m.pgm\nresolution: 1\n", "f.yaml:1: image: YAML anchors"},
+        {"image: m.pgm\nresolution: 1\nnote: a plain scalar\n  over two lines\n", ""},
+        {"image:\n  m.pgm\nresolution: 1\n", "f.yaml:1: image: expected a value on the key's line"},
+        {"image:\nresolution: 1\n", "f.yaml:1: image: expected the image's file name"},
+        {"{image: m.pgm, resolution: 0.05\n", "f.yaml:1: the flow mapping '{' is not closed"},
+        {"{image: m.pgm, resolution: 0.05}\nnegate: 0\n", "f.yaml:2: text after the flow mapping"},
+        {"{image: m.pgm,\n resolution 0.05}\n", "f.yaml:2: expected 'key: value', got 'resolution 0.05'"},
+        {"image: m.pgm\nresolution: 0.05\nfoo: [1, 2\nbar: 3\n", "f.yaml:3: foo: '[' is not closed"},
+        {"image: m.pgm\nresolution: 1\nresolution: 2\n", "f.yaml:3: duplicate key 'resolution' (first at line 2)"},
+        {"image: m.pgm\nresolution: 1\nnegate: maybe\n", "f.yaml:3: negate: expected 0, 1, true or false, got 'maybe'"},
+        {"image: m.pgm\nresolution: 1\nnegate: 2\n", "f.yaml:3: negate: expected 0, 1, true or false, got '2'"},
+        {"image: m.pgm\nresolution: 1\norigin:\n  - 1\n  - [2]\n", "f.yaml:5: origin: expected a single value, got '[2]'"},
+        {"image: m.pgm\nresolution: 1\norigin:\n  - 1\n  - x\n", "f.yaml:5: origin: expected a finite number, got 'x'"},
+        {"image: m.pgm\nresolution: 1\norigin:\n  x: 1\n", "f.yaml:3: origin: expected [x, y, yaw] or a list of numbers"},
+        {"image: m.pgm\nresolution: 1\norigin: [1]\n", "f.yaml:3: origin: expected [x, y, yaw], got 1 number"},
+        {"image: m.pgm\nresolution: 1\norigin: [1, 2, 0.5]\n", "f.yaml:3: origin: a rotated map (yaw 0.5) is not supported"},
+        {"image: \"m.pgm\nresolution: 1\n", "f.yaml:1: unterminated quoted string"},
+        {"image: \"m\\q.pgm\"\nresolution: 1\n", "f.yaml:1: unsupported escape '\\q'"},
+        {"- image: m.pgm\n", "f.yaml:1: expected 'key: value', got '- image: m.pgm'"},
+        {"image: m.pgm\n{resolution: 1}\n", "f.yaml:2: expected 'key: value', got '{resolution: 1}'"},
+        {"image: m.pgm\n? resolution\n: 1\n", "f.yaml:2: expected 'key: value', got '? resolution'"},
+        {"---\nimage: m.pgm\n--- x\n", "f.yaml: missing 'resolution'"},
+        {"--- image: m.pgm\n", "f.yaml:1: expected a new line after '---'"},
+        {"resolution: 1\n", "f.yaml: missing 'image'"},
+        {"image: m.pgm\nresolution: 1\nmode: raw\n", "f.yaml:3: mode: 'raw' is not supported"},
+    };
+    for (const auto& [text, want] : cases) {
+        CAPTURE(text);
+        const std::string err = error_of(d.write("f.yaml", text));
+        const std::string tail = err.substr(err.find_last_of('/') + 1);
+        if (want.empty()) CHECK_MESSAGE(err.empty(), err);
+        else CHECK_MESSAGE(tail.compare(0, want.size(), want) == 0, tail);
+    }
+}
+
+TEST_CASE("thresholds, resolution and origin are checked for bare images, .map files and YAML alike") {
+    TempDir d;
+    const std::string pgm = d.write("m.pgm", pgm_row({0, 254}));
+    const std::string map = d.write("m.map", "type octile\nheight 1\nwidth 2\nmap\n.@\n");
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    struct Case {
+        MapReadOptions o;
+        std::string want;
+    };
+    auto with = [](auto set) {
+        MapReadOptions o;
+        set(o);
+        return o;
+    };
+    const std::vector<Case> cases = {
+        {with([](MapReadOptions& o) { o.occupied_thresh = 2.0; }), "occupied_thresh: expected a number in [0, 1], got 2"},
+        {with([&](MapReadOptions& o) { o.occupied_thresh = nan; }), "occupied_thresh: expected a number in [0, 1], got nan"},
+        {with([&](MapReadOptions& o) { o.free_thresh = nan; }), "free_thresh: expected a number in [0, 1], got nan"},
+        {with([](MapReadOptions& o) { o.free_thresh = -1.0; }), "free_thresh: expected a number in [0, 1], got -1"},
+        {with([](MapReadOptions& o) { o.occupied_thresh = 0.1, o.free_thresh = 0.9; }), "free_thresh is larger than occupied_thresh (0.9 > 0.1)"},
+        {with([](MapReadOptions& o) { o.resolution = 0.0; }), "resolution: must be a positive finite number, got 0"},
+        {with([&](MapReadOptions& o) { o.resolution = inf; }), "resolution: must be a positive finite number, got inf"},
+        {with([&](MapReadOptions& o) { o.resolution = nan; }), "resolution: must be a positive finite number, got nan"},
+        {with([&](MapReadOptions& o) { o.origin = dvoronoi::Vec2(1.0, -inf); }), "origin: must be finite, got (1, -inf)"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.want);
+        CHECK(error_of(pgm, c.o) == pgm + ": " + c.want);
+        CHECK(error_of(map, c.o) == map + ": " + c.want);
+    }
+    MapReadOptions edge;  // the ends of the range are allowed
+    edge.occupied_thresh = 1.0;
+    edge.free_thresh = 1.0;
+    CHECK(error_of(pgm, edge).empty());
+    edge.occupied_thresh = edge.free_thresh = 0.0;
+    CHECK(error_of(pgm, edge).empty());
+
+    const std::string base = "image: m.pgm\nresolution: 1\n";
+    CHECK(ends_with(error_of(d.write("a.yaml", base + "occupied_thresh: 1.5\n")), "a.yaml:3: occupied_thresh: expected a number in [0, 1], got 1.5"));
+    CHECK(ends_with(error_of(d.write("b.yaml", base + "free_thresh: -0.1\n")), "b.yaml:3: free_thresh: expected a number in [0, 1], got -0.1"));
+    CHECK(ends_with(error_of(d.write("c.yaml", base + "occupied_thresh: 0.1\nfree_thresh: 0.5\n")),
+                    "c.yaml:4: free_thresh is larger than occupied_thresh (0.5 > 0.1)"));
+    CHECK(ends_with(error_of(d.write("e.yaml", base + "occupied_thresh: 0.1\n")), "e.yaml:3: free_thresh is larger than occupied_thresh (0.196 > 0.1)"));
+    CHECK(ends_with(error_of(d.write("f.yaml", "image: m.pgm\nresolution: -1\n")), "f.yaml:2: resolution: must be a positive finite number, got -1"));
+    CHECK(ends_with(error_of(d.write("g.yaml", "image: m.pgm\nresolution: .nan\n")), "g.yaml:2: resolution: expected a finite number, got '.nan'"));
+}
+
+TEST_CASE("a map the diagrams would refuse (gvd::check_grid) is refused naming its file") {
+    TempDir d;
+    d.write("m.pgm", pgm_row({0, 254}));
+    struct Case {
+        const char* text;
+        double resolution, origin_x;
+    };
+    for (const Case& c : {Case{"image: m.pgm\nresolution: 1\norigin: [1e300, 0, 0]\n", 1.0, 1e300},
+                          Case{"image: m.pgm\nresolution: 1e300\n", 1e300, 0.0}}) {
+        CAPTURE(c.text);
+        const std::string path = d.write("f.yaml", c.text);
+        const std::string err = error_of(path);
+        bool diagram_accepts = true;
+        try {
+            dvoronoi::gvd::check_grid(dvoronoi::gvd::OccupancyGrid(1, 2, c.resolution, dvoronoi::Vec2(c.origin_x, 0.0)));
+        } catch (const InputError&) {
+            diagram_accepts = false;
+        }
+        CHECK(err.empty() == diagram_accepts);
+        if (!err.empty()) CHECK_MESSAGE(err.compare(0, path.size() + 2, path + ": ") == 0, err);
+    }
+}
+
+TEST_CASE("plain PGM errors name the line and column") {
+    TempDir d;
+    CHECK(error_of(d.write("a.pgm", "P2\n3 2\n255\n0 1 2\n3 x 5\n")) == (d.path / "a.pgm").string() + ":5:3: bad PGM pixel value 'x' (pixel 5 of 6)");
+    CHECK(error_of(d.write("b.pgm", "P2\n3 2\n255\n0 1 2\n3 -4 5\n")) == (d.path / "b.pgm").string() + ":5:3: bad PGM pixel value '-4' (pixel 5 of 6)");
+    CHECK(error_of(d.write("c.pgm", "P2\n3 2\n255\n0 1 2\n3\n# the end\n")) == (d.path / "c.pgm").string() + ":7:1: truncated PGM data (4 of 6 pixels)");
+    // comments between the values are allowed, and the values after them are read
+    const LoadedMap m = read_occupancy_map(d.write("d.pgm", "P2\n2 1\n255\n0 # a wall\n254\n"));
+    CHECK(cells(m) == std::vector<int>{1, 0});
+}
+
+#ifndef DVORONOI_HAVE_PNG
+TEST_CASE("without libpng a PNG map is refused with a clear message") {
+    TempDir d;
+    const std::string path = d.write("m.png", "\x89PNG\r\n\x1a\n");
+    CHECK(error_of(path) == path + ": PNG maps need a build with libpng (install libpng-dev and rebuild), or convert to PGM");
+}
+#endif
