@@ -224,7 +224,7 @@ def _pixel_indices(pixels: Any, shape: Tuple[int, int], name: str) -> np.ndarray
     integer mask would be read as other pixels."""
     H, W = shape
     if isinstance(pixels, tuple) and len(pixels) == 2 and all(isinstance(p, np.ndarray) for p in pixels):
-        rows, cols = (np.asarray(p) for p in pixels)  # numpy's index arrays (np.nonzero, np.where)
+        rows, cols = pixels  # numpy's index arrays (np.nonzero, np.where)
         if rows.ndim != 1 or rows.shape != cols.shape:
             raise ValueError(f"{name}: a (rows, cols) tuple needs two 1-d arrays of one length, got shapes "
                              f"{rows.shape} and {cols.shape}")
@@ -270,7 +270,7 @@ class OccupancyVoronoi:
     def __init__(self, core: "_core._MedialDiagram", grid: OccupancyGrid, robot_radius: float,
                  options: Dict[str, Any]) -> None:
         self._core = core
-        self._grid = grid
+        self._unknown_pixels = grid.unknown_pixels  # the map itself lives in the core
         self.robot_radius = float(robot_radius)
         self.options = dict(options)
         self.stats: Dict[str, Any] = {}
@@ -286,8 +286,8 @@ class OccupancyVoronoi:
             occ = self._core.occupancy
             occ.flags.writeable = False
             snap = OccupancyGrid.__new__(OccupancyGrid)
-            snap.occupied, snap.resolution, snap.origin = occ, self._grid.resolution, self._grid.origin
-            snap.unknown_pixels = self._grid.unknown_pixels
+            snap.occupied, snap.resolution, snap.origin = occ, self.resolution, self.origin
+            snap.unknown_pixels = self._unknown_pixels
             self._cache["grid"] = snap  # type: ignore[assignment]
         return self._cache["grid"]  # type: ignore[return-value]
 
@@ -486,21 +486,16 @@ class OccupancyVoronoi:
 
 def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_separation: float,
                    prune_length: float, occupied_thresh: float = 0.65, unknown: str = "occupied") -> OccupancyVoronoi:
-    # The result's own grid object (its occupancy is read back from the core when asked for, so updates
-    # never touch the caller's grid and the caller's later edits never reach the result).
-    own = OccupancyGrid.__new__(OccupancyGrid)
-    own.occupied = None  # type: ignore[assignment]  # read back from the core when asked for
-    own.resolution, own.origin = grid.resolution, grid.origin
-    own.unknown_pixels = grid.unknown_pixels
-    source, grid = grid, own
+    # The core copies the occupancy and the result keeps no reference to `grid`: updates never touch
+    # the caller's grid, and the caller's later edits never reach the result.
     options: Dict[str, Any] = {"min_separation": float(min_separation), "prune_length": float(prune_length),
                                "workers": int(workers), "occupied_thresh": float(occupied_thresh), "unknown": unknown}
     try:
-        core = _core._medial_build(_as_bytes(source.occupied), grid.resolution, grid.origin[0], grid.origin[1],
+        core = _core._medial_build(_as_bytes(grid.occupied), grid.resolution, grid.origin[0], grid.origin[1],
                                    float(min_separation), float(prune_length), int(workers))
     except ValueError as e:
         raise ValueError(str(e)) from None
-    if core.count == 0 and not source.occupied.all():
+    if core.count == 0 and not grid.occupied.all():
         warnings.warn(f"no diagram pixel: no two neighbouring free pixels have nearest walls more than "
                       f"min_separation={min_separation} pixels apart that are not joined by walls within "
                       f"prune_length={prune_length} pixels (the free space is under 2 pixels wide, or only "

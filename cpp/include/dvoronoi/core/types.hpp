@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -64,6 +65,16 @@ private:
 };
 
 namespace detail {
+
+/// The shortest decimal that reads back as `v`, for messages that quote the caller's numbers.
+inline std::string shortest_text(double v) {
+    char buf[40];
+    for (int digits = 6; digits <= 17; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+        if (!std::isfinite(v) || std::strtod(buf, nullptr) == v) break;
+    }
+    return buf;
+}
 
 /// An agent seen by another: its position and its index in the caller's numbering.
 struct Candidate {

@@ -461,13 +461,7 @@ private:
                 take = _mm_and_si128(take, kRight ? _mm_cmplt_epi16(lane, _mm_set1_epi16(static_cast<std::int16_t>(stop)))
                                                   : _mm_cmpgt_epi16(lane, _mm_set1_epi16(static_cast<std::int16_t>(stop))));
             }
-            const auto took = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(take, zero)));
-            if (took != 0) {
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x0), _mm_or_si128(_mm_and_si128(take, CX), _mm_andnot_si128(take, vfx)));
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x0), _mm_or_si128(_mm_and_si128(take, CY), _mm_andnot_si128(take, vfy)));
-                touched_.set_eight(r, x0, took);
-                feature_changes += static_cast<std::uint64_t>(popcount(took));
-            }
+            store_taken(r, x0, take, CX, CY, vfx, vfy);
             if (stop >= 0) return x0 + stop;
         }
 #endif
@@ -497,6 +491,18 @@ private:
         const __m128i tie = _mm_or_si128(_mm_cmplt_epi16(CX, vfx), _mm_and_si128(_mm_cmpeq_epi16(CX, vfx), _mm_cmplt_epi16(CY, vfy)));
         return _mm_andnot_si128(_mm_cmpeq_epi16(vvg, _mm_setzero_si128()), _mm_or_si128(lt, _mm_and_si128(eq, tie)));
     }
+
+    /// Additions: the lanes `take` of pixels x0 .. x0 + 7 of row r take the points (nx, ny), the others
+    /// keep (vfx, vfy); the changed pixels are recorded.
+    void store_taken(std::int32_t r, std::int32_t x0, __m128i take, __m128i nx, __m128i ny, __m128i vfx, __m128i vfy) {
+        const auto took = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(take, _mm_setzero_si128())));
+        if (took == 0) return;
+        const std::size_t i = f_.at(r, x0);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(&f_.fx[i]), _mm_or_si128(_mm_and_si128(take, nx), _mm_andnot_si128(take, vfx)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(&f_.fy[i]), _mm_or_si128(_mm_and_si128(take, ny), _mm_andnot_si128(take, vfy)));
+        touched_.set_eight(r, x0, took);
+        feature_changes += static_cast<std::uint64_t>(popcount(took));
+    }
 #endif
 
     /// Additions: pixels x0 .. x1 of row r take the nearest points fill_run put in run_x_ / run_y_
@@ -511,20 +517,14 @@ private:
         const std::int32_t Y = 2 * (g_.rows - 1 - r) + 1;
         std::int32_t x = x0;
 #if defined(__SSE2__)
-        const __m128i YV = _mm_set1_epi16(static_cast<std::int16_t>(Y)), zero = _mm_setzero_si128();
+        const __m128i YV = _mm_set1_epi16(static_cast<std::int16_t>(Y));
         for (; x + 8 <= x1 + 1; x += 8) {
             const __m128i vfx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fx + x));
             const __m128i vfy = _mm_loadu_si128(reinterpret_cast<const __m128i*>(fy + x));
             const __m128i nx = kOwn ? _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x + 1)), _mm_setr_epi16(0, 2, 4, 6, 8, 10, 12, 14))
                                     : _mm_loadu_si128(reinterpret_cast<const __m128i*>(run_x_.data() + x));
             const __m128i ny = kOwn ? _mm_set1_epi16(static_cast<std::int16_t>(y)) : _mm_loadu_si128(reinterpret_cast<const __m128i*>(run_y_.data() + x));
-            const __m128i take = beats(vfx, vfy, _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x)), x, YV, nx, ny);
-            const auto took = static_cast<std::uint64_t>(_mm_movemask_epi8(_mm_packs_epi16(take, zero)));
-            if (took == 0) continue;
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x), _mm_or_si128(_mm_and_si128(take, nx), _mm_andnot_si128(take, vfx)));
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x), _mm_or_si128(_mm_and_si128(take, ny), _mm_andnot_si128(take, vfy)));
-            touched_.set_eight(r, x, took);
-            feature_changes += static_cast<std::uint64_t>(popcount(took));
+            store_taken(r, x, beats(vfx, vfy, _mm_loadu_si128(reinterpret_cast<const __m128i*>(vg + x)), x, YV, nx, ny), nx, ny, vfx, vfy);
         }
 #endif
         for (; x <= x1; ++x) {

@@ -19,7 +19,6 @@
 #include <cmath>
 #include <limits>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 
 #if defined(__SSE2__)
@@ -352,17 +351,13 @@ inline void check_grid(const OccupancyGrid& g) {
     // finite and keep 12 bits below a pixel (doubles carry 52); farther, pixel centres round together
     // and clearances and paths lose their meaning.
     constexpr double kReach = 1099511627776.0;  // 2^40 pixels
-    auto num = [](double v) {
-        char b[32];
-        std::snprintf(b, sizeof b, "%.17g", v);
-        return std::string(b);
-    };
+    using ::dvoronoi::detail::shortest_text;
     if (g.resolution < std::numeric_limits<double>::min() || g.resolution > std::numeric_limits<double>::max() / (4.0 * kReach))
-        throw InputError("resolution " + num(g.resolution) + " is out of range: map units per pixel must lie in [" +
+        throw InputError("resolution " + shortest_text(g.resolution) + " is out of range: map units per pixel must lie in [" +
                          "2.2e-308, 4e295] so that map coordinates stay finite");
     const double reach = std::max(std::abs(g.origin.x()) / g.resolution + g.cols, std::abs(g.origin.y()) / g.resolution + g.rows);
     if (!(reach <= kReach))
-        throw InputError("origin (" + num(g.origin.x()) + ", " + num(g.origin.y()) +
+        throw InputError("origin (" + shortest_text(g.origin.x()) + ", " + shortest_text(g.origin.y()) +
                          ") lies more than 2^40 pixels (of this resolution) from (0, 0): map coordinates could not tell "
                          "pixels apart; shift the origin nearer");
 }

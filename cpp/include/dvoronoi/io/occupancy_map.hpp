@@ -77,36 +77,28 @@ inline std::string lower_ext(const std::string& path) {
     return e;
 }
 
-/// The shortest decimal that reads back as `v` (messages quote the caller's numbers).
-inline std::string shortest(double v) {
-    char buf[40];
-    for (int digits = 6; digits <= 17; ++digits) {
-        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-        if (!std::isfinite(v) || std::strtod(buf, nullptr) == v) break;
-    }
-    return buf;
-}
+using ::dvoronoi::detail::shortest_text;
 
 /// One check of the options, whoever gave them (the caller or a YAML): the key at fault and `why`
 /// ("KEY: ..."), or nullptr. NaN fails every comparison below, so it is refused too.
 inline const char* bad_read_option(const MapReadOptions& o, std::string& why) {
     if (!(std::isfinite(o.resolution) && o.resolution > 0.0)) {
-        why = "resolution: must be a positive finite number, got " + shortest(o.resolution);
+        why = "resolution: must be a positive finite number, got " + shortest_text(o.resolution);
         return "resolution";
     }
     if (!std::isfinite(o.origin.x()) || !std::isfinite(o.origin.y())) {
-        why = "origin: must be finite, got (" + shortest(o.origin.x()) + ", " + shortest(o.origin.y()) + ")";
+        why = "origin: must be finite, got (" + shortest_text(o.origin.x()) + ", " + shortest_text(o.origin.y()) + ")";
         return "origin";
     }
     for (const char* key : {"occupied_thresh", "free_thresh"}) {
         const double t = key[0] == 'o' ? o.occupied_thresh : o.free_thresh;
         if (!(t >= 0.0 && t <= 1.0)) {
-            why = std::string(key) + ": expected a number in [0, 1], got " + shortest(t);
+            why = std::string(key) + ": expected a number in [0, 1], got " + shortest_text(t);
             return key;
         }
     }
     if (o.free_thresh > o.occupied_thresh) {
-        why = "free_thresh is larger than occupied_thresh (" + shortest(o.free_thresh) + " > " + shortest(o.occupied_thresh) + ")";
+        why = "free_thresh is larger than occupied_thresh (" + shortest_text(o.free_thresh) + " > " + shortest_text(o.occupied_thresh) + ")";
         return "free_thresh";
     }
     return nullptr;
@@ -733,7 +725,7 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
             lineno = e.line;
             if (xs.size() != 3 && xs.size() != 2)
                 fail("origin: expected [x, y, yaw], got " + std::to_string(xs.size()) + " number" + (xs.size() == 1 ? "" : "s"));
-            if (xs.size() == 3 && xs[2] != 0.0) fail("origin: a rotated map (yaw " + shortest(xs[2]) + ") is not supported");
+            if (xs.size() == 3 && xs[2] != 0.0) fail("origin: a rotated map (yaw " + shortest_text(xs[2]) + ") is not supported");
             o.origin = Vec2(xs[0], xs[1]);
             continue;
         }
