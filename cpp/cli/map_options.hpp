@@ -6,6 +6,7 @@
 #include "dvoronoi/io/occupancy_map.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 
 #include <cmath>
 #include <cstdio>
@@ -79,8 +80,18 @@ struct MapOptions {
         return mo;
     }
 
-    /// The warning when a map gives no diagram pixel.
-    void warn_empty(const char* program) const {
+    /// The warning when a map gives no diagram pixel, naming why.
+    void warn_empty(const char* program, const io::LoadedMap& map) const {
+        const gvd::OccupancyGrid& g = map.grid;
+        if (std::all_of(g.occupied.begin(), g.occupied.end(), [](std::uint8_t v) { return v != 0; })) {
+            std::fprintf(stderr, "%s: warning: no diagram pixel: every pixel of the %d x %d map is occupied (check the map's "
+                                 "negate and thresholds%s)\n",
+                         program, g.rows, g.cols,
+                         map.unknown > 0 && unknown == "occupied"
+                             ? ("; " + std::to_string(map.unknown) + " of them are unknown, which --unknown free would make free").c_str()
+                             : "");
+            return;
+        }
         std::fprintf(stderr, "%s: warning: no diagram pixel: no two neighbouring free pixels have nearest walls more than "
                              "--min-separation %.3g pixels apart that are not joined by walls within --prune-length %.3g "
                              "pixels (the free space is under 2 pixels wide, or only small pockets)\n",

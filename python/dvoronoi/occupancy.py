@@ -93,6 +93,14 @@ def _occupied(data: Any, occupied_thresh: float, unknown: str) -> np.ndarray:
     raise TypeError(f"occupancy must be a bool, float, int8 or 0/1 integer array, got dtype {a.dtype}")
 
 
+def _unknown_count(data: Any) -> int:
+    """Unknown values in an occupancy array (_occupied's encodings: NaN, or -1 in int8)."""
+    a = np.asarray(data)
+    if a.dtype.kind == "f":
+        return int(np.isnan(a).sum())
+    return int((a < 0).sum()) if a.dtype == np.int8 else 0
+
+
 class OccupancyGrid:
     """An occupancy grid: ``occupied`` (H x W bool, row 0 at the top, as in the image), ``resolution``
     (map units per pixel) and ``origin`` (map coordinates of the lower-left corner of pixel (H-1, 0),
@@ -101,7 +109,8 @@ class OccupancyGrid:
 
     `data` is a bool array, probabilities in [0, 1] (occupied above `occupied_thresh`, NaN unknown),
     ROS int8 values (-1 unknown, 0..100) or 0/1 integers. Unknown pixels count as occupied unless
-    ``unknown="free"``.
+    ``unknown="free"``; ``unknown_pixels`` counts them (a diagram's ``grid`` counts those of the map it
+    was built on or last given by ``update``).
     """
 
     occupied: np.ndarray
@@ -124,7 +133,7 @@ class OccupancyGrid:
         self.occupied = np.ascontiguousarray(_occupied(data, t, unknown), dtype=bool)
         self.resolution = _positive(resolution, "resolution")
         self.origin = _origin(origin)
-        self.unknown_pixels = 0
+        self.unknown_pixels = _unknown_count(data)
 
     @classmethod
     def load(cls, path: PathLike, *, unknown: str = "occupied", resolution: Optional[float] = None,
@@ -366,12 +375,15 @@ class OccupancyVoronoi:
                 raise ValueError(f"new_occupancy has resolution {new_occupancy.resolution} and origin "
                                  f"{tuple(new_occupancy.origin)}, the map has {self.resolution} and {tuple(self.origin)}: "
                                  "an update changes occupancy only (build a new diagram for another frame)")
-            occ = new_occupancy.occupied
+            occ, unknown = new_occupancy.occupied, new_occupancy.unknown_pixels
         else:  # read as the map was: the build's threshold and unknown rule
             occ = _occupied(new_occupancy, self.options.get("occupied_thresh", 0.65), self.options.get("unknown", "occupied"))
+            unknown = _unknown_count(new_occupancy)
         if occ.shape != self.shape:
             raise ValueError(f"new_occupancy must have the map's shape {self.shape}, got {occ.shape}")
-        return self._after_update(self._core.update(_as_bytes(occ)))
+        stats = self._after_update(self._core.update(_as_bytes(occ)))
+        self._unknown_pixels = unknown
+        return stats
 
     def _set(self, pixels: Any, occupied: bool) -> Dict[str, Any]:
         idx = _pixel_indices(pixels, self.shape, "pixels")
@@ -495,7 +507,12 @@ def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_s
                                    float(min_separation), float(prune_length), int(workers))
     except ValueError as e:
         raise ValueError(str(e)) from None
-    if core.count == 0 and not grid.occupied.all():
+    if core.count == 0 and grid.occupied.all():
+        unknown_note = (f"; {grid.unknown_pixels} of them are unknown, which unknown='free' would make free"
+                        if grid.unknown_pixels and unknown == "occupied" else "")
+        warnings.warn(f"no diagram pixel: every pixel of the {grid.shape[0]} x {grid.shape[1]} map is occupied "
+                      f"(check the map's negate and thresholds{unknown_note})", UserWarning, stacklevel=3)
+    elif core.count == 0:
         warnings.warn(f"no diagram pixel: no two neighbouring free pixels have nearest walls more than "
                       f"min_separation={min_separation} pixels apart that are not joined by walls within "
                       f"prune_length={prune_length} pixels (the free space is under 2 pixels wide, or only "

@@ -469,6 +469,35 @@ def test_empty_diagram_is_explained():
     assert len(gv) == 0
 
 
+def test_fully_occupied_map_is_explained():
+    with pytest.warns(UserWarning, match="every pixel of the 6 x 7 map is occupied") as record:
+        gv = dv.grid_voronoi(np.ones((6, 7), bool))
+    assert len(gv) == 0 and "unknown" not in str(record[0].message)
+    ros = np.full((6, 7), -1, np.int8)  # all unknown (ROS OccupancyGrid)
+    with pytest.warns(UserWarning, match="42 of them are unknown, which unknown='free' would make free"):
+        dv.grid_voronoi(ros)
+    gv = dv.grid_voronoi(ros, unknown="free")
+    assert len(gv) > 0 and gv.grid.unknown_pixels == 42
+    known = np.zeros((6, 7), np.int8)
+    known[0, 0] = -1
+    gv.update(known)
+    assert gv.grid.unknown_pixels == 1 and dv.OccupancyGrid(known).unknown_pixels == 1
+    assert dv.OccupancyGrid(np.array([[np.nan, 0.2]])).unknown_pixels == 1
+
+
+@pytest.mark.skipif(not CLI, reason="DVORONOI_CLI not set")
+def test_cli_explains_an_empty_diagram_even_when_quiet(tmp_path):
+    (tmp_path / "unknown.pgm").write_bytes(b"P5\n6 5\n255\n" + bytes([205]) * 30)  # all unknown grey
+    run = subprocess.run([CLI, "gvd", str(tmp_path / "unknown.pgm"), "-o", str(tmp_path / "u.json"), "-q"],
+                         capture_output=True, text=True, check=True)
+    assert run.stderr == ("gvd: warning: no diagram pixel: every pixel of the 5 x 6 map is occupied (check the map's "
+                          "negate and thresholds; 30 of them are unknown, which --unknown free would make free)\n")
+    (tmp_path / "slit.map").write_text("type octile\nheight 3\nwidth 5\nmap\n@@@@@\n@...@\n@@@@@\n")
+    run = subprocess.run([CLI, "gvd", str(tmp_path / "slit.map"), "-o", str(tmp_path / "s.json"), "-q"],
+                         capture_output=True, text=True, check=True)
+    assert "under 2 pixels wide" in run.stderr and "every pixel" not in run.stderr
+
+
 @pytest.mark.skipif(not CLI, reason="DVORONOI_CLI not set")
 def test_cli_map_files_write_the_python_json(tmp_path):
     occ = occupancy_maps.building(80, 2)
