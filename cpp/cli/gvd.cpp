@@ -98,7 +98,7 @@ int run_map(const GvdCliOptions& o) {
         std::fprintf(stderr, "gvd: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d worker(s), %.3f s\n",
                      m.grid.rows, m.grid.cols, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", mo.workers, seconds);
     }
-    if (n == 0) o.map.warn_empty("gvd", map);  // a warning, not the summary: shown with -q too
+    if (n == 0) o.map.warn_empty("gvd", m.grid, map.unknown);  // a warning, not the summary: shown with -q too
     return deliver(
         out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
         [&](std::ostream& os) { io::write_medial_svg(os, m, o.robot_radius, path_points); });

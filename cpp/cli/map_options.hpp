@@ -80,15 +80,15 @@ struct MapOptions {
         return mo;
     }
 
-    /// The warning when a map gives no diagram pixel, naming why.
-    void warn_empty(const char* program, const io::LoadedMap& map) const {
-        const gvd::OccupancyGrid& g = map.grid;
+    /// The warning when a map gives no diagram pixel, naming why (`unknown` pixels counted as occupied
+    /// or free by --unknown).
+    void warn_empty(const char* program, const gvd::OccupancyGrid& g, std::size_t unknown_pixels) const {
         if (std::all_of(g.occupied.begin(), g.occupied.end(), [](std::uint8_t v) { return v != 0; })) {
             std::fprintf(stderr, "%s: warning: no diagram pixel: every pixel of the %d x %d map is occupied (check the map's "
                                  "negate and thresholds%s)\n",
                          program, g.rows, g.cols,
-                         map.unknown > 0 && unknown == "occupied"
-                             ? ("; " + std::to_string(map.unknown) + " of them are unknown, which --unknown free would make free").c_str()
+                         unknown_pixels > 0 && unknown == "occupied"
+                             ? ("; " + std::to_string(unknown_pixels) + " of them are unknown, which --unknown free would make free").c_str()
                              : "");
             return;
         }

@@ -359,7 +359,7 @@ int run_map(const Args& a, int rank, int size) {
     const std::size_t n = m.count();
     std::fprintf(stderr, "dvoronoi_gvd_mpi: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d ranks, %.3f s\n",
                  H, W, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", size, seconds);
-    if (n == 0) a.map.warn_empty("dvoronoi_gvd_mpi", map);
+    if (n == 0) a.map.warn_empty("dvoronoi_gvd_mpi", m.grid, map.unknown);
     // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
     if (svg) io::write_medial_svg(svg->stream(), m, a.robot_radius);
     const std::string doc = io::medial_to_json(m, a.robot_radius).dump();

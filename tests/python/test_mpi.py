@@ -188,6 +188,17 @@ def test_gvd_mpi_more_ranks_than_rows(tmp_path):
 
 
 @needs_gvd
+def test_gvd_mpi_explains_an_empty_diagram(tmp_path):
+    slit = _write_movingai(tmp_path / "slit.map", np.zeros((1, 50), bool))  # 1 px wide: no diagram
+    full = _write_movingai(tmp_path / "full.map", np.ones((3, 5), bool))
+    for path, why in ((slit, "under 2 pixels wide"), (full, "every pixel of the 3 x 5 map is occupied")):
+        for k in (1, 2):
+            proc = mpirun(k, str(path), "-o", str(tmp_path / "out.json"), program=GVD_MPI, timeout=120)
+            assert proc.returncode == 0, proc.stderr[-3000:]
+            assert proc.stderr.count("dvoronoi_gvd_mpi: warning: no diagram pixel") == 1 and why in proc.stderr
+
+
+@needs_gvd
 def test_gvd_mpi_bad_map_exits_2_naming_the_file(tmp_path):
     bad = tmp_path / "bad.map"
     bad.write_text("type octile\nheight 3\nwidth 4\nmap\n....\n..\n....\n")
