@@ -396,8 +396,17 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
             return medial_voronoi(grid, robot_radius, n_workers, min_separation, prune_length, occupied_thresh, unknown)
         H, W = grid.shape
         doc = obstacles_from_occupancy_grid(grid)
-        return grid_voronoi(doc, cells=max(H, W), robot_radius=robot_radius, workers=n_workers, mode=mode,
-                            visibility=visibility, diagram="labels")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # said below in the map's terms
+            labelled = grid_voronoi(doc, cells=max(H, W), robot_radius=robot_radius, workers=n_workers, mode=mode,
+                                    visibility=visibility, diagram="labels")
+        if len(labelled.cells) == 0:
+            from .occupancy import warn_empty_diagram
+
+            warn_empty_diagram(grid, unknown, "the corners of every cell share one nearest occupied region: "
+                               "the map's walls are one connected region, which the labelled diagram does not "
+                               "split (the medial diagram, the default, does)", stacklevel=3)
+        return labelled
     if cells is not None and resolution is not None:
         raise ValueError("pass cells= only (resolution= is its deprecated name for obstacle documents)")
     if resolution is not None:
@@ -415,14 +424,19 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         from .occupancy import OccupancyGrid, medial_voronoi
 
         occ, res, org = scene.rasterize(cells)
-        return medial_voronoi(OccupancyGrid(occ, res, org), robot_radius, n_workers, min_separation, prune_length)
+        return medial_voronoi(OccupancyGrid(occ, res, org), robot_radius, n_workers, min_separation, prune_length,
+                              document=True)
     try:
         core = _core._gvd_run(scene, cells, robot_radius, n_workers, mode, bool(visibility))
     except ValueError as e:  # e.g. out of the exact range: say which file when there is one
         if isinstance(obstacles, (str, os.PathLike)) and os.fspath(obstacles) not in str(e):
             raise ValueError(f"{os.fspath(obstacles)}: {e}") from None
         raise
-    return GridVoronoi(core, scene)
+    result = GridVoronoi(core, scene)
+    if len(result.cells) == 0:
+        warnings.warn("no diagram cell: the corners of every cell share one nearest obstacle (an obstacle covers "
+                      "the working area)", UserWarning, stacklevel=2)
+    return result
 
 
 # -- occupancy grids ------------------------------------------------------------------------------

@@ -496,8 +496,23 @@ class OccupancyVoronoi:
                 f"robot_radius={self.robot_radius}, {int(self.blocked.sum())} blocked)")
 
 
+def warn_empty_diagram(grid: OccupancyGrid, unknown: str, why: str, document: bool = False, stacklevel: int = 4) -> None:
+    """The warning for a diagram without a pixel: a map (or an obstacle document drawn on pixels,
+    `document`) that is all occupied, or `why` otherwise."""
+    if grid.occupied.all():
+        if document:
+            why = f"the obstacles cover the whole working area (drawn on {grid.shape[0]} x {grid.shape[1]} pixels)"
+        else:
+            unknown_note = (f"; {grid.unknown_pixels} of them are unknown, which unknown='free' would make free"
+                            if grid.unknown_pixels and unknown == "occupied" else "")
+            why = (f"every pixel of the {grid.shape[0]} x {grid.shape[1]} map is occupied (check the map's negate "
+                   f"and thresholds{unknown_note})")
+    warnings.warn(f"no diagram pixel: {why}", UserWarning, stacklevel=stacklevel)
+
+
 def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_separation: float,
-                   prune_length: float, occupied_thresh: float = 0.65, unknown: str = "occupied") -> OccupancyVoronoi:
+                   prune_length: float, occupied_thresh: float = 0.65, unknown: str = "occupied",
+                   document: bool = False) -> OccupancyVoronoi:
     # The core copies the occupancy and the result keeps no reference to `grid`: updates never touch
     # the caller's grid, and the caller's later edits never reach the result.
     options: Dict[str, Any] = {"min_separation": float(min_separation), "prune_length": float(prune_length),
@@ -507,14 +522,9 @@ def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_s
                                    float(min_separation), float(prune_length), int(workers))
     except ValueError as e:
         raise ValueError(str(e)) from None
-    if core.count == 0 and grid.occupied.all():
-        unknown_note = (f"; {grid.unknown_pixels} of them are unknown, which unknown='free' would make free"
-                        if grid.unknown_pixels and unknown == "occupied" else "")
-        warnings.warn(f"no diagram pixel: every pixel of the {grid.shape[0]} x {grid.shape[1]} map is occupied "
-                      f"(check the map's negate and thresholds{unknown_note})", UserWarning, stacklevel=3)
-    elif core.count == 0:
-        warnings.warn(f"no diagram pixel: no two neighbouring free pixels have nearest walls more than "
-                      f"min_separation={min_separation} pixels apart that are not joined by walls within "
-                      f"prune_length={prune_length} pixels (the free space is under 2 pixels wide, or only "
-                      f"small pockets); paths still search the free pixels", UserWarning, stacklevel=3)
+    if core.count == 0:
+        warn_empty_diagram(grid, unknown, f"no two neighbouring free pixels have nearest walls more than "
+                           f"min_separation={min_separation} pixels apart that are not joined by walls within "
+                           f"prune_length={prune_length} pixels (the free space is under 2 pixels wide, or only "
+                           f"small pockets); paths still search the free pixels", document=document)
     return OccupancyVoronoi(core, grid, robot_radius, options)

@@ -485,6 +485,22 @@ def test_fully_occupied_map_is_explained():
     assert dv.OccupancyGrid(np.array([[np.nan, 0.2]])).unknown_pixels == 1
 
 
+def test_empty_labelled_and_document_diagrams_are_explained():
+    with pytest.warns(UserWarning, match="every pixel of the 6 x 7 map is occupied"):
+        assert len(dv.grid_voronoi(np.ones((6, 7), bool), diagram="labels").cells) == 0
+    ring = np.zeros((20, 30), bool)
+    ring[[0, -1], :] = ring[:, [0, -1]] = True  # one connected wall: the labelled diagram has nothing to split
+    with pytest.warns(UserWarning, match="walls are one connected region, which the labelled diagram does not split"):
+        assert len(dv.grid_voronoi(ring, diagram="labels").cells) == 0
+    assert len(dv.grid_voronoi(ring)) > 0  # the medial diagram splits it
+    covered = {"area": {"box": [0, 0, 10, 10]},
+               "obstacles": [{"type": "polygon", "vertices": [[-1, -1], [11, -1], [11, 11], [-1, 11]]}]}
+    with pytest.warns(UserWarning, match="the obstacles cover the whole working area"):
+        assert len(dv.grid_voronoi(covered, cells=16, diagram="medial")) == 0
+    with pytest.warns(UserWarning, match="no diagram cell: the corners of every cell share one nearest obstacle"):
+        assert len(dv.grid_voronoi(covered, cells=16).cells) == 0
+
+
 @pytest.mark.skipif(not CLI, reason="DVORONOI_CLI not set")
 def test_cli_explains_an_empty_diagram_even_when_quiet(tmp_path):
     (tmp_path / "unknown.pgm").write_bytes(b"P5\n6 5\n255\n" + bytes([205]) * 30)  # all unknown grey
