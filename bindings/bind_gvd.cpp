@@ -15,6 +15,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -281,8 +282,12 @@ void bind_gvd(py::module_& m) {
         .def("to_svg", [](PyResult& p, py::object path) {
             std::vector<Vec2> pts;
             if (!path.is_none()) {
-                PointsArg a = points_arg(path, "path");
-                for (Eigen::Index k = 0; k < a.ref().rows(); ++k) pts.emplace_back(a.ref()(k, 0), a.ref()(k, 1));
+                PointsArg a = points_arg(path, "route");
+                for (Eigen::Index k = 0; k < a.ref().rows(); ++k) {
+                    if (!std::isfinite(a.ref()(k, 0)) || !std::isfinite(a.ref()(k, 1)))
+                        throw py::value_error("route: point " + std::to_string(k) + " has a non-finite coordinate");
+                    pts.emplace_back(a.ref()(k, 0), a.ref()(k, 1));
+                }
             }
             std::ostringstream os;
             dvoronoi::io::write_gvd_svg(os, p.scene->file.scene, p.r, pts);

@@ -14,6 +14,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -82,11 +83,16 @@ auto without_gil(Fn&& fn) {
     }
 }
 
+/// A route to draw or write (to_json / to_svg's `route`): finite map coordinates.
 std::vector<Vec2> path_points(py::handle path) {
     std::vector<Vec2> pts;
     if (path.is_none()) return pts;
-    PointsArg a = points_arg(path, "path");
-    for (Eigen::Index k = 0; k < a.ref().rows(); ++k) pts.emplace_back(a.ref()(k, 0), a.ref()(k, 1));
+    PointsArg a = points_arg(path, "route");
+    for (Eigen::Index k = 0; k < a.ref().rows(); ++k) {
+        if (!std::isfinite(a.ref()(k, 0)) || !std::isfinite(a.ref()(k, 1)))
+            throw py::value_error("route: point " + std::to_string(k) + " has a non-finite coordinate");
+        pts.emplace_back(a.ref()(k, 0), a.ref()(k, 1));
+    }
     return pts;
 }
 

@@ -376,7 +376,8 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
     min_separation, prune_length : the medial diagram's parameters in pixels (defaults 1.5 and 8).
 
     Raises ValueError naming the argument, the file and line of a bad map, or the obstacle and field
-    of a bad obstacle.
+    of a bad obstacle; an argument the chosen diagram or input does not read (e.g. `mode` for the
+    medial diagram, `origin` for an obstacle document) is an error too.
     """
     robot_radius = _args.real(robot_radius, "robot_radius")
     if not np.isfinite(robot_radius) or robot_radius < 0:
@@ -384,7 +385,26 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
     n_workers = _workers(workers)
     if diagram not in (None, "medial", "labels"):
         raise ValueError(f'diagram must be "medial" or "labels", got {diagram!r}')
-    if _is_map(obstacles):
+    if mode not in ("cooperative", "independent"):
+        raise ValueError(f'mode must be "cooperative" or "independent", got {mode!r}')
+    if not isinstance(visibility, (bool, np.bool_)):
+        raise TypeError(f"visibility must be True or False, got {type(visibility).__name__}")
+    is_map = _is_map(obstacles)
+    # an argument the chosen diagram or input does not read is an error, not silently dropped
+    labelled = diagram == "labels" or (diagram is None and not is_map)
+    if labelled and (min_separation != 1.5 or prune_length != 8.0):
+        raise ValueError('min_separation and prune_length are the medial diagram\'s parameters; diagram="labels" '
+                         'does not use them')
+    if not labelled and (mode != "cooperative" or not visibility):
+        raise ValueError('mode and visibility are the labelled diagram\'s slice approach and edge test; the medial '
+                         'diagram does not use them')
+    if not is_map and origin is not None:
+        raise ValueError("origin: an obstacle document's coordinates are its own; origin= places occupancy "
+                         "arrays and images")
+    if not is_map and (unknown != "occupied" or occupied_thresh != 0.65):
+        raise ValueError("unknown and occupied_thresh say how an occupancy array or image is read; an obstacle "
+                         "document has no unknown or probable cells")
+    if is_map:
         from .occupancy import as_occupancy_grid, medial_voronoi
 
         if area is not None:
@@ -416,8 +436,6 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
     if cells is None:
         cells = 512
     cells = _args.integer(cells, "cells", 1, _args.MAX_COUNT)
-    if mode not in ("cooperative", "independent"):
-        raise ValueError(f'mode must be "cooperative" or "independent", got {mode!r}')
     scene = load_obstacles(obstacles, area)
     if diagram == "medial":
         # the document on the pixel grid: a pixel is occupied when it meets an obstacle or leaves the area

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, Dict, Iterable, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _core
+from . import _args, _core
 from ._io import PathLike, atomic_write_text
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -410,8 +410,8 @@ class OccupancyVoronoi:
 
         Raises ValueError naming `start` or `goal` when it is outside the map or blocked.
         """
-        r = self.robot_radius if robot_radius is None else float(robot_radius)
-        pts, length, expanded = self._core.path(start, goal, r, float(off_diagram_cost))
+        r = self.robot_radius if robot_radius is None else _args.real(robot_radius, "robot_radius")
+        pts, length, expanded = self._core.path(start, goal, r, _args.real(off_diagram_cost, "off_diagram_cost"))
         self.stats = {**self.stats, "last_path": {"length": float(length) if len(pts) else float("inf"),
                                                   "expanded": int(expanded)}}
         return pts
@@ -421,9 +421,12 @@ class OccupancyVoronoi:
         self.path(start, goal, **kwargs)
         return float(self.stats["last_path"]["length"])
 
-    def clearance_at(self, points: Any) -> np.ndarray:
+    def clearance_at(self, points: Any) -> Any:
         """Distance (map units) from each point to the nearest occupied pixel or the map's edge (0 inside
-        an occupied pixel or outside the map): for costmaps."""
+        an occupied pixel or outside the map): for costmaps. ``(n, 2)`` points give ``(n,)``; one point
+        ``(x, y)`` gives a float."""
+        if np.ndim(points) == 1 and np.shape(points) == (2,):
+            return float(self._core.clearance(np.reshape(points, (1, 2)))[0])
         return self._core.clearance(points)
 
     # -- export and pictures ---------------------------------------------------------------------
@@ -515,6 +518,8 @@ def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_s
                    document: bool = False) -> OccupancyVoronoi:
     # The core copies the occupancy and the result keeps no reference to `grid`: updates never touch
     # the caller's grid, and the caller's later edits never reach the result.
+    min_separation = _args.real(min_separation, "min_separation")
+    prune_length = _args.real(prune_length, "prune_length")
     options: Dict[str, Any] = {"min_separation": float(min_separation), "prune_length": float(prune_length),
                                "workers": int(workers), "occupied_thresh": float(occupied_thresh), "unknown": unknown}
     try:

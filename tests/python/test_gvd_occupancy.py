@@ -711,3 +711,62 @@ def test_cli_outputs_to_one_file_by_two_names_and_bad_map_arguments(tmp_path):
     assert p.returncode == 2 and "is a folder: give a map file" in p.stderr, p.stderr
     p = subprocess.run([CLI, "gvd", "a.map", "--origin", "nan", "0", "-q"], capture_output=True, text=True, cwd=tmp_path)
     assert p.returncode == 2 and "--origin: coordinates must be finite" in p.stderr, p.stderr
+
+
+# -- the third review's findings (paths, exports, arguments) ---------------------------------------
+
+def test_path_costs_stay_in_range_and_a_start_at_the_goal_is_a_zero_length_path():
+    gv = dv.grid_voronoi(np.zeros((20, 30), bool), resolution=0.5, origin=(3.0, -2.0))
+    start, goal = (4.0, 1.0), (15.0, 5.0)
+    assert len(gv.path(start, goal, off_diagram_cost=1e6)) >= 2  # large costs still find the path
+    for bad in (1e6 * 1.01, 1e38, 0.5, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match=r"off_diagram_cost must be a number in \[1, 1e6\]"):
+            gv.path(start, goal, off_diagram_cost=bad)
+    route = gv.path(start, start)
+    assert route.tolist() == [list(start), list(start)] and gv.path_length(start, start) == 0.0
+    with pytest.raises(ValueError, match=r"is blocked: its clearance 1 is not greater than the robot radius 1e\+300$"):
+        gv.path(start, goal, robot_radius=1e300)  # numbers in errors are short
+    for name, kwargs in (("robot_radius", {"robot_radius": "0.3"}), ("off_diagram_cost", {"off_diagram_cost": "2"})):
+        with pytest.raises(TypeError, match=f"{name} must be a real number"):
+            gv.path(start, goal, **kwargs)
+    with pytest.raises(TypeError, match="min_separation must be a real number"):
+        dv.grid_voronoi(np.zeros((9, 9), bool), min_separation="2")
+    assert gv.clearance_at((4.0, 1.0)) == pytest.approx(gv.clearance_at([(4.0, 1.0)])[0]) == 1.0
+
+
+def test_routes_are_exported_only_when_finite_and_a_missing_path_has_no_length():
+    occ = np.zeros((20, 30), bool)
+    occ[:, 14] = True  # two rooms, no door
+    gv = dv.grid_voronoi(occ)
+    for bad in ([[np.inf, 0.0], [1.0, 1.0]], [[0.0, 0.0], [1.0, np.nan]]):
+        with pytest.raises(ValueError, match="route: point [01] has a non-finite coordinate"):
+            gv.to_svg(route=np.array(bad))
+        with pytest.raises(ValueError, match="route: point [01] has a non-finite coordinate"):
+            gv.to_json(route=np.array(bad))
+    route = gv.path((3.5, 10.5), (25.5, 10.5))
+    assert len(route) == 0 and gv.stats["last_path"]["length"] == float("inf")
+    assert json.loads(gv.to_json(route=route))["path"] == {"found": False, "length": None, "points": []}
+    labelled = dv.grid_voronoi({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "point", "position": [5, 5]}]}, cells=20)
+    with pytest.raises(ValueError, match="route: point 0 has a non-finite coordinate"):
+        labelled.to_svg(route=np.array([[np.nan, 1.0], [2.0, 2.0]]))
+
+
+def test_arguments_the_diagram_or_input_does_not_read_are_refused():
+    occ = occupancy_maps.building(40, 1)
+    doc = {"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "point", "position": [5, 5]}]}
+    for source, kwargs, match in (
+            (occ, {"mode": "bogus"}, 'mode must be "cooperative" or "independent"'),
+            (occ, {"visibility": "no"}, "visibility must be True or False"),
+            (occ, {"mode": "independent"}, "the medial diagram does not use them"),
+            (occ, {"diagram": "labels", "prune_length": 12}, 'diagram="labels" does not use them'),
+            (doc, {"prune_length": 300}, 'diagram="labels" does not use them'),
+            (doc, {"origin": (5, 5)}, "origin: an obstacle document's coordinates are its own"),
+            (doc, {"diagram": "medial", "origin": (5, 5)}, "origin: an obstacle document's coordinates are its own"),
+            (doc, {"unknown": "maybe"}, "unknown and occupied_thresh say how an occupancy array"),
+            (doc, {"occupied_thresh": 7}, "unknown and occupied_thresh say how an occupancy array"),
+            (doc, {"diagram": "medial", "visibility": False}, "the medial diagram does not use them")):
+        with pytest.raises((ValueError, TypeError), match=match):
+            dv.grid_voronoi(source, **kwargs)
+    # what each reads is still taken
+    assert len(dv.grid_voronoi(occ, diagram="labels", mode="independent", visibility=False).cells) > 0
+    assert len(dv.grid_voronoi(doc, diagram="medial", cells=32, prune_length=4)) > 0

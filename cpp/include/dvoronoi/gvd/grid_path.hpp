@@ -132,8 +132,10 @@ inline GridPath find_grid_path(const MedialDiagram& m, const Vec2& start, const 
     const OccupancyGrid& g = m.grid;
     if (!std::isfinite(robot_radius) || robot_radius < 0.0)
         throw InputError("robot_radius must be a finite number >= 0");
-    if (!std::isfinite(off_diagram_cost) || off_diagram_cost < 1.0)
-        throw InputError("off_diagram_cost must be a finite number >= 1");
+    // at most 1e6: the search sums step costs in float (5 bytes a pixel), and a sum of 2^28 steps of
+    // that cost stays far below float's range
+    if (!(off_diagram_cost >= 1.0 && off_diagram_cost <= 1e6))
+        throw InputError("off_diagram_cost must be a number in [1, 1e6], got " + ::dvoronoi::detail::shortest_text(off_diagram_cost));
     const double r_px = robot_radius / g.resolution;
     auto show = [](const Vec2& p) {
         char buf[80];
@@ -148,10 +150,14 @@ inline GridPath find_grid_path(const MedialDiagram& m, const Vec2& start, const 
         const double cl = point_clearance(m, p);
         if (!detail::clearer_than(cl * cl, r_px))
             throw InputError(std::string(name) + " " + show(orig) + " is blocked: its clearance " +
-                             std::to_string(cl * g.resolution) + " is not greater than the robot radius " +
-                             std::to_string(robot_radius));
+                             ::dvoronoi::detail::shortest_text(cl * g.resolution) + " is not greater than the robot radius " +
+                             ::dvoronoi::detail::shortest_text(robot_radius));
     }
     GridPath out;
+    if (start == goal) {  // already there (and clear)
+        out.points = {start, goal};
+        return out;
+    }
     const std::int32_t H = g.rows, W = g.cols;
     auto node_ok = [&](std::size_t i) {
         return !g.occupied[i] && detail::clearer_than(0.25 * static_cast<double>(m.features.sq(static_cast<std::int32_t>(i / static_cast<std::size_t>(W)), static_cast<std::int32_t>(i % static_cast<std::size_t>(W)))), r_px);

@@ -54,7 +54,8 @@ inline nlohmann::json medial_to_json(const gvd::MedialDiagram& m, double robot_r
 inline nlohmann::json path_to_json(const gvd::GridPath& p) {
     nlohmann::json pts = nlohmann::json::array();
     for (const Vec2& q : p.points) pts.push_back({q.x(), q.y()});
-    return {{"found", p.found()}, {"length", p.length}, {"points", pts}};
+    // no path: no length (JSON has no infinity; Python's stats say inf)
+    return {{"found", p.found()}, {"length", p.found() ? nlohmann::json(p.length) : nlohmann::json(nullptr)}, {"points", pts}};
 }
 
 inline void write_medial_svg(std::ostream& os, const gvd::MedialDiagram& m, double robot_radius,
