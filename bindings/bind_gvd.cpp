@@ -42,10 +42,19 @@ struct PyScene {
     }
 };
 
+/// Where an occupancy map's labelled diagram is computed: its scene in pixel units, placed in map
+/// units by scale and offset (gvd::placed).
+struct PixelFrame {
+    std::shared_ptr<PyScene> scene;
+    double scale = 1.0;
+    Vec2 offset = Vec2::Zero();
+};
+
 struct PyResult {
     gvd::GridVoronoi r;
-    std::shared_ptr<PyScene> scene;
+    std::shared_ptr<PyScene> scene;  ///< in map units: paths, pictures and JSON
     gvd::GvdOptions options;  ///< what made r (a pickled result is rebuilt from its scene and these)
+    PixelFrame pixels;        ///< the labels' scene when it is a map's (else no scene)
     /// The roadmap and cell adjacency are built on first use (the diagram itself is ready at once).
     gvd::GridVoronoi& graph() {
         if (!r.has_graph) {
@@ -133,13 +142,21 @@ std::shared_ptr<PyScene> scene_of(const nlohmann::json& j, const std::string& na
 }
 
 /// The labelled diagram of `scene` with options `o` (GIL released; InputError as ValueError).
-std::unique_ptr<PyResult> run_gvd(std::shared_ptr<PyScene> scene, const gvd::GvdOptions& o) {
+std::unique_ptr<PyResult> run_gvd(std::shared_ptr<PyScene> scene, const gvd::GvdOptions& o, PixelFrame pixels = {}) {
     auto out = std::make_unique<PyResult>();
     out->scene = std::move(scene);
     out->options = o;
+    out->pixels = std::move(pixels);
     py::gil_scoped_release release;
     try {
-        out->r = gvd::grid_voronoi(out->scene->file.scene, o);
+        if (out->pixels.scene) {
+            gvd::GvdOptions in_pixels = o;
+            in_pixels.robot_radius = 0.0;  // blocked is decided in map units
+            out->r = gvd::placed(gvd::grid_voronoi(out->pixels.scene->file.scene, in_pixels), out->pixels.scale,
+                                 out->pixels.offset, o.robot_radius);
+        } else {
+            out->r = gvd::grid_voronoi(out->scene->file.scene, o);
+        }
     } catch (const dvoronoi::InputError&) {
         py::gil_scoped_acquire gil;
         throw;  // to the translator (bind_core.cpp): a ValueError whose message stays UTF-8
@@ -214,11 +231,13 @@ void bind_gvd(py::module_& m) {
         // diagram for any worker count (the run statistics are the new run's).
         .def(py::pickle(
             [](const PyResult& p) {
+                py::object frame = py::none();
+                if (p.pixels.scene) frame = py::make_tuple(p.pixels.scene, p.pixels.scale, p.pixels.offset.x(), p.pixels.offset.y());
                 return py::make_tuple(p.scene, p.options.resolution, p.options.robot_radius, p.options.workers,
-                                      dvoronoi::io::mode_name(p.options.mode), p.options.visibility);
+                                      dvoronoi::io::mode_name(p.options.mode), p.options.visibility, frame);
             },
             [](const py::tuple& t) {
-                if (t.size() != 6) throw py::value_error("not a pickled _GvdResult state");
+                if (t.size() != 6 && t.size() != 7) throw py::value_error("not a pickled _GvdResult state");
                 gvd::GvdOptions o;
                 o.resolution = t[1].cast<std::int64_t>();
                 o.robot_radius = t[2].cast<double>();
@@ -226,7 +245,12 @@ void bind_gvd(py::module_& m) {
                 o.mode = parse_mode(t[4].cast<std::string>());
                 o.visibility = t[5].cast<bool>();
                 o.graph = false;
-                return run_gvd(t[0].cast<std::shared_ptr<PyScene>>(), o);
+                PixelFrame pixels;
+                if (t.size() == 7 && !t[6].is_none()) {
+                    const auto f = t[6].cast<py::tuple>();
+                    pixels = {f[0].cast<std::shared_ptr<PyScene>>(), f[1].cast<double>(), Vec2(f[2].cast<double>(), f[3].cast<double>())};
+                }
+                return run_gvd(t[0].cast<std::shared_ptr<PyScene>>(), o, std::move(pixels));
             }))
         .def_property_readonly("grid", [](const PyResult& p) {
             const auto& g = p.r.grid;
@@ -310,7 +334,8 @@ void bind_gvd(py::module_& m) {
         }, py::arg("start"), py::arg("goal"));
 
     m.def("_gvd_run", [](std::shared_ptr<PyScene> scene, std::int64_t resolution, double robot_radius, int workers,
-                         const std::string& mode, bool visibility) {
+                         const std::string& mode, bool visibility, std::shared_ptr<PyScene> pixel_scene, double scale,
+                         double ox, double oy) {
         gvd::GvdOptions o;
         o.resolution = resolution;
         o.robot_radius = robot_radius;
@@ -318,9 +343,12 @@ void bind_gvd(py::module_& m) {
         o.mode = parse_mode(mode);
         o.visibility = visibility;
         o.graph = false;  // built on first use of the roadmap or a path
-        return run_gvd(std::move(scene), o);
+        return run_gvd(std::move(scene), o, {std::move(pixel_scene), scale, Vec2(ox, oy)});
     }, py::arg("scene"), py::arg("resolution"), py::arg("robot_radius"), py::arg("workers"), py::arg("mode"),
-       py::arg("visibility"));
+       py::arg("visibility"), py::arg("pixel_scene") = py::none(), py::arg("scale") = 1.0, py::arg("ox") = 0.0,
+       py::arg("oy") = 0.0,
+       "The labelled diagram of `scene`; with `pixel_scene` (an occupancy map's obstacles in pixel units) its "
+       "labels are computed there and placed in map units by scale and (ox, oy) (gvd::placed).");
 
     m.def("_gvd_brute_force", [](std::shared_ptr<PyScene> scene, std::int64_t resolution, bool visibility) {
         gvd::BruteForceLabels b;

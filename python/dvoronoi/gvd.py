@@ -414,12 +414,15 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         grid = as_occupancy_grid(obstacles, resolution, origin, unknown, occupied_thresh, copy=False)
         if diagram in (None, "medial"):
             return medial_voronoi(grid, robot_radius, n_workers, min_separation, prune_length, occupied_thresh, unknown)
+        # Labelled in pixel units, where the map's obstacles and the cell corners lie on the integer
+        # lattice and distances are exact, then placed in map units (in map units, rounding would break
+        # the lattice's many exact ties either way, and the diagram would depend on resolution and origin).
         H, W = grid.shape
-        doc = obstacles_from_occupancy_grid(grid)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", UserWarning)  # said below in the map's terms
-            labelled = grid_voronoi(doc, cells=max(H, W), robot_radius=robot_radius, workers=n_workers, mode=mode,
-                                    visibility=visibility, diagram="labels")
+        regions = _occupied_regions(grid.occupied)
+        scene = load_obstacles(_occupancy_document(regions, grid.shape, grid.resolution, grid.origin))
+        in_pixels = load_obstacles(_occupancy_document(regions, grid.shape, 1.0, (0.0, 0.0)))
+        labelled = GridVoronoi(_core._gvd_run(scene, max(H, W), robot_radius, n_workers, mode, bool(visibility),
+                                              in_pixels, grid.resolution, grid.origin[0], grid.origin[1]), scene)
         if len(labelled.cells) == 0:
             from .occupancy import warn_empty_diagram
 
@@ -494,8 +497,6 @@ def obstacles_from_occupancy_grid(source: Any, resolution: Optional[float] = Non
     first occupied pixel in the image's row-major order, top row first). Returns the document
     :func:`grid_voronoi` takes.
     """
-    from scipy import ndimage
-
     from .occupancy import OccupancyGrid
 
     if isinstance(source, OccupancyGrid):
@@ -508,22 +509,33 @@ def obstacles_from_occupancy_grid(source: Any, resolution: Optional[float] = Non
     else:
         grid = OccupancyGrid.load(source, resolution=resolution, origin=origin, occupied_thresh=occupied_thresh,
                                   negate=negate)
-    occ = grid.occupied
-    res = grid.resolution
-    origin = grid.origin
-    rows, cols = occ.shape
-    ox, oy = float(origin[0]), float(origin[1])
-    labels, n = ndimage.label(occ, structure=np.ones((3, 3), bool))
-    obstacles = []
+    return _occupancy_document(_occupied_regions(grid.occupied), grid.occupied.shape, grid.resolution, grid.origin)
+
+
+def _occupied_regions(occ: np.ndarray) -> list:
+    """Each connected occupied region (8-connected, in scipy.ndimage.label's order) as rectangles
+    (x0, y0, x1, y1) in pixel units, y up: image row r spans y in [rows - 1 - r, rows - r]."""
+    from scipy import ndimage
+
+    rows = occ.shape[0]
+    labels, _ = ndimage.label(occ, structure=np.ones((3, 3), bool))
+    regions = []
     for region, sl in enumerate(ndimage.find_objects(labels), start=1):
         sub = labels[sl] == region
+        regions.append([(sl[1].start + c0, rows - (sl[0].start + r1), sl[1].start + c1, rows - (sl[0].start + r0))
+                        for r0, r1, c0, c1 in _rectangles(sub)])
+    return regions
+
+
+def _occupancy_document(regions: list, shape: Tuple[int, int], res: float, origin: Sequence[float]) -> Dict[str, Any]:
+    """The obstacle document of a map's regions (_occupied_regions) placed by `res` and `origin`."""
+    rows, cols = shape
+    ox, oy = float(origin[0]), float(origin[1])
+    obstacles = []
+    for rects in regions:
         parts = []
-        for r0, r1, c0, c1 in _rectangles(sub):
-            # image row r spans y in [oy + (rows - 1 - r) res, oy + (rows - r) res]
-            ya = oy + (rows - (sl[0].start + r1)) * res
-            yb = oy + (rows - (sl[0].start + r0)) * res
-            xa = ox + (sl[1].start + c0) * res
-            xb = ox + (sl[1].start + c1) * res
+        for x0, y0, x1, y1 in rects:
+            xa, xb, ya, yb = ox + x0 * res, ox + x1 * res, oy + y0 * res, oy + y1 * res
             parts.append({"type": "polygon", "vertices": [[xa, ya], [xb, ya], [xb, yb], [xa, yb]]})
         obstacles.append(parts[0] if len(parts) == 1 else {"type": "union", "parts": parts})
     return {"area": {"box": [ox, oy, ox + cols * res, oy + rows * res]}, "obstacles": obstacles}

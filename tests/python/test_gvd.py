@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import pickle
 import shutil
 import subprocess
 from collections import deque
@@ -312,12 +313,25 @@ def test_occupancy_maps_match_oracle(name):
 
 
 def test_occupancy_map_labels_diagram_is_the_oracle():
-    """diagram="labels" on an occupancy array (the route a ROS map takes) is the oracle's diagram."""
+    """diagram="labels" on an occupancy array (the route a ROS map takes) is the oracle's diagram in
+    pixel units, where the map's exact ties lie, whatever the resolution and origin; clearances and
+    blocked cells follow in map units, and a pickle gives the same diagram back."""
     occ = occupancy_maps.rooms_with_islands(80, 3)
-    gv = dv.grid_voronoi(occ, resolution=0.05, diagram="labels", workers=2)
-    doc = dv.obstacles_from_occupancy_grid(occ.astype(np.float64), 0.05, occupied_thresh=0.5)
+    doc = dv.obstacles_from_occupancy_grid(occ.astype(np.float64), 1.0, occupied_thresh=0.5)
     scene, labels, sq, mixed = oracle(doc, max(occ.shape))
-    assert mixed.sum() > 0 and np.array_equal(gv.diagram_mask, mixed)
+    assert mixed.sum() > 0
+    ref = dv.grid_voronoi(occ, diagram="labels")
+    for res, origin in ((1.0, (0.0, 0.0)), (0.05, (0.0, 0.0)), (0.1, (-12.3, 4.1)), (0.3, (1e4, -7.7))):
+        gv = dv.grid_voronoi(occ, resolution=res, origin=origin, diagram="labels", workers=2, robot_radius=2.5 * res)
+        assert np.array_equal(gv.diagram_mask, mixed), res
+        assert np.array_equal(gv.labels, ref.labels) and np.array_equal(gv.vertices, ref.vertices)
+        assert gv.origin == pytest.approx(origin) and gv.cell_size == pytest.approx(res)
+        np.testing.assert_allclose(gv.clearance, res * ref.clearance, rtol=1e-12)
+        assert np.array_equal(gv.blocked, gv.clearance <= 2.5 * res) and 0 < gv.blocked.sum() < len(gv.blocked)
+        np.testing.assert_allclose(gv.centers, np.asarray(origin) + res * ref.centers, rtol=1e-12, atol=1e-9)
+        back = pickle.loads(pickle.dumps(gv))
+        assert np.array_equal(back.labels, gv.labels) and np.array_equal(back.clearance, gv.clearance)
+        assert back.origin == gv.origin and back.to_json() != "" and np.array_equal(back.blocked, gv.blocked)
 
 
 @pytest.mark.parametrize("doc_name", ["random", "sea", "mixed"])

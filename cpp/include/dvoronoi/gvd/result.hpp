@@ -263,6 +263,27 @@ inline GridVoronoi assemble(const Scene& scene, const GridSpec& grid, std::vecto
     return r;
 }
 
+/// A diagram computed in pixel units placed in map units: cell (i, j) of `r`'s grid moves to
+/// offset + scale * (its place), clearances scale, and cells are blocked as assemble blocks them, by
+/// `robot_radius` (map units). An occupancy map's labelled diagram is computed so: its obstacles and
+/// cell corners lie on the integer lattice, where exact ties are everywhere and distances are exact,
+/// while in map units rounding would break the ties one way or the other (the diagram would depend
+/// on the resolution and origin). The graph is built afterwards, in map units.
+inline GridVoronoi placed(GridVoronoi r, double scale, const Vec2& offset, double robot_radius) {
+    r.grid.x0 = offset.x() + scale * r.grid.x0;
+    r.grid.y0 = offset.y() + scale * r.grid.y0;
+    r.grid.h *= scale;
+    r.robot_radius = robot_radius;
+    for (std::size_t k = 0; k < r.size(); ++k) {
+        r.clearance[k] *= scale;
+        r.blocked[k] = r.clearance[k] <= robot_radius ? 1 : 0;
+    }
+    r.neighbors.clear();
+    r.roadmap = Roadmap{};
+    r.has_graph = false;
+    return r;
+}
+
 /// Builds the cell adjacency (neighbours across label-changing edges) and the roadmap, once.
 /// grid_voronoi does it unless told not to (Python builds it on first use of the roadmap or a path).
 /// \note O(cells).
