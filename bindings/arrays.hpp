@@ -15,6 +15,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -150,6 +151,21 @@ inline Vec2 point_arg(py::handle obj, const char* name) {
     std::memcpy(&x, ptr, sizeof(double));
     std::memcpy(&y, ptr + step, sizeof(double));
     return Vec2(x, y);
+}
+
+/// An (n, 2) array of finite points (a route to draw or write); none for None.
+///
+/// \throws ValueError naming `name` and the point with a non-finite coordinate, or a wrong shape.
+inline std::vector<Vec2> finite_points_arg(py::handle obj, const char* name) {
+    std::vector<Vec2> pts;
+    if (obj.is_none()) return pts;
+    PointsArg a = points_arg(obj, name);
+    for (Eigen::Index k = 0; k < a.ref().rows(); ++k) {
+        if (!std::isfinite(a.ref()(k, 0)) || !std::isfinite(a.ref()(k, 1)))
+            throw py::value_error(std::string(name) + ": point " + std::to_string(k) + " has a non-finite coordinate");
+        pts.emplace_back(a.ref()(k, 0), a.ref()(k, 1));
+    }
+    return pts;
 }
 
 /// A real number (a Python or numpy number, or anything with __float__ but a bool or a string) as a

@@ -15,7 +15,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <cmath>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -304,15 +303,7 @@ void bind_gvd(py::module_& m) {
         .def("to_json", [](PyResult& p, int indent) { return dvoronoi::io::gvd_to_json(p.graph()).dump(indent); },
              py::arg("indent") = -1)
         .def("to_svg", [](PyResult& p, py::object path) {
-            std::vector<Vec2> pts;
-            if (!path.is_none()) {
-                PointsArg a = points_arg(path, "route");
-                for (Eigen::Index k = 0; k < a.ref().rows(); ++k) {
-                    if (!std::isfinite(a.ref()(k, 0)) || !std::isfinite(a.ref()(k, 1)))
-                        throw py::value_error("route: point " + std::to_string(k) + " has a non-finite coordinate");
-                    pts.emplace_back(a.ref()(k, 0), a.ref()(k, 1));
-                }
-            }
+            const std::vector<Vec2> pts = finite_points_arg(path, "route");
             std::ostringstream os;
             dvoronoi::io::write_gvd_svg(os, p.scene->file.scene, p.r, pts);
             return os.str();

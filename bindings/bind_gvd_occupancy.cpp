@@ -83,18 +83,6 @@ auto without_gil(Fn&& fn) {
     }
 }
 
-/// A route to draw or write (to_json / to_svg's `route`): finite map coordinates.
-std::vector<Vec2> path_points(py::handle path) {
-    std::vector<Vec2> pts;
-    if (path.is_none()) return pts;
-    PointsArg a = points_arg(path, "route");
-    for (Eigen::Index k = 0; k < a.ref().rows(); ++k) {
-        if (!std::isfinite(a.ref()(k, 0)) || !std::isfinite(a.ref()(k, 1)))
-            throw py::value_error("route: point " + std::to_string(k) + " has a non-finite coordinate");
-        pts.emplace_back(a.ref()(k, 0), a.ref()(k, 1));
-    }
-    return pts;
-}
 
 }  // namespace
 
@@ -179,7 +167,7 @@ void bind_gvd_occupancy(py::module_& m) {
             nlohmann::json j = dvoronoi::io::medial_to_json(d, robot_radius);
             if (!path.is_none()) {
                 gvd::GridPath p;
-                p.points = path_points(path);
+                p.points = finite_points_arg(path, "route");
                 for (std::size_t k = 0; k + 1 < p.points.size(); ++k) p.length += (p.points[k + 1] - p.points[k]).norm();
                 j["path"] = dvoronoi::io::path_to_json(p);
             }
@@ -187,7 +175,7 @@ void bind_gvd_occupancy(py::module_& m) {
         }, py::arg("robot_radius"), py::arg("path") = py::none(), py::arg("indent") = -1)
         .def("to_svg", [](const gvd::MedialDiagram& d, double robot_radius, py::handle path) {
             std::ostringstream os;
-            dvoronoi::io::write_medial_svg(os, d, robot_radius, path_points(path));
+            dvoronoi::io::write_medial_svg(os, d, robot_radius, finite_points_arg(path, "route"));
             return os.str();
         }, py::arg("robot_radius"), py::arg("path") = py::none());
 

@@ -391,11 +391,11 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         raise TypeError(f"visibility must be True or False, got {type(visibility).__name__}")
     is_map = _is_map(obstacles)
     # an argument the chosen diagram or input does not read is an error, not silently dropped
-    labelled = diagram == "labels" or (diagram is None and not is_map)
-    if labelled and (min_separation != 1.5 or prune_length != 8.0):
+    wants_labels = diagram == "labels" or (diagram is None and not is_map)
+    if wants_labels and (min_separation != 1.5 or prune_length != 8.0):
         raise ValueError('min_separation and prune_length are the medial diagram\'s parameters; diagram="labels" '
                          'does not use them')
-    if not labelled and (mode != "cooperative" or not visibility):
+    if not wants_labels and (mode != "cooperative" or not visibility):
         raise ValueError('mode and visibility are the labelled diagram\'s slice approach and edge test; the medial '
                          'diagram does not use them')
     if not is_map and origin is not None:
