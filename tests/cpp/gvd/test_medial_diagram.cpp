@@ -1,4 +1,5 @@
 #include "dvoronoi/gvd/medial_brute_force.hpp"
+#include "dvoronoi/gvd/medial_update.hpp"
 #include "occupancy_scenes.hpp"
 
 #include <doctest/doctest.h>
@@ -51,6 +52,27 @@ TEST_CASE("the diagram is exactly the brute-force oracle's, for every worker cou
                 REQUIRE(medial_diagram(g, o).mask.bytes() == oracle);
             }
         }
+}
+
+TEST_CASE("any nonzero occupancy byte is occupied (images hold 255), updates included") {
+    for (const auto& ones : all_scenes()) {
+        OccupancyGrid bytes = ones;
+        std::uint8_t v = 2;
+        for (auto& b : bytes.occupied)
+            if (b) b = v = static_cast<std::uint8_t>(v == 255 ? 2 : v + 1);  // 2 .. 255
+        MedialDiagram a = medial_diagram(ones), m = medial_diagram(bytes);
+        REQUIRE(m.features.fx == a.features.fx);
+        REQUIRE(m.features.fy == a.features.fy);
+        REQUIRE(m.mask.bytes() == a.mask.bytes());
+        std::vector<std::size_t> some;  // free every other occupied pixel, then take it back
+        for (std::size_t i = 0; i < bytes.size(); i += 2)
+            if (bytes.occupied[i]) some.push_back(i);
+        set_pixels(m, some, false);
+        set_pixels(a, some, false);
+        REQUIRE(m.mask.bytes() == a.mask.bytes());
+        set_pixels(m, some, true);
+        REQUIRE(m.mask.bytes() == medial_diagram(ones).mask.bytes());
+    }
 }
 
 TEST_CASE("long pruning lengths: boxes wider than 64 squares take the square-by-square search") {

@@ -296,6 +296,20 @@ private:
     std::int32_t cv_from_ = 0;  // the column whose V is cv_[0]
 };
 
+/// The first occupied (nonzero) byte of o[c .. W), or W. Sixteen bytes at a time with SSE2 (memchr
+/// finds one value only, and any nonzero byte is occupied).
+inline std::int32_t next_occupied(const std::uint8_t* o, std::int32_t c, std::int32_t W) {
+#if defined(__SSE2__)
+    for (; c + 16 <= W; c += 16) {
+        const auto zero = static_cast<unsigned>(
+            _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(o + c)), _mm_setzero_si128())));
+        if (zero != 0xffffu) return c + lowest_bit(~zero & 0xffffu);
+    }
+#endif
+    while (c < W && o[c] == 0) ++c;
+    return c;
+}
+
 /// Pass 2 over row r: each free run [s, t] against the squares of columns s-1 .. t+1 (the
 /// run's ends are occupied or outside: squares beyond them are farther than the ends' edges).
 inline void row_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t r, RowEnvelope& env) {
@@ -308,7 +322,7 @@ inline void row_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t r, RowE
     while (c < W) {
         if (o[c]) {  // occupied pixels are their own nearest points (distance 0), a run at a time
             std::int32_t e = c + 1;
-            for (std::uint64_t w; e + 8 <= W; e += 8) {  // eight occupied bytes (1s) at a time
+            for (std::uint64_t w; e + 8 <= W; e += 8) {  // eight occupied bytes (1s, as maps hold) at a time
                 std::memcpy(&w, o + e, 8);
                 if (w != 0x0101010101010101ull) break;
             }
@@ -320,9 +334,7 @@ inline void row_pass(const OccupancyGrid& g, FeatureMap& f, std::int32_t r, RowE
             c = e;
             continue;
         }
-        // the run ends before the next occupied pixel (memchr scans a word at a time)
-        const void* next = std::memchr(o + c, 1, static_cast<std::size_t>(W - c));
-        const std::int32_t t = next ? static_cast<std::int32_t>(static_cast<const std::uint8_t*>(next) - o) - 1 : W - 1;
+        const std::int32_t t = next_occupied(o, c, W) - 1;  // the run ends before the next occupied pixel
         env.build_run(g, f, r, c, t);
         env.fill_run(c, t, fx, fy);
         c = t + 1;

@@ -35,7 +35,7 @@ inline constexpr std::int32_t kMaxMapSide = 16383;
 
 struct OccupancyGrid {
     std::int32_t rows = 0, cols = 0;
-    /// rows x cols, row-major, row 0 at the top; 1 = occupied. UninitVector: a large map's bytes start
+    /// rows x cols, row-major, row 0 at the top; nonzero = occupied (updates write 1). UninitVector: a large map's bytes start
     /// on a 2 MB boundary for huge pages, and a copy into it needs no zero-fill first.
     ::dvoronoi::detail::UninitVector<std::uint8_t> occupied;
     double resolution = 1.0;             ///< map units per pixel
