@@ -145,9 +145,15 @@ class OccupancyGrid:
         if unknown not in ("occupied", "free"):
             raise ValueError(f'unknown must be "occupied" or "free", got {unknown!r}')
         path = os.fspath(path)
-        if path.lower().endswith((".yaml", ".yml")) and (resolution is not None or origin is not None):
-            raise ValueError(f"{path}: a map_server YAML brings its own resolution and origin; do not pass "
-                             "resolution= or origin=")
+        if not isinstance(negate, (bool, np.bool_)):
+            raise TypeError(f"negate must be True or False, got {type(negate).__name__}")
+        if path.lower().endswith((".yaml", ".yml")):
+            if resolution is not None or origin is not None:
+                raise ValueError(f"{path}: a map_server YAML brings its own resolution and origin; do not pass "
+                                 "resolution= or origin=")
+            if occupied_thresh != 0.65 or free_thresh != 0.196 or negate:
+                raise ValueError(f"{path}: a map_server YAML brings its own occupied_thresh, free_thresh and negate; "
+                                 "do not pass them (edit the YAML)")
         res = 1.0 if resolution is None else _positive(resolution, "resolution")
         ox, oy = (0.0, 0.0) if origin is None else _origin(origin)
         try:

@@ -369,3 +369,18 @@ def test_cli_reads_a_flow_mapping_yaml_and_names_the_line_of_a_bad_one(tmp_path)
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 2 and "bad.yaml:3: negate:" in proc.stderr
     assert not (tmp_path / "bad.json").exists()
+
+
+def test_a_yaml_keeps_its_own_thresholds_and_negate_and_negate_is_a_bool(tmp_path):
+    (tmp_path / "m.pgm").write_bytes(b"P5\n3 2\n255\n" + bytes([0, 254, 205, 254, 0, 254]))
+    (tmp_path / "m.yaml").write_text("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+                                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    for kw in ({"occupied_thresh": 0.1}, {"free_thresh": 0.05}, {"negate": True}):
+        with pytest.raises(ValueError, match=r"m\.yaml: a map_server YAML brings its own occupied_thresh, free_thresh and negate"):
+            dv.OccupancyGrid.load(tmp_path / "m.yaml", **kw)
+    with pytest.raises(ValueError, match="brings its own occupied_thresh"):
+        dv.grid_voronoi(tmp_path / "m.yaml", occupied_thresh=0.99)
+    assert dv.OccupancyGrid.load(tmp_path / "m.yaml").occupied.sum() == 3  # 2 walls + 1 unknown
+    with pytest.raises(TypeError, match="negate must be True or False, got str"):
+        dv.OccupancyGrid.load(tmp_path / "m.pgm", negate="false")
+    assert dv.OccupancyGrid.load(tmp_path / "m.pgm", negate=np.bool_(False)).occupied.sum() == 3
