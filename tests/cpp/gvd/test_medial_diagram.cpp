@@ -158,8 +158,14 @@ TEST_CASE("maps too narrow for a diagram give none; options are checked") {
     for (auto& v : full.occupied) v = 1;
     CHECK(medial_diagram(full).count() == 0);
     MedialOptions bad;
-    bad.min_separation = 0.5;
-    CHECK_THROWS_WITH_AS(medial_diagram(one_wide, bad), doctest::Contains("min_separation"), dvoronoi::InputError);
+    for (double s : {0.5, 32768.5, 1e300, std::nan("")}) {
+        bad.min_separation = s;
+        CHECK_THROWS_WITH_AS(medial_diagram(one_wide, bad), doctest::Contains("min_separation must be a number in [1, 32768]"),
+                             dvoronoi::InputError);
+    }
+    bad.min_separation = 32768.0;  // the largest: nothing is that far apart
+    OccupancyGrid room(30, 40);
+    CHECK(medial_diagram(room, bad).count() == 0);
     bad = MedialOptions{};
     bad.prune_length = std::nan("");
     CHECK_THROWS_WITH_AS(medial_diagram(one_wide, bad), doctest::Contains("prune_length"), dvoronoi::InputError);

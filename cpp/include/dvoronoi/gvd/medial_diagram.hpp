@@ -46,8 +46,9 @@ struct MedialOptions {
 };
 
 inline void check_medial_options(const MedialOptions& o) {
-    if (!std::isfinite(o.min_separation) || o.min_separation < 1.0)
-        throw InputError("min_separation must be a finite number >= 1 (pixels)");
+    // at most 32768: no two points of a map (sides <= 16383) lie farther apart, and 4 s^2 stays an integer
+    if (!(o.min_separation >= 1.0 && o.min_separation <= 32768.0))
+        throw InputError("min_separation must be a number in [1, 32768] (pixels)");
     if (!std::isfinite(o.prune_length) || o.prune_length < 0.0 || o.prune_length > 256.0)
         throw InputError("prune_length must be a finite number in [0, 256] (pixels)");
     if (o.workers < 1) throw InputError("workers must be at least 1, got " + std::to_string(o.workers));
