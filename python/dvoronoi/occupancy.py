@@ -185,11 +185,35 @@ class OccupancyGrid:
         return (int(self.occupied.shape[0]), int(self.occupied.shape[1]))
 
     def pixel_centers(self, pixels: Any) -> np.ndarray:
-        """Map coordinates of the centres of pixels given as (row, col) pairs."""
-        p = np.asarray(pixels, dtype=np.float64).reshape(-1, 2)
-        H = self.shape[0]
-        return np.stack([self.origin[0] + (p[:, 1] + 0.5) * self.resolution,
-                         self.origin[1] + (H - 1 - p[:, 0] + 0.5) * self.resolution], axis=1)
+        """Map coordinates ``(k, 2)`` of the centres of pixels given as ``set_occupied`` takes them:
+        (row, col) pairs, one pair, np.nonzero's tuple or an H x W bool mask (its pixels row-major)."""
+        idx = _pixel_indices(pixels, self.shape, "pixels")
+        if idx.ndim == 2:  # a mask's bytes
+            idx = np.flatnonzero(idx)
+        H, W = self.shape
+        rows, cols = idx // W, idx % W
+        return np.stack([self.origin[0] + (cols + 0.5) * self.resolution,
+                         self.origin[1] + (H - 1 - rows + 0.5) * self.resolution], axis=1)
+
+    def pixels_at(self, points: Any) -> np.ndarray:
+        """The (row, col) pairs ``(k, 2)`` int64 of the pixels holding map points ``(k, 2)`` (or one
+        point): pixel (r, c) holds ``[c, c+1) x (H-1-r, H-r]`` in pixel units (a point on a shared edge
+        goes to the pixel right of it or below it; the map's far edges to the last pixel). ValueError
+        naming the first point outside the map or not finite."""
+        p = np.asarray(points, dtype=np.float64)
+        if p.shape == (2,):
+            p = p.reshape(1, 2)
+        if p.ndim != 2 or p.shape[1] != 2:
+            raise ValueError(f"points must be an (n, 2) array or one point (x, y), got shape {p.shape}")
+        H, W = self.shape
+        u = (p - np.asarray(self.origin)) / self.resolution  # pixel units, y up
+        bad = ~np.isfinite(u).all(axis=1) | (u[:, 0] < 0) | (u[:, 0] > W) | (u[:, 1] < 0) | (u[:, 1] > H)
+        if bad.any():
+            k = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"points[{k}] = ({p[k, 0]!r}, {p[k, 1]!r}) is outside the {H} x {W} map")
+        cols = np.minimum(np.floor(u[:, 0]), W - 1).astype(np.int64)
+        rows = np.minimum(np.floor(H - u[:, 1]), H - 1).astype(np.int64)
+        return np.stack([rows, cols], axis=1)
 
     @property
     def extent(self) -> Tuple[float, float, float, float]:

@@ -770,3 +770,28 @@ def test_arguments_the_diagram_or_input_does_not_read_are_refused():
     # what each reads is still taken
     assert len(dv.grid_voronoi(occ, diagram="labels", mode="independent", visibility=False).cells) > 0
     assert len(dv.grid_voronoi(doc, diagram="medial", cells=32, prune_length=4)) > 0
+
+
+def test_pixel_centres_take_pixels_as_updates_do_and_pixels_at_inverts_them():
+    grid = dv.OccupancyGrid(np.zeros((5, 7), bool), resolution=0.5, origin=(-1.0, 2.0))
+    mask = np.zeros((5, 7), bool)
+    mask[[0, 2, 4], [6, 1, 0]] = True
+    want = grid.pixel_centers([(0, 6), (2, 1), (4, 0)])
+    np.testing.assert_array_equal(want, [[2.25, 4.25], [-0.25, 3.25], [-0.75, 2.25]])
+    for form in (np.nonzero(mask), np.argwhere(mask), mask):
+        np.testing.assert_array_equal(grid.pixel_centers(form), want)
+    np.testing.assert_array_equal(grid.pixel_centers((2, 1)), want[1:2])
+    with pytest.raises(ValueError, match=r"pixels\[0\] = \(5, 0\) is outside the 5 x 7 map"):
+        grid.pixel_centers([(5, 0)])
+    with pytest.raises(ValueError, match=r"shape \(2, 3\)"):
+        grid.pixel_centers(np.array([[0, 2, 4], [6, 1, 0]]))
+    with pytest.raises(TypeError, match="integer pairs"):
+        grid.pixel_centers([(0.5, 1.0)])
+    np.testing.assert_array_equal(grid.pixels_at(want), np.argwhere(mask))
+    # edges: left/bottom map edges and shared edges go right and down; the far edges to the last pixel
+    np.testing.assert_array_equal(grid.pixels_at([(-1.0, 2.0), (2.5, 4.5), (-0.5, 3.0), (1.0 - 1e-12, 3.0)]),
+                                  [[4, 0], [0, 6], [3, 1], [3, 3]])
+    np.testing.assert_array_equal(grid.pixels_at((0.0, 3.5)), [[2, 2]])  # on the edge between rows 1 and 2
+    for bad in ((-1.0001, 3.0), (0.0, 4.50001), (np.nan, 3.0)):
+        with pytest.raises(ValueError, match=r"points\[0\] = .* is outside the 5 x 7 map"):
+            grid.pixels_at([bad])
