@@ -155,12 +155,14 @@ void bind_gvd_occupancy(py::module_& m) {
             const auto n = a.ref().rows();
             py::array_t<double> out(static_cast<py::ssize_t>(n));
             double* o = out.mutable_data();
-            for (Eigen::Index k = 0; k < n; ++k) {
-                const Vec2 p(a.ref()(k, 0), a.ref()(k, 1));
-                if (!std::isfinite(p.x()) || !std::isfinite(p.y()))
+            for (Eigen::Index k = 0; k < n; ++k)
+                if (!std::isfinite(a.ref()(k, 0)) || !std::isfinite(a.ref()(k, 1)))
                     throw py::value_error("points[" + std::to_string(k) + "] is not finite");
-                o[k] = gvd::point_clearance(d, d.grid.to_pixels(p)) * d.grid.resolution;
-            }
+            without_gil([&] {
+                for (Eigen::Index k = 0; k < n; ++k)
+                    o[k] = gvd::point_clearance(d, d.grid.to_pixels(Vec2(a.ref()(k, 0), a.ref()(k, 1)))) * d.grid.resolution;
+                return 0;
+            });
             return out;
         }, py::arg("points"))
         .def("to_json", [](const gvd::MedialDiagram& d, double robot_radius, py::handle path, int indent) {

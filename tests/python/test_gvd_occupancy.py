@@ -438,6 +438,26 @@ def test_clearance_at_matches_shapely():
     assert np.allclose(got, want, atol=1e-8)
 
 
+def test_clearance_at_in_open_space_reads_far_walls_across_words():
+    """Points far from sparse walls (searched 64 squares at a time): exact against every square."""
+    rng = np.random.default_rng(3)
+    occ = np.zeros((150, 300), bool)
+    for r, c in rng.integers(0, (150, 300), (12, 2)):
+        occ[r:r + 3, c:c + 2] = True
+    gv = dv.grid_voronoi(occ, resolution=0.25, origin=(-7.0, 2.0))
+    H, W = occ.shape
+    pts = np.stack([rng.uniform(0, W, 400), rng.uniform(0, H, 400)], axis=1)  # pixel units, y up
+    rows, cols = np.nonzero(occ)
+    jj = H - 1 - rows
+    dx = np.maximum(np.maximum(cols[None, :] - pts[:, :1], 0.0), pts[:, :1] - (cols[None, :] + 1.0))
+    dy = np.maximum(np.maximum(jj[None, :] - pts[:, 1:], 0.0), pts[:, 1:] - (jj[None, :] + 1.0))
+    edge = np.minimum.reduce([pts[:, 0], W - pts[:, 0], pts[:, 1], H - pts[:, 1]])
+    want = 0.25 * np.minimum(np.sqrt(dx * dx + dy * dy).min(axis=1), edge)
+    got = gv.clearance_at(np.asarray((-7.0, 2.0)) + 0.25 * pts)
+    assert (want > 2.0).sum() > 100  # most points lie far from every wall
+    np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-12)
+
+
 # -- results: pickling, JSON, SVG, plots, CLI -----------------------------------------------------
 
 def test_pickle_json_svg_and_plot(tmp_path):

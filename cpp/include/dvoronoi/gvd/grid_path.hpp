@@ -112,13 +112,19 @@ inline double point_clearance(const MedialDiagram& m, const Vec2& p) {
     double best = std::min({p.x(), g.cols - p.x(), p.y(), g.rows - p.y()});
     best *= best;
     const auto reach = static_cast<std::int32_t>(std::ceil(bound)) + 1;
-    for (std::int32_t jj = std::max(0, j - reach); jj <= std::min(g.rows - 1, j + reach); ++jj)
-        for (std::int32_t cc = std::max(0, c - reach); cc <= std::min(g.cols - 1, c + reach); ++cc)
-            if (g.occ(g.rows - 1 - jj, cc)) {
+    // the occupied squares of each row of the box, 64 at a time from the occupancy bits (in open
+    // space a box of thousands of squares holds few occupied ones); rows farther than the best are skipped
+    const std::int32_t c_lo = std::max(0, c - reach), c_hi = std::min(g.cols - 1, c + reach);
+    for (std::int32_t jj = std::max(0, j - reach); jj <= std::min(g.rows - 1, j + reach); ++jj) {
+        const double dy = std::max({jj - p.y(), 0.0, p.y() - (jj + 1.0)});
+        if (dy * dy >= best) continue;
+        for (std::int32_t c0 = c_lo; c0 <= c_hi; c0 += 64)
+            for (std::uint64_t w = m.bits.row(jj, c0, std::min(64, c_hi - c0 + 1)); w != 0; w &= w - 1) {
+                const std::int32_t cc = c0 + lowest_bit(w);
                 const double dx = std::max({cc - p.x(), 0.0, p.x() - (cc + 1.0)});
-                const double dy = std::max({jj - p.y(), 0.0, p.y() - (jj + 1.0)});
                 best = std::min(best, dx * dx + dy * dy);
             }
+    }
     return std::sqrt(best);
 }
 
