@@ -458,6 +458,20 @@ def test_clearance_at_in_open_space_reads_far_walls_across_words():
     np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-12)
 
 
+def test_paths_along_diagonal_stretches_of_the_diagram_are_straightened():
+    """A diagonal diagram line is 8-connected, the search 4-connected: the pixel path alternates
+    diagram pixels and pixels beside them, and is still straightened along the diagram."""
+    room = dv.grid_voronoi(np.zeros((60, 60), bool))  # its diagram: the two diagonals
+    corridor = np.array([[abs((119 - r) - c) > 5 for c in range(120)] for r in range(120)])  # |y - x| <= 5 free
+    band = dv.grid_voronoi(corridor, robot_radius=1.0)
+    for gv, s, g in ((room, (10.5, 10.5), (49.5, 49.5)), (band, (10.5, 10.5), (109.5, 109.5))):
+        for cost in (3.0, 1.0):
+            route = gv.path(s, g, off_diagram_cost=cost)
+            straight = float(np.hypot(*np.subtract(g, s)))
+            assert gv.stats["last_path"]["length"] < 1.02 * straight and len(route) < 12, (cost, len(route))
+            assert gv.clearance_at(route).min() > gv.robot_radius
+
+
 # -- results: pickling, JSON, SVG, plots, CLI -----------------------------------------------------
 
 def test_pickle_json_svg_and_plot(tmp_path):

@@ -235,15 +235,20 @@ inline GridPath find_grid_path(const MedialDiagram& m, const Vec2& start, const 
         u = static_cast<std::size_t>(static_cast<std::int64_t>(u) - step[k]);
     }
     std::reverse(pix.begin(), pix.end());
-    // Straighten: from each kept pixel, jump to the farthest later pixel of the same kind (diagram
-    // or not) that a clear segment reaches, looking at most 64 pixels ahead.
+    // Straighten: from each kept pixel, jump to the farthest later pixel of the same kind (along the
+    // diagram or not) that a clear segment reaches, looking at most 64 pixels ahead. A diagonal stretch
+    // of the diagram is 8-connected and the search 4-connected: the pixel path alternates diagram
+    // pixels and single pixels beside them, which count as along the diagram too.
+    std::vector<std::uint8_t> along(pix.size());
+    for (std::size_t k = 0; k < pix.size(); ++k)
+        along[k] = m.mask[pix[k]] || (k > 0 && k + 1 < pix.size() && m.mask[pix[k - 1]] && m.mask[pix[k + 1]]);
     std::vector<Vec2> pts{sp};
     std::size_t a = 0;
     pts.push_back(centre(pix[0]));
     while (a + 1 < pix.size()) {
         std::size_t best = a + 1;
         for (std::size_t b = a + 2; b < pix.size() && b <= a + 64; ++b) {
-            if (m.mask[pix[b]] != m.mask[pix[a + 1]]) break;
+            if (along[b] != along[a + 1]) break;
             if (segment_clear(g, centre(pix[a]), centre(pix[b]), r_px)) best = b;
         }
         pts.push_back(centre(pix[best]));
