@@ -270,6 +270,8 @@ class GridVoronoi(Result):
         from matplotlib.colors import ListedColormap
         from matplotlib.patches import Circle, Polygon
 
+        from .plotting import category_image
+
         if ax is None:
             _, ax = plt.subplots(figsize=kwargs.pop("figsize", (7, 7)))
         x0, y0 = self.origin
@@ -278,8 +280,14 @@ class GridVoronoi(Result):
         img = np.zeros(self.shape, dtype=np.int8)
         img[self.cells[:, 1], self.cells[:, 0]] = np.where(self.blocked, 2, 1)
         cmap = ListedColormap([(1, 1, 1, 0), (0.12, 0.47, 0.71, 1), (0.96, 0.65, 0.65, 1)])
-        ax.imshow(img, origin="lower", extent=(x0, x0 + nx * h, y0, y0 + ny * h), cmap=cmap, vmin=0, vmax=2,
-                  interpolation="nearest", zorder=2, gid="dvoronoi-gvd-cells")
+        area = self._scene.area
+        ax.set_aspect("equal")
+        ax.set_xlim(area[:, 0].min(), area[:, 0].max())
+        ax.set_ylim(area[:, 1].min(), area[:, 1].max())
+        # row 0 of the cells is the bottom one; the image's top row first (a large grid is reduced so
+        # that no cell line drops out)
+        category_image(ax, img[::-1], (x0, x0 + nx * h, y0, y0 + ny * h), cmap=cmap, vmin=0, vmax=2, zorder=2,
+                       gid="dvoronoi-gvd-cells")
         if obstacles:
             for kind, label, verts, center, radius in self._scene.parts():
                 if label >= self.n_obstacles:
@@ -292,7 +300,6 @@ class GridVoronoi(Result):
                     ax.plot(verts[:, 0], verts[:, 1], color="0.35", lw=2, zorder=1)
                 else:
                     ax.plot(verts[:, 0], verts[:, 1], "o", color="0.35", ms=3, zorder=1)
-        area = self._scene.area
         ax.add_patch(Polygon(area, closed=True, fill=False, ec="k", lw=1, zorder=3))
         vp = self.vertex_points
         ax.plot(vp[:, 0], vp[:, 1], "o", color="#b71c1c", ms=3, zorder=4, gid="dvoronoi-gvd-vertices")

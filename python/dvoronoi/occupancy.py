@@ -485,6 +485,8 @@ class OccupancyVoronoi:
         import matplotlib.pyplot as plt
         from matplotlib.colors import ListedColormap
 
+        from .plotting import category_image
+
         if ax is None:
             H, W = self.shape
             side = figsize or (7.0, max(2.0, 7.0 * H / W))
@@ -498,9 +500,12 @@ class OccupancyVoronoi:
         img[self.diagram_mask] = 2
         img[self.blocked_mask] = 3
         cmap = ListedColormap([(1, 1, 1, 0), (0.26, 0.26, 0.26, 1), (0.12, 0.47, 0.71, 1), (0.96, 0.65, 0.65, 1)])
-        # nearest-neighbour pixels stay crisp at any size; antialiasing would blur thin diagram lines
-        ax.imshow(img, extent=extent, cmap=cmap, vmin=0, vmax=3, interpolation="nearest", zorder=1,
-                  gid="dvoronoi-gvd-medial")
+        # crisp pixels at any size: no antialiasing (it would blur thin diagram lines), and a map larger
+        # than the axes is reduced block by block, diagram over walls, so no line drops out
+        ax.set_aspect("equal")
+        ax.set_xlim(extent[0], extent[1])
+        ax.set_ylim(extent[2], extent[3])
+        category_image(ax, img, extent, cmap=cmap, vmin=0, vmax=3, zorder=1, gid="dvoronoi-gvd-medial")
         if path is not None and len(path):
             p = np.asarray(path)
             ax.plot(p[:, 0], p[:, 1], "-", color="#2e7d32", lw=2, zorder=3, gid="dvoronoi-gvd-path")

@@ -27,7 +27,8 @@ import numpy as np
 from ._optional import INSTALL_HINT, require_matplotlib, tqdm_class
 
 __all__ = ["plot", "plot_cell", "cell_paths", "plot_network", "plot_cc", "plot_voronoi", "plot_coverage",
-           "animate", "neighbor_coloring", "data_box", "density_image", "require_matplotlib", "INSTALL_HINT"]
+           "animate", "neighbor_coloring", "data_box", "density_image", "category_image", "require_matplotlib",
+           "INSTALL_HINT"]
 
 _MAX_SEGMENT = np.pi / 8.0  # largest angle of one Bezier arc segment
 
@@ -691,6 +692,24 @@ def plot_voronoi(result: Any, ax: Any = None, *, cells: bool = True, delaunay: b
 
 
 # ----------------------------------------------------------------------------- coverage (Lloyd)
+def category_image(ax: Any, img: np.ndarray, extent: Tuple[float, float, float, float], **imshow: Any) -> Any:
+    """``ax.imshow(img)`` of a small-integer image (row 0 at the top; larger values are drawn over
+    smaller ones) that stays readable at any size: an image with more pixels than the axes shows is
+    first reduced by the largest value of each k x k block, so a line one pixel wide stays visible
+    (nearest-neighbour sampling would keep one row in k and drop the rest). Returns the AxesImage."""
+    H, W = img.shape
+    box = ax.get_window_extent()
+    k = int(np.ceil(max(H / max(box.height, 1.0), W / max(box.width, 1.0))))
+    if k > 1:
+        Hp, Wp = -(-H // k) * k, -(-W // k) * k
+        padded = np.zeros((Hp, Wp), dtype=img.dtype)  # 0: nothing drawn
+        padded[:H, :W] = img
+        img = padded.reshape(Hp // k, k, Wp // k, k).max(axis=(1, 3))
+        x0, x1, y0, y1 = extent  # the padding lies right of and below the map
+        extent = (x0, x0 + (x1 - x0) * Wp / W, y1 - (y1 - y0) * Hp / H, y1)
+    return ax.imshow(img, extent=extent, interpolation="nearest", **imshow)
+
+
 def density_image(density: Any, box: Any, bounds: Any = None, pixels: int = 200) -> np.ndarray:
     """The density sampled at pixel centres of `box` (rows are y, row 0 at ``ymin``), NaN outside
     the convex polygon `bounds` when given; what the Lloyd plots show as background."""

@@ -474,6 +474,37 @@ def test_paths_along_diagonal_stretches_of_the_diagram_are_straightened():
 
 # -- results: pickling, JSON, SVG, plots, CLI -----------------------------------------------------
 
+def test_plots_of_maps_larger_than_the_axes_keep_every_diagram_line():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    occ = np.ones((1500, 1500), bool)
+    rows = [60 + 140 * k + k for k in range(10)]  # ten corridors 5 px wide at different phases
+    for r in rows:
+        occ[r:r + 5, 20:1480] = False
+    gv = dv.grid_voronoi(occ, resolution=0.1, origin=(5.0, -3.0))
+    strips = np.zeros((1500, 1500), bool)  # separate walls: the labelled diagram's midlines between them
+    for k in range(11):
+        strips[10 + 140 * k:13 + 140 * k, 20:1480] = True
+    labelled = dv.grid_voronoi(strips, diagram="labels")
+
+    def lines(mask):  # groups of rows that are mostly diagram
+        rows_on = np.flatnonzero(mask.sum(axis=1) > mask.shape[1] // 2)
+        return 0 if len(rows_on) == 0 else 1 + int((np.diff(rows_on) > 1).sum())
+
+    assert lines(gv.diagram_mask) == 10 and lines(labelled.diagram_mask) >= 10
+    for result, line in ((gv, 2), (labelled, 1)):
+        ax = result.plot()
+        image = [a for a in ax.get_images() if a.get_gid() in ("dvoronoi-gvd-medial", "dvoronoi-gvd-cells")][0]
+        shown = np.asarray(image.get_array())
+        box = ax.get_window_extent()
+        assert shown.shape[0] <= box.height + 1 and shown.shape[1] <= box.width + 1  # reduced to the axes
+        assert lines(shown == line) == lines(result.diagram_mask)  # no line dropped
+    lo, hi = gv.plot().get_xlim()
+    assert (lo, hi) == pytest.approx((5.0, 155.0))
+    plt.close("all")
+
+
 def test_pickle_json_svg_and_plot(tmp_path):
     import matplotlib
     matplotlib.use("Agg")
