@@ -14,6 +14,7 @@
 
 #include "dvoronoi/gvd/grid_voronoi.hpp"
 #include "dvoronoi/gvd/path.hpp"
+#include "dvoronoi/gvd/rasterize.hpp"
 #include "dvoronoi/io/gvd_json.hpp"
 #include "dvoronoi/io/gvd_svg.hpp"
 #include "dvoronoi/io/obstacles_json.hpp"
@@ -38,7 +39,7 @@ struct GvdCliOptions {
     std::string output;
     std::string svg;
     bool quiet = false;
-    std::string diagram = "medial";
+    std::string diagram;  // empty: medial for maps, labels for obstacle files
     cli_maps::MapOptions map;  // occupancy maps
 };
 
@@ -63,23 +64,13 @@ int workers_of(const GvdCliOptions& o) {
     return o.workers == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : o.workers;
 }
 
-int run_map(const GvdCliOptions& o) {
-    if (o.diagram != "medial")
-        throw UsageError("--diagram: the CLI draws the medial diagram of map files; for the labelled diagram use "
-                         "Python's dv.grid_voronoi(map, diagram=\"labels\")");
-    if (o.grid != 0 || o.mode != "cooperative" || o.no_visibility)
-        throw UsageError("--grid, --mode and --no-visibility are for obstacle files: a map's diagram grid is its pixels");
-    o.map.check(o.obstacles);
-    const bool to_stdout = check_common(o);
-    const io::MapReadOptions ro = o.map.read_options();
-    const io::LoadedMap map = io::read_occupancy_map(o.obstacles, ro);
-    std::unique_ptr<io::AtomicFile> out, svg;
-    if (!to_stdout) out = open_output(o.output, "-o/--output");
-    if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
-
+/// The medial diagram of `grid` (a map's, or an obstacle file drawn on its pixels: `document`) with
+/// the optional path, written to the opened outputs.
+int write_medial(const GvdCliOptions& o, const gvd::OccupancyGrid& grid, std::size_t unknown, bool document,
+                 std::unique_ptr<io::AtomicFile> out, std::unique_ptr<io::AtomicFile> svg) {
     const gvd::MedialOptions mo = o.map.medial(workers_of(o));
     const auto t0 = std::chrono::steady_clock::now();
-    const gvd::MedialDiagram m = gvd::medial_diagram(map.grid, mo);
+    const gvd::MedialDiagram m = gvd::medial_diagram(grid, mo);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::json doc = io::medial_to_json(m, o.robot_radius);
     std::vector<Vec2> path_points;
@@ -95,13 +86,33 @@ int run_map(const GvdCliOptions& o) {
     }
     const std::size_t n = m.count();
     if (!o.quiet) {
-        std::fprintf(stderr, "gvd: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d worker(s), %.3f s\n",
-                     m.grid.rows, m.grid.cols, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", mo.workers, seconds);
+        if (document)
+            std::fprintf(stderr, "gvd: obstacle file drawn on %d x %d pixels, %zu diagram pixels, %d worker(s), %.3f s\n",
+                         m.grid.rows, m.grid.cols, n, mo.workers, seconds);
+        else
+            std::fprintf(stderr, "gvd: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d worker(s), %.3f s\n",
+                         m.grid.rows, m.grid.cols, n, unknown, o.map.unknown == "occupied" ? "occupied" : "free", mo.workers,
+                         seconds);
     }
-    if (n == 0) o.map.warn_empty("gvd", m.grid, map.unknown);  // a warning, not the summary: shown with -q too
+    if (n == 0) o.map.warn_empty("gvd", m.grid, unknown, document);  // a warning, not the summary: shown with -q too
     return deliver(
         out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
         [&](std::ostream& os) { io::write_medial_svg(os, m, o.robot_radius, path_points); });
+}
+
+int run_map(const GvdCliOptions& o) {
+    if (o.diagram == "labels")
+        throw UsageError("--diagram: the CLI draws the medial diagram of map files; for the labelled diagram use "
+                         "Python's dv.grid_voronoi(map, diagram=\"labels\")");
+    if (o.grid != 0 || o.mode != "cooperative" || o.no_visibility)
+        throw UsageError("--grid, --mode and --no-visibility are for obstacle files: a map's diagram grid is its pixels");
+    o.map.check(o.obstacles);
+    const bool to_stdout = check_common(o);
+    const io::LoadedMap map = io::read_occupancy_map(o.obstacles, o.map.read_options());
+    std::unique_ptr<io::AtomicFile> out, svg;
+    if (!to_stdout) out = open_output(o.output, "-o/--output");
+    if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
+    return write_medial(o, map.grid, map.unknown, false, std::move(out), std::move(svg));
 }
 
 int run_gvd(const GvdCliOptions& o) {
@@ -109,10 +120,26 @@ int run_gvd(const GvdCliOptions& o) {
     if (std::filesystem::is_directory(o.obstacles))
         throw UsageError("'" + o.obstacles + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
     if (o.grid < 1) throw UsageError("--grid: required for obstacle files, at least 1, got " + std::to_string(o.grid));
+    // an option this input or diagram does not read is an error, not silently dropped
+    if (o.map.resolution_given || !o.map.origin.empty() || o.map.unknown_given)
+        throw UsageError("--resolution, --origin and --unknown are for map files: an obstacle file has its own "
+                         "coordinates and no unknown pixels");
+    const bool medial = o.diagram == "medial";
+    if (medial && (o.mode != "cooperative" || o.no_visibility))
+        throw UsageError("--mode and --no-visibility are the labelled diagram's; --diagram medial does not use them");
+    if (!medial && o.map.medial_given)
+        throw UsageError("--min-separation and --prune-length are the medial diagram's; add --diagram medial");
+    if (medial) o.map.check(o.obstacles);
     const bool to_stdout = check_common(o);
 
     const io::ObstacleFile file = io::read_obstacles(o.obstacles);
     std::unique_ptr<io::AtomicFile> out, svg;
+    if (medial) {  // the file drawn on --grid pixels along the area's longer side, as Python's diagram="medial"
+        gvd::OccupancyGrid grid = gvd::rasterize(file.scene, o.grid);
+        if (!to_stdout) out = open_output(o.output, "-o/--output");
+        if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
+        return write_medial(o, grid, 0, true, std::move(out), std::move(svg));
+    }
     if (!to_stdout) out = open_output(o.output, "-o/--output");
     if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
 
@@ -168,7 +195,9 @@ Command add_gvd(CLI::App& parent) {
         ->required();
     sub->add_option("-g,--grid", o->grid, "obstacle files: cells along the longer side of the working area");
     sub->add_option("-w,--workers", o->workers, "worker threads (map files: 0 = all cores); same diagram for any count")->capture_default_str();
-    sub->add_option("--diagram", o->diagram, "map files: the diagram's definition (medial)")->check(CLI::IsMember({"medial", "labels"}))->capture_default_str();
+    sub->add_option("--diagram", o->diagram, "medial (map files' default; obstacle files drawn on --grid pixels) or labels "
+                                             "(obstacle files' default: Mendes et al.)")
+        ->check(CLI::IsMember({"medial", "labels"}));
 o->map.add_to(*sub);
     sub->add_option("-m,--mode", o->mode, "slice approach: cooperative (each border scanned once, seeds sent "
                                           "to the left neighbour) or independent (no communication)")

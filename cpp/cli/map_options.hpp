@@ -27,6 +27,7 @@ struct MapOptions {
     std::vector<double> origin;
     std::string unknown = "occupied";
     double min_separation = 1.5, prune_length = 8.0;
+    bool unknown_given = false, medial_given = false;  // --unknown; --min-separation or --prune-length
 
     /// Registers --resolution, --origin, --unknown, --min-separation and --prune-length on `app`.
     void add_to(CLI::App& app) {
@@ -35,12 +36,16 @@ struct MapOptions {
         app.add_option("--origin", origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
         app.add_option("--unknown", unknown, "map files: unknown pixels count as occupied or free")
             ->check(CLI::IsMember({"occupied", "free"}))
-            ->capture_default_str();
+            ->capture_default_str()
+            ->each([this](const std::string&) { unknown_given = true; });
         app.add_option("--min-separation", min_separation,
-                       "medial diagram: nearest points of a pair farther apart than this (pixels)")->capture_default_str();
+                       "medial diagram: nearest points of a pair farther apart than this (pixels)")
+            ->capture_default_str()
+            ->each([this](const std::string&) { medial_given = true; });
         app.add_option("--prune-length", prune_length,
                        "medial diagram: pairs whose nearest points are this close and joined by walls are dropped (pixels)")
-            ->capture_default_str();
+            ->capture_default_str()
+            ->each([this](const std::string&) { medial_given = true; });
     }
 
     /// \throws InputError naming the option.
@@ -58,8 +63,8 @@ struct MapOptions {
         if (!origin.empty() && origin.size() != 2) throw InputError("--origin: expects X Y");
         for (double v : origin)
             if (!std::isfinite(v)) throw InputError("--origin: coordinates must be finite, got " + num(v));
-        if (!std::isfinite(min_separation) || min_separation < 1.0)
-            throw InputError("--min-separation: must be a finite number >= 1 (pixels), got " + num(min_separation));
+        if (!(min_separation >= 1.0 && min_separation <= 32768.0))
+            throw InputError("--min-separation: must be a number in [1, 32768] (pixels), got " + num(min_separation));
         if (!std::isfinite(prune_length) || prune_length < 0.0 || prune_length > 256.0)
             throw InputError("--prune-length: must be a finite number in [0, 256] (pixels), got " + num(prune_length));
     }
@@ -80,10 +85,16 @@ struct MapOptions {
         return mo;
     }
 
-    /// The warning when a map gives no diagram pixel, naming why (`unknown` pixels counted as occupied
-    /// or free by --unknown).
-    void warn_empty(const char* program, const gvd::OccupancyGrid& g, std::size_t unknown_pixels) const {
-        if (std::all_of(g.occupied.begin(), g.occupied.end(), [](std::uint8_t v) { return v != 0; })) {
+    /// The warning when a map (or an obstacle file drawn on pixels, `document`) gives no diagram pixel,
+    /// naming why (`unknown` pixels counted as occupied or free by --unknown).
+    void warn_empty(const char* program, const gvd::OccupancyGrid& g, std::size_t unknown_pixels, bool document = false) const {
+        const bool full = std::all_of(g.occupied.begin(), g.occupied.end(), [](std::uint8_t v) { return v != 0; });
+        if (full && document) {
+            std::fprintf(stderr, "%s: warning: no diagram pixel: the obstacles cover the whole working area (drawn on %d x %d "
+                                 "pixels)\n", program, g.rows, g.cols);
+            return;
+        }
+        if (full) {
             std::fprintf(stderr, "%s: warning: no diagram pixel: every pixel of the %d x %d map is occupied (check the map's "
                                  "negate and thresholds%s)\n",
                          program, g.rows, g.cols,

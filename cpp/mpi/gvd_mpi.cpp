@@ -53,6 +53,7 @@ struct Args {
     std::string input;
     std::int64_t grid = 0;
     std::string mode = "cooperative";
+    bool mode_given = false;
     double robot_radius = 0.0;
     bool no_visibility = false;
     std::string output, svg;
@@ -112,6 +113,9 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
 
 int run_obstacles(const Args& a, int rank, int size) {
     if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
+    if (a.map.resolution_given || !a.map.origin.empty() || a.map.unknown_given || a.map.medial_given)
+        throw InputError("--resolution, --origin, --unknown, --min-separation and --prune-length are for map files: "
+                         "dvoronoi_gvd_mpi draws the labelled diagram of obstacle files");
     // Rank 0 reads the file and broadcasts its text; every rank parses it (same scene everywhere).
     std::string text;
     int ok = 1;
@@ -261,6 +265,8 @@ std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::
 int run_map(const Args& a, int rank, int size) {
     // The same checks and messages as `dvoronoi gvd MAP`; every rank sees the same arguments, so all
     // throw together.
+    if (a.grid != 0 || a.mode_given || a.no_visibility)
+        throw InputError("--grid, --mode and --no-visibility are for obstacle files: a map's diagram grid is its pixels");
     if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
         throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
     a.map.check(a.input);
@@ -390,7 +396,9 @@ int main(int argc, char** argv) {
     app.add_option("INPUT", a.input, "an occupancy map (.yaml map_server, .pgm, .png, MovingAI .map) or an obstacle "
                                      "file (JSON), as for `dvoronoi gvd`")->required();
     app.add_option("-g,--grid", a.grid, "obstacle files: cells along the longer side of the working area");
-    app.add_option("-m,--mode", a.mode, "cooperative or independent")->check(CLI::IsMember({"cooperative", "independent"}));
+    app.add_option("-m,--mode", a.mode, "cooperative or independent")
+        ->check(CLI::IsMember({"cooperative", "independent"}))
+        ->each([&a](const std::string&) { a.mode_given = true; });
     app.add_option("-r,--robot-radius", a.robot_radius, "robot radius (map units): diagram cells or pixels this close to an obstacle are blocked");
     app.add_flag("--no-visibility", a.no_visibility, "turn the paper's edge visibility test off");
     a.map.add_to(app);

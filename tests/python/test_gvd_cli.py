@@ -100,3 +100,30 @@ def test_cli_bad_arguments(tmp_path):
         assert message in p.stderr
     p = run("gvd", tmp_path / "missing.json", "--grid", 8)
     assert p.returncode == 2 and "missing.json" in p.stderr
+
+
+def test_cli_medial_diagram_of_an_obstacle_file_is_pythons(tmp_path):
+    doc = mixed_shapes()
+    src = tmp_path / "doc.json"
+    src.write_text(json.dumps(doc))
+    gv = dv.grid_voronoi(doc, cells=120, diagram="medial", robot_radius=0.2, min_separation=2, prune_length=5)
+    assert len(gv) > 50
+    out, svg = tmp_path / "m.json", tmp_path / "m.svg"
+    r = run("gvd", src, "--grid", 120, "--diagram", "medial", "-r", 0.2, "--min-separation", 2, "--prune-length", 5,
+            "-o", out, "--svg", svg)
+    assert r.returncode == 0, r.stderr
+    assert "obstacle file drawn on" in r.stderr
+    assert json.loads(out.read_text()) == json.loads(gv.to_json())
+    assert svg.read_text() == gv.to_svg()
+    labels = json.loads(run("gvd", src, "--grid", 120, "-q").stdout)  # the default for obstacle files: labels
+    assert "cells" in labels and "pixels" not in labels
+    for args, message in ((["--diagram", "medial", "--mode", "independent"], "--diagram medial does not use them"),
+                          (["--diagram", "medial", "--no-visibility"], "--diagram medial does not use them"),
+                          (["--prune-length", "5"], "add --diagram medial"),
+                          (["--unknown", "free"], "--resolution, --origin and --unknown are for map files"),
+                          (["--origin", "1", "2"], "--resolution, --origin and --unknown are for map files"),
+                          (["--diagram", "medial", "--min-separation", "40000"], "--min-separation: must be a number in [1, 32768]")):
+        bad = tmp_path / "bad.json"
+        r = run("gvd", src, "--grid", 120, *args, "-o", bad)
+        assert r.returncode == 2 and message in r.stderr, (args, r.stderr)
+        assert not bad.exists()

@@ -199,6 +199,20 @@ def test_gvd_mpi_explains_an_empty_diagram(tmp_path):
 
 
 @needs_gvd
+def test_gvd_mpi_refuses_options_its_input_does_not_read(tmp_path):
+    doc = tmp_path / "doc.json"
+    doc.write_text(json.dumps({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "point", "position": [5, 5]}]}))
+    path = _write_movingai(tmp_path / "m.map", np.zeros((6, 9), bool))
+    for args, message in (([str(doc), "--grid", "40", "--prune-length", "4"], "are for map files"),
+                          ([str(doc), "--grid", "40", "--unknown", "free"], "are for map files"),
+                          ([str(path), "--mode", "independent"], "--grid, --mode and --no-visibility are for obstacle files"),
+                          ([str(path), "--grid", "40"], "--grid, --mode and --no-visibility are for obstacle files")):
+        proc = mpirun(2, *args, "-o", str(tmp_path / "out.json"), program=GVD_MPI, timeout=120)
+        assert proc.returncode == 2 and message in proc.stderr, (args, proc.stderr[-2000:])
+        assert not (tmp_path / "out.json").exists()
+
+
+@needs_gvd
 def test_gvd_mpi_bad_map_exits_2_naming_the_file(tmp_path):
     bad = tmp_path / "bad.map"
     bad.write_text("type octile\nheight 3\nwidth 4\nmap\n....\n..\n....\n")
@@ -211,5 +225,5 @@ def test_gvd_mpi_bad_map_exits_2_naming_the_file(tmp_path):
     proc = mpirun(2, str(tmp_path / "nope.yaml"), "-o", str(out), program=GVD_MPI, timeout=120)
     assert proc.returncode == 2 and f"{tmp_path / 'nope.yaml'}: cannot open file" in proc.stderr
     proc = mpirun(2, str(bad.with_name("x.map")), "--min-separation", "0.5", program=GVD_MPI, timeout=120)
-    assert proc.returncode == 2 and "--min-separation: must be a finite number >= 1" in proc.stderr
+    assert proc.returncode == 2 and "--min-separation: must be a number in [1, 32768]" in proc.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.map"]  # nothing written, no temporary left
