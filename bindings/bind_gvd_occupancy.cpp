@@ -202,6 +202,13 @@ void bind_gvd_occupancy(py::module_& m) {
     }, py::arg("occupancy"), py::arg("min_separation"), py::arg("prune_length"),
        "Brute-force oracle of the medial diagram (small maps).");
 
+    m.def("_read_movingai", [](const std::string& path, const std::string& free_chars) {
+        dvoronoi::io::MapReadOptions o;
+        o.movingai_free = free_chars;
+        dvoronoi::io::LoadedMap lm = without_gil([&] { return dvoronoi::io::detail::read_movingai(path, o); });
+        return bool_image(lm.grid.occupied, lm.grid.rows, lm.grid.cols);
+    }, py::arg("path"), py::arg("free_chars"), "A MovingAI .map file as an H x W bool array (True: blocked).");
+
     m.def("_load_occupancy_map", [](const std::string& path, bool unknown_occupied, double resolution, double ox, double oy,
                                     double occupied_thresh, double free_thresh, bool negate) {
         dvoronoi::io::MapReadOptions o;

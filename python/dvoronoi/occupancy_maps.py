@@ -48,7 +48,7 @@ nearest neighbour (a 256 map to 2048 for benchmarks).
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, List, Sequence, Tuple, Union
+from typing import Any, List, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -499,70 +499,19 @@ def read_movingai_map(path: Union[str, os.PathLike], free_chars: str = MOVINGAI_
     file's first map line (the top).
 
     ``.`` and ``G`` are free; ``@ O T S W`` blocked (swamp ``S`` and water ``W`` count as blocked
-    here; pass ``free_chars=".GS"`` to treat swamp as free). CRLF line ends are accepted. Any other
-    character, a missing or malformed header line, a row of the wrong length or a wrong number of
-    rows raises ValueError naming the file and the line.
+    here; pass ``free_chars=".GS"`` to treat swamp as free). Header keys in any case and order, each
+    once; CRLF line ends and blank lines after the rows are accepted. Any other character, a missing,
+    repeated or malformed header line, a row of the wrong length or a wrong number of rows raises
+    ValueError naming the file and the line. The same reader as :meth:`OccupancyGrid.load` and the CLI.
     """
-    name = os.fspath(path)
-    with open(name, "rb") as f:
-        raw = f.read()
-    try:
-        text = raw.decode("ascii")
-    except UnicodeDecodeError as e:
-        line = raw[:e.start].count(b"\n") + 1
-        raise ValueError(f"{name}:{line}: not an ASCII MovingAI map file") from None
-    lines = text.split("\n")
-    lines = [ln[:-1] if ln.endswith("\r") else ln for ln in lines]
-    header: Dict[str, Any] = {}
-    k = 0
-    while True:
-        if k >= len(lines) or (k == len(lines) - 1 and not lines[k].strip()):
-            raise ValueError(f"{name}:{k + 1}: header ends before the 'map' line")
-        fields = lines[k].split()
-        k += 1
-        if not fields:
-            raise ValueError(f"{name}:{k}: empty line in the header")
-        key = fields[0].lower()
-        if key == "map" and len(fields) == 1:
-            break
-        if key not in ("type", "height", "width") or len(fields) != 2:
-            raise ValueError(f"{name}:{k}: expected 'type NAME', 'height H', 'width W' or 'map', "
-                             f"got {lines[k - 1]!r}")
-        if key in header:
-            raise ValueError(f"{name}:{k}: '{key}' given twice")
-        if key != "type":
-            try:
-                value = int(fields[1])
-            except ValueError:
-                raise ValueError(f"{name}:{k}: {key} must be a positive integer, got {fields[1]!r}") from None
-            if value <= 0:
-                raise ValueError(f"{name}:{k}: {key} must be a positive integer, got {value}")
-            header[key] = value
-        else:
-            header[key] = fields[1]
-    for key in ("height", "width"):
-        if key not in header:
-            raise ValueError(f"{name}:{k}: header has no '{key}' line")
-    h, w = header["height"], header["width"]
-    body = lines[k:]
-    while body and body[-1].strip() == "":
-        body.pop()
-    if len(body) < h:
-        raise ValueError(f"{name}:{k + len(body) + 1}: expected {h} map rows, the file has {len(body)}")
-    if len(body) > h:
-        raise ValueError(f"{name}:{k + h + 1}: text after the {h} map rows")
-    rows = body
-    known = free_chars + "".join(c for c in MOVINGAI_BLOCKED if c not in free_chars)
-    for i, row in enumerate(rows):
-        if len(row) != w:
-            raise ValueError(f"{name}:{k + i + 1}: map row {i} has {len(row)} characters, width is {w}")
-    grid = np.frombuffer("".join(rows).encode("ascii"), dtype=np.uint8).reshape(h, w)
-    ok = np.isin(grid, np.frombuffer(known.encode("ascii"), dtype=np.uint8))
-    if not ok.all():
-        i, j = np.argwhere(~ok)[0]
-        raise ValueError(f"{name}:{k + i + 1}: unknown character {chr(grid[i, j])!r} in column {j + 1} "
-                         f"(free {free_chars!r}, blocked the rest of {MOVINGAI_FREE + MOVINGAI_BLOCKED!r})")
-    return ~np.isin(grid, np.frombuffer(free_chars.encode("ascii"), dtype=np.uint8))
+    from . import _core
+
+    if not isinstance(free_chars, str) or not free_chars.isascii():
+        raise TypeError(f"free_chars must be an ASCII string, got {free_chars!r}")
+    try:  # the C++ reader the CLI and OccupancyGrid.load use: one set of rules and messages
+        return _core._read_movingai(os.fspath(path), free_chars)
+    except ValueError as e:
+        raise ValueError(str(e)) from None
 
 
 def write_movingai_map(path: Union[str, os.PathLike], occ: np.ndarray) -> None:

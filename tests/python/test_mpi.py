@@ -220,7 +220,7 @@ def test_gvd_mpi_bad_map_exits_2_naming_the_file(tmp_path):
     for k in (1, 3):
         proc = mpirun(k, str(bad), "-o", str(out), "--svg", str(tmp_path / "out.svg"), program=GVD_MPI, timeout=120)
         assert proc.returncode == 2, proc.stderr[-3000:]
-        assert f"{bad}:6: row 1 has 2 characters, expected 4" in proc.stderr
+        assert f"{bad}:6: map row 1 has 2 characters, width is 4" in proc.stderr
         assert proc.stderr.count("dvoronoi_gvd_mpi: error:") == 1  # rank 0 alone prints
     proc = mpirun(2, str(tmp_path / "nope.yaml"), "-o", str(out), program=GVD_MPI, timeout=120)
     assert proc.returncode == 2 and f"{tmp_path / 'nope.yaml'}: cannot open file" in proc.stderr

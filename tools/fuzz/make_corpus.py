@@ -226,7 +226,7 @@ def regressions(out: Path) -> None:
     ihdr = struct.pack(">IIBBBBB", 16383, 16383, 8, 0, 0, 0, 0)
     write(out / "png", "regress_huge_ihdr.png", b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr)
           + png_chunk(b"IDAT", zlib.compress(bytes(10))) + png_chunk(b"IEND", b""))
-    # a MovingAI header of 16383 x 16383 and no rows: 268 MB before "map ends after 0 rows"
+    # a MovingAI header of 16383 x 16383 and no rows: 268 MB before "expected 16383 map rows, the file has 0"
     write(out / "movingai", "regress_huge_header.map", "type octile\nheight 16383\nwidth 16383\nmap\n")
     # a .npy shape whose byte count overflows (n * 16 wraps to 16): "out of memory" (exit 1), not
     # an error naming the file

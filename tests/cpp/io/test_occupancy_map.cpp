@@ -307,3 +307,33 @@ TEST_CASE("without libpng a PNG map is refused with a clear message") {
     CHECK(error_of(path) == path + ": PNG maps need a build with libpng (install libpng-dev and rebuild), or convert to PGM");
 }
 #endif
+
+TEST_CASE("MovingAI maps: one set of rules (Python's read_movingai_map is this reader), errors naming the line") {
+    TempDir d;
+    const std::string good = d.write("g.map", "Type octile\r\nHEIGHT 2\r\nwidth 3\r\nmap\r\n.GS\r\n@T.\r\n\r\n");
+    const LoadedMap m = read_occupancy_map(good, {});
+    CHECK(std::vector<std::uint8_t>(m.grid.occupied.begin(), m.grid.occupied.end()) == std::vector<std::uint8_t>{0, 0, 1, 1, 1, 0});
+    MapReadOptions swamp;
+    swamp.movingai_free = ".GS";
+    CHECK(read_occupancy_map(good, swamp).grid.occupied[2] == 0);
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"type octile\nheight 2\nwidth 3\nmap\n...\n... \n", "b.map:6: map row 1 has 4 characters, width is 3"},
+        {"type octile\nheight 2\nwidth 3\nmap\n...\n\n...\n", "b.map:6: map row 1 has 0 characters, width is 3"},
+        {"type octile\n\nheight 1\nwidth 3\nmap\n...\n", "b.map:2: empty line in the header"},
+        {"type octile\nheight 1\nheight 1\nwidth 3\nmap\n...\n", "b.map:3: 'height' given twice"},
+        {"type octile grid\nheight 1\nwidth 3\nmap\n...\n", "b.map:1: expected 'type NAME', 'height H', 'width W' or 'map'"},
+        {"type octile\nheight -2\nwidth 3\nmap\n...\n", "b.map:2: height must be a positive integer, got '-2'"},
+        {"type octile\nheight 1\nwidth 3\nmap\n...\n...\n", "b.map:6: text after the 1 map rows"},
+        {"type octile\nheight 2\nwidth 3\nmap\n...\n", "b.map:6: expected 2 map rows, the file has 1"},
+        {"type octile\nheight 1\nwidth 3\nmap\n.x.\n", "b.map:5: unknown character 'x' in column 2 (free '.G', blocked the rest of '.G@OTSW')"},
+        {"type octile\nwidth 3\nmap\n...\n", "b.map:3: header has no 'height' line"},
+        {"type octile\nheight 1\nwidth 3\n", "b.map:4: header ends before the 'map' line"},
+        {"type octile\nheight 1\nwidth 2\nmap\n.\xc3\xa9\n", "b.map:5: not an ASCII MovingAI map file"},
+    };
+    for (const auto& [text, want] : cases) {
+        CAPTURE(text);
+        const std::string err = error_of(d.write("b.map", text));
+        const std::string tail = err.substr(err.find_last_of('/') + 1);
+        CHECK_MESSAGE(tail.compare(0, want.size(), want) == 0, tail);
+    }
+}

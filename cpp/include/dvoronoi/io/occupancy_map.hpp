@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -49,6 +50,7 @@ struct MapReadOptions {
     double occupied_thresh = 0.65; ///< in [0, 1]
     double free_thresh = 0.196;    ///< in [0, 1], at most occupied_thresh
     bool negate = false;
+    std::string movingai_free = ".G";  ///< MovingAI characters that are free (the rest of @OTSW blocked)
 };
 
 /// A loaded map and what the loader saw.
@@ -322,63 +324,85 @@ inline std::vector<double> read_png(const std::string& path, std::int32_t& h, st
 }
 #endif
 
-/// The MovingAI `.map` format: `type`, `height H`, `width W`, `map`, then H lines of W characters.
+/// The MovingAI `.map` format: a header of `type NAME`, `height H` and `width W` lines (any order,
+/// keys in any case, each once), then `map`, then H rows of exactly W characters: `free` characters
+/// (o.movingai_free, default `.` and `G`) are free, `@ O T S W` not among them blocked, anything else
+/// an error. CRLF line ends are accepted, blank lines after the rows ignored. Every error names the
+/// line. Rows are read one at a time before the grid is allocated: memory follows the file, not its
+/// header. (Python's occupancy_maps.read_movingai_map is this reader.)
 inline LoadedMap read_movingai(const std::string& path, const MapReadOptions& o) {
-    std::istringstream in(read_bytes(path));
-    std::string line;
+    const std::string data = read_bytes(path);
     int lineno = 0;
-    long long H = -1, W = -1;
-    auto fail = [&](const std::string& why) -> void { throw InputError(path + ":" + std::to_string(lineno) + ": " + why); };
-    auto strip = [](std::string& s) {
-        while (!s.empty() && (s.back() == '\r' || s.back() == '\n' || s.back() == ' ' || s.back() == '\t')) s.pop_back();
+    auto fail = [&](int line, const std::string& why) -> void { throw InputError(path + ":" + std::to_string(line) + ": " + why); };
+    for (std::size_t k = 0; k < data.size(); ++k)
+        if (static_cast<unsigned char>(data[k]) >= 128)
+            fail(static_cast<int>(std::count(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(k), '\n')) + 1,
+                 "not an ASCII MovingAI map file");
+    std::size_t pos = 0;
+    auto next_line = [&](std::string& line) {  // false at the end of the data; the line without its CR LF
+        if (pos >= data.size()) return false;
+        std::size_t end = data.find('\n', pos);
+        if (end == std::string::npos) end = data.size();
+        line.assign(data, pos, end - pos);
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        pos = end + 1;
+        ++lineno;
+        return true;
     };
+    std::string line;
+    long long size[2] = {-1, -1};  // height, width
+    bool typed = false;
     for (;;) {
-        if (!std::getline(in, line)) { ++lineno; fail("missing 'map' line (expected 'type', 'height', 'width', 'map')"); }
-        ++lineno;
-        strip(line);
-        if (line.empty()) continue;
+        if (!next_line(line)) fail(lineno + 1, "header ends before the 'map' line");
         std::istringstream ls(line);
-        std::string key;
-        ls >> key;
-        if (key == "map") break;
-        if (key == "type") continue;
-        if (key == "height" || key == "width") {
-            long long v = -1;
-            std::string rest;
-            if (!(ls >> v) || (ls >> rest)) fail("expected '" + printable(key) + " N', got '" + printable(line) + "'");
-            (key == "height" ? H : W) = v;
-        } else {
-            fail("unknown header line '" + printable(line) + "'");
+        std::vector<std::string> fields;
+        for (std::string f; ls >> f;) fields.push_back(f);
+        if (fields.empty()) fail(lineno, "empty line in the header");
+        std::string key = fields[0];
+        for (char& ch : key) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        if (key == "map" && fields.size() == 1) break;
+        if ((key != "type" && key != "height" && key != "width") || fields.size() != 2)
+            fail(lineno, "expected 'type NAME', 'height H', 'width W' or 'map', got '" + printable(line) + "'");
+        if (key == "type") {
+            if (typed) fail(lineno, "'type' given twice");
+            typed = true;
+            continue;
         }
+        long long& v = size[key == "height" ? 0 : 1];
+        if (v >= 0) fail(lineno, "'" + key + "' given twice");
+        char* end = nullptr;
+        errno = 0;
+        const long long n = std::strtoll(fields[1].c_str(), &end, 10);
+        if (*end != '\0' || errno != 0 || n <= 0 || fields[1].find_first_not_of("+0123456789") != std::string::npos)
+            fail(lineno, key + " must be a positive integer, got '" + printable(fields[1]) + "'");
+        v = n;
     }
-    if (H < 0 || W < 0) fail("header lacks 'height' or 'width'");
+    if (size[0] < 0) fail(lineno, "header has no 'height' line");
+    if (size[1] < 0) fail(lineno, "header has no 'width' line");
+    const long long H = size[0], W = size[1];
     check_size(path, W, H);
-    // The rows are read before the grid is allocated: memory follows the file, not its header.
+    const std::string& free = o.movingai_free;
     std::vector<std::uint8_t> cells;
-    for (std::int32_t r = 0; r < H; ++r) {
-        ++lineno;
-        if (!std::getline(in, line)) fail("map ends after " + std::to_string(r) + " of " + std::to_string(H) + " rows");
-        strip(line);
+    for (long long r = 0; r < H; ++r) {
+        if (!next_line(line))
+            fail(lineno + 1, "expected " + std::to_string(H) + " map rows, the file has " + std::to_string(r));
         if (static_cast<long long>(line.size()) != W)
-            fail("row " + std::to_string(r) + " has " + std::to_string(line.size()) + " characters, expected " + std::to_string(W));
-        for (std::int32_t c = 0; c < W; ++c) {
+            fail(lineno, "map row " + std::to_string(r) + " has " + std::to_string(line.size()) + " characters, width is " +
+                             std::to_string(W));
+        for (long long c = 0; c < W; ++c) {
             const char ch = line[static_cast<std::size_t>(c)];
-            if (std::strchr(".G@OTSW", ch) == nullptr || ch == '\0')
-                fail("column " + std::to_string(c + 1) + ": unknown map character (code " +
-                     std::to_string(static_cast<int>(static_cast<unsigned char>(ch))) + "); expected one of . G @ O T S W");
-            cells.push_back(ch == '.' || ch == 'G' ? 0 : 1);
+            const bool is_free = ch != '\0' && free.find(ch) != std::string::npos;
+            if (!is_free && (ch == '\0' || std::strchr("@OTSW", ch) == nullptr))
+                fail(lineno, "unknown character '" + printable(std::string(1, ch)) + "' in column " + std::to_string(c + 1) +
+                                 " (free '" + printable(free) + "', blocked the rest of '.G@OTSW')");
+            cells.push_back(is_free ? 0 : 1);
         }
     }
+    while (next_line(line))
+        if (line.find_first_not_of(" \t") != std::string::npos) fail(lineno, "text after the " + std::to_string(H) + " map rows");
     LoadedMap out;
     out.grid = gvd::OccupancyGrid(static_cast<std::int32_t>(H), static_cast<std::int32_t>(W), o.resolution, o.origin);
-    for (std::int32_t r = 0; r < H; ++r)
-        for (std::int32_t c = 0; c < W; ++c)
-            out.grid.occupied[out.grid.at(r, c)] = cells[static_cast<std::size_t>(r) * static_cast<std::size_t>(W) + static_cast<std::size_t>(c)];
-    while (std::getline(in, line)) {
-        ++lineno;
-        strip(line);
-        if (!line.empty()) fail("text after the map's " + std::to_string(H) + " rows");
-    }
+    std::copy(cells.begin(), cells.end(), out.grid.occupied.begin());
     return out;
 }
 
