@@ -270,7 +270,35 @@ def building(size: Size, seed: int = 0) -> np.ndarray:
             if _island_fits(occ, py, py + p, px, px + p, 2):
                 occ[py:py + p, px:px + p] = True
                 break
+    _join_free_parts(occ)
     return occ
+
+
+def _join_free_parts(occ: np.ndarray) -> None:
+    """Doors (1 px) through walls of at most 8 px until the free pixels are one 4-connected part: on
+    narrow maps a band of rooms can be too thin to exist, and the door meant to reach the rooms beyond
+    it then has nothing to open onto. Each pass opens the shortest straight crossing from a smaller
+    part into the largest one, scanning rows and columns."""
+    from scipy import ndimage
+
+    four = np.array([[0, 1, 0], [1, 1, 1], [0, 1, 0]], bool)
+    for _ in range(occ.size):
+        labels, n = ndimage.label(~occ, structure=four)
+        if n <= 1:
+            return
+        main = int(np.argmax(np.bincount(labels.ravel())[1:])) + 1
+        best = None  # (wall length, pixels to free)
+        for grid, swap in ((labels, False), (labels.T, True)):
+            for r, row in enumerate(grid):
+                free = np.flatnonzero(row)
+                for a, b in zip(free[:-1], free[1:]):  # wall pixels a+1 .. b-1 between two free ones
+                    if 1 < b - a <= 9 and (row[a] == main) != (row[b] == main) and (best is None or b - a < best[0]):
+                        cells = [(c, r) if swap else (r, c) for c in range(a + 1, b)]
+                        best = (b - a, cells)
+        if best is None:
+            return  # no wall thin enough: leave the parts (never on the generators' maps)
+        for r, c in best[1]:
+            occ[r, c] = False
 
 
 # --------------------------------------------------------------------------------------- warehouse

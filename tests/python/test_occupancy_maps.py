@@ -62,6 +62,13 @@ def test_seeded_generators(name, size):
         assert len(sizes) == 1
 
 
+def test_narrow_buildings_stay_connected():
+    # a band of rooms too thin to exist left the rooms beyond it unreachable (13 of 210 such maps)
+    for shape in ((200, 40), (300, 40), (100, 30), (64, 20), (500, 45), (40, 200), (16, 300)):
+        for seed in range(30):
+            assert len(components(~om.building(shape, seed))) == 1, (shape, seed)
+
+
 @pytest.mark.parametrize("name", SEEDED)
 def test_seeded_generators_large(name):
     a = getattr(om, name)(2048, 3)
