@@ -288,7 +288,7 @@ def call(route, path):
         dv.grid_voronoi(path, cells=16, workers=1)
     elif route == "map":
         dv.OccupancyGrid.load(path)
-    elif route == "movingai":  # the C++ loader and the pure-Python reader; the worst outcome counts
+    elif route == "movingai":  # the loader and the array reader (one C++ reader); the worst outcome counts
         errors = []
         for f in (dv.OccupancyGrid.load, read_movingai_map):
             try:
