@@ -121,13 +121,13 @@ int run_gvd(const GvdCliOptions& o) {
         throw UsageError("'" + o.obstacles + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
     if (o.grid < 1) throw UsageError("--grid: required for obstacle files, at least 1, got " + std::to_string(o.grid));
     // an option this input or diagram does not read is an error, not silently dropped
-    if (o.map.resolution_given || !o.map.origin.empty() || o.map.unknown_given)
+    if (o.map.resolution_given || !o.map.origin.empty() || o.map.unknown != "occupied")
         throw UsageError("--resolution, --origin and --unknown are for map files: an obstacle file has its own "
                          "coordinates and no unknown pixels");
     const bool medial = o.diagram == "medial";
     if (medial && (o.mode != "cooperative" || o.no_visibility))
         throw UsageError("--mode and --no-visibility are the labelled diagram's; --diagram medial does not use them");
-    if (!medial && o.map.medial_given)
+    if (!medial && o.map.medial_changed())
         throw UsageError("--min-separation and --prune-length are the medial diagram's; add --diagram medial");
     if (medial) o.map.check(o.obstacles);
     const bool to_stdout = check_common(o);
@@ -135,7 +135,12 @@ int run_gvd(const GvdCliOptions& o) {
     const io::ObstacleFile file = io::read_obstacles(o.obstacles);
     std::unique_ptr<io::AtomicFile> out, svg;
     if (medial) {  // the file drawn on --grid pixels along the area's longer side, as Python's diagram="medial"
-        gvd::OccupancyGrid grid = gvd::rasterize(file.scene, o.grid);
+        gvd::OccupancyGrid grid;
+        try {
+            grid = gvd::rasterize(file.scene, o.grid);
+        } catch (const InputError& e) {  // e.g. an area too wide for a grid: name the file
+            throw InputError(o.obstacles + ": " + e.what());
+        }
         if (!to_stdout) out = open_output(o.output, "-o/--output");
         if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
         return write_medial(o, grid, 0, true, std::move(out), std::move(svg));
@@ -153,7 +158,7 @@ int run_gvd(const GvdCliOptions& o) {
     const gvd::GridVoronoi r = [&] {
         try {
             return gvd::grid_voronoi(file.scene, opt);
-        } catch (const RangeError& e) {  // coordinates whose exact tests overflow: name the file
+        } catch (const InputError& e) {  // coordinates out of range (exact tests, the grid): name the file
             throw InputError(o.obstacles + ": " + e.what());
         }
     }();
@@ -170,12 +175,16 @@ int run_gvd(const GvdCliOptions& o) {
         path_points = p.points;
         nlohmann::json pts = nlohmann::json::array();
         for (const Vec2& q : p.points) pts.push_back({q.x(), q.y()});
-        doc["path"] = {{"found", p.found()}, {"length", p.length}, {"points", pts}};
+        // no path: no length, as the medial diagram's JSON writes it (JSON has no infinity)
+        doc["path"] = {{"found", p.found()}, {"length", p.found() ? nlohmann::json(p.length) : nlohmann::json(nullptr)}, {"points", pts}};
     }
     if (!o.quiet)
         std::fprintf(stderr, "gvd: %zu diagram cells, %zu vertices, %llu corners labelled, %d worker(s), %.3f s\n",
                      r.size(), r.vertices.size(), static_cast<unsigned long long>(r.stats.corners_labelled),
                      r.stats.workers, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (r.size() == 0)  // as Python warns; shown with -q too
+        std::fprintf(stderr, "gvd: warning: no diagram cell: the corners of every cell share one nearest obstacle (an "
+                             "obstacle covers the working area)\n");
     return deliver(
         out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
         [&](std::ostream& os) { io::write_gvd_svg(os, file.scene, r, path_points); });

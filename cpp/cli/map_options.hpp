@@ -27,7 +27,8 @@ struct MapOptions {
     std::vector<double> origin;
     std::string unknown = "occupied";
     double min_separation = 1.5, prune_length = 8.0;
-    bool unknown_given = false, medial_given = false;  // --unknown; --min-separation or --prune-length
+    /// Were the medial diagram's parameters given other values than the defaults?
+    bool medial_changed() const { return min_separation != 1.5 || prune_length != 8.0; }
 
     /// Registers --resolution, --origin, --unknown, --min-separation and --prune-length on `app`.
     void add_to(CLI::App& app) {
@@ -36,16 +37,13 @@ struct MapOptions {
         app.add_option("--origin", origin, "map files without YAML: map coordinates X Y of the lower-left corner")->expected(2);
         app.add_option("--unknown", unknown, "map files: unknown pixels count as occupied or free")
             ->check(CLI::IsMember({"occupied", "free"}))
-            ->capture_default_str()
-            ->each([this](const std::string&) { unknown_given = true; });
+            ->capture_default_str();
         app.add_option("--min-separation", min_separation,
                        "medial diagram: nearest points of a pair farther apart than this (pixels)")
-            ->capture_default_str()
-            ->each([this](const std::string&) { medial_given = true; });
+            ->capture_default_str();
         app.add_option("--prune-length", prune_length,
                        "medial diagram: pairs whose nearest points are this close and joined by walls are dropped (pixels)")
-            ->capture_default_str()
-            ->each([this](const std::string&) { medial_given = true; });
+            ->capture_default_str();
     }
 
     /// \throws InputError naming the option.
@@ -90,8 +88,9 @@ struct MapOptions {
     void warn_empty(const char* program, const gvd::OccupancyGrid& g, std::size_t unknown_pixels, bool document = false) const {
         const bool full = std::all_of(g.occupied.begin(), g.occupied.end(), [](std::uint8_t v) { return v != 0; });
         if (full && document) {
-            std::fprintf(stderr, "%s: warning: no diagram pixel: the obstacles cover the whole working area (drawn on %d x %d "
-                                 "pixels)\n", program, g.rows, g.cols);
+            std::fprintf(stderr, "%s: warning: no diagram pixel: every pixel of the obstacle file drawn on %d x %d pixels meets "
+                                 "an obstacle (no free space, or none a pixel wide: a larger --grid draws finer)\n",
+                         program, g.rows, g.cols);
             return;
         }
         if (full) {

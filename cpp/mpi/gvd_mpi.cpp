@@ -53,7 +53,6 @@ struct Args {
     std::string input;
     std::int64_t grid = 0;
     std::string mode = "cooperative";
-    bool mode_given = false;
     double robot_radius = 0.0;
     bool no_visibility = false;
     std::string output, svg;
@@ -113,7 +112,7 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
 
 int run_obstacles(const Args& a, int rank, int size) {
     if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
-    if (a.map.resolution_given || !a.map.origin.empty() || a.map.unknown_given || a.map.medial_given)
+    if (a.map.resolution_given || !a.map.origin.empty() || a.map.unknown != "occupied" || a.map.medial_changed())
         throw InputError("--resolution, --origin, --unknown, --min-separation and --prune-length are for map files: "
                          "dvoronoi_gvd_mpi draws the labelled diagram of obstacle files");
     // Rank 0 reads the file and broadcasts its text; every rank parses it (same scene everywhere).
@@ -146,7 +145,13 @@ int run_obstacles(const Args& a, int rank, int size) {
     opt.mode = a.mode == "independent" ? gvd::SliceMode::Independent : gvd::SliceMode::Cooperative;
     opt.visibility = !a.no_visibility;
     gvd::check_options(opt);
-    const gvd::GridSpec grid = gvd::make_grid(file.scene, opt.resolution);
+    const gvd::GridSpec grid = [&] {
+        try {
+            return gvd::make_grid(file.scene, opt.resolution);
+        } catch (const InputError& e) {  // e.g. an area too wide for a grid: name the file
+            throw InputError(a.input + ": " + e.what());
+        }
+    }();
     if (size > grid.nx) throw InputError("more ranks (" + std::to_string(size) + ") than grid columns (" + std::to_string(grid.nx) + ")");
 
     MPI_Barrier(MPI_COMM_WORLD);
@@ -265,7 +270,7 @@ std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::
 int run_map(const Args& a, int rank, int size) {
     // The same checks and messages as `dvoronoi gvd MAP`; every rank sees the same arguments, so all
     // throw together.
-    if (a.grid != 0 || a.mode_given || a.no_visibility)
+    if (a.grid != 0 || a.mode != "cooperative" || a.no_visibility)
         throw InputError("--grid, --mode and --no-visibility are for obstacle files: a map's diagram grid is its pixels");
     if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
         throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
@@ -396,9 +401,7 @@ int main(int argc, char** argv) {
     app.add_option("INPUT", a.input, "an occupancy map (.yaml map_server, .pgm, .png, MovingAI .map) or an obstacle "
                                      "file (JSON), as for `dvoronoi gvd`")->required();
     app.add_option("-g,--grid", a.grid, "obstacle files: cells along the longer side of the working area");
-    app.add_option("-m,--mode", a.mode, "cooperative or independent")
-        ->check(CLI::IsMember({"cooperative", "independent"}))
-        ->each([&a](const std::string&) { a.mode_given = true; });
+    app.add_option("-m,--mode", a.mode, "cooperative or independent")->check(CLI::IsMember({"cooperative", "independent"}));
     app.add_option("-r,--robot-radius", a.robot_radius, "robot radius (map units): diagram cells or pixels this close to an obstacle are blocked");
     app.add_flag("--no-visibility", a.no_visibility, "turn the paper's edge visibility test off");
     a.map.add_to(app);

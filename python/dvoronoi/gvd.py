@@ -394,8 +394,8 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         raise ValueError(f'diagram must be "medial" or "labels", got {diagram!r}')
     if mode not in ("cooperative", "independent"):
         raise ValueError(f'mode must be "cooperative" or "independent", got {mode!r}')
-    if not isinstance(visibility, (bool, np.bool_)):
-        raise TypeError(f"visibility must be True or False, got {type(visibility).__name__}")
+    if not (isinstance(visibility, (bool, np.bool_)) or (isinstance(visibility, (int, np.integer)) and visibility in (0, 1))):
+        raise TypeError(f"visibility must be True or False, got {visibility!r}")
     is_map = _is_map(obstacles)
     # an argument the chosen diagram or input does not read is an error, not silently dropped
     wants_labels = diagram == "labels" or (diagram is None and not is_map)

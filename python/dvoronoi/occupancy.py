@@ -207,12 +207,13 @@ class OccupancyGrid:
             raise ValueError(f"points must be an (n, 2) array or one point (x, y), got shape {p.shape}")
         H, W = self.shape
         u = (p - np.asarray(self.origin)) / self.resolution  # pixel units, y up
-        bad = ~np.isfinite(u).all(axis=1) | (u[:, 0] < 0) | (u[:, 0] > W) | (u[:, 1] < 0) | (u[:, 1] > H)
+        tol = 1e-9 * max(H, W)  # the map's own edges (extent) round to a hair outside
+        bad = ~np.isfinite(u).all(axis=1) | (u[:, 0] < -tol) | (u[:, 0] > W + tol) | (u[:, 1] < -tol) | (u[:, 1] > H + tol)
         if bad.any():
             k = int(np.flatnonzero(bad)[0])
-            raise ValueError(f"points[{k}] = ({p[k, 0]!r}, {p[k, 1]!r}) is outside the {H} x {W} map")
-        cols = np.minimum(np.floor(u[:, 0]), W - 1).astype(np.int64)
-        rows = np.minimum(np.floor(H - u[:, 1]), H - 1).astype(np.int64)
+            raise ValueError(f"points[{k}] = ({float(p[k, 0])!r}, {float(p[k, 1])!r}) is outside the {H} x {W} map")
+        cols = np.clip(np.floor(u[:, 0]), 0, W - 1).astype(np.int64)
+        rows = np.clip(np.floor(H - u[:, 1]), 0, H - 1).astype(np.int64)
         return np.stack([rows, cols], axis=1)
 
     @property
@@ -244,6 +245,9 @@ def as_occupancy_grid(source: Any, resolution: Optional[float], origin: Optional
     if isinstance(source, OccupancyGrid):
         if resolution is not None or origin is not None:
             raise ValueError("resolution and origin come with the OccupancyGrid; do not pass them again")
+        if unknown != "occupied" or occupied_thresh != 0.65:
+            raise ValueError("unknown and occupied_thresh say how an array or image is read; an OccupancyGrid is "
+                             "read already (pass them to OccupancyGrid(...))")
         return source
     if isinstance(source, (str, os.PathLike)):
         return OccupancyGrid.load(source, unknown=unknown, resolution=resolution, origin=origin,
@@ -539,7 +543,8 @@ def warn_empty_diagram(grid: OccupancyGrid, unknown: str, why: str, document: bo
     `document`) that is all occupied, or `why` otherwise."""
     if grid.occupied.all():
         if document:
-            why = f"the obstacles cover the whole working area (drawn on {grid.shape[0]} x {grid.shape[1]} pixels)"
+            why = (f"every pixel of the document drawn on {grid.shape[0]} x {grid.shape[1]} pixels meets an obstacle "
+                   f"(no free space, or none a pixel wide: a larger cells= draws finer)")
         else:
             unknown_note = (f"; {grid.unknown_pixels} of them are unknown, which unknown='free' would make free"
                             if grid.unknown_pixels and unknown == "occupied" else "")

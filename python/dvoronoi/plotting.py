@@ -692,22 +692,48 @@ def plot_voronoi(result: Any, ax: Any = None, *, cells: bool = True, delaunay: b
 
 
 # ----------------------------------------------------------------------------- coverage (Lloyd)
+def _block_max(img: np.ndarray, k: int) -> np.ndarray:
+    """The largest value of each k x k block (the last blocks of a row or column may be smaller)."""
+    if k <= 1:
+        return img
+    rows = np.maximum.reduceat(img, np.arange(0, img.shape[0], k), axis=0)
+    return np.maximum.reduceat(rows, np.arange(0, img.shape[1], k), axis=1)
+
+
 def category_image(ax: Any, img: np.ndarray, extent: Tuple[float, float, float, float], **imshow: Any) -> Any:
-    """``ax.imshow(img)`` of a small-integer image (row 0 at the top; larger values are drawn over
-    smaller ones) that stays readable at any size: an image with more pixels than the axes shows is
-    first reduced by the largest value of each k x k block, so a line one pixel wide stays visible
-    (nearest-neighbour sampling would keep one row in k and drop the rest). Returns the AxesImage."""
+    """An image of small integers (row 0 at the top; larger values are drawn over smaller ones) that
+    stays readable at any size: when the axes show more of its pixels than they have display pixels
+    (a large map, a small figure, a low savefig dpi), each drawing shows the largest value of each
+    k x k block, so that a line one pixel wide stays visible (nearest-neighbour sampling would keep
+    one row in k and drop the rest); zoomed in, the pixels themselves. Blocks are placed to within a
+    display pixel. Returns the AxesImage (``gid`` and the other keywords as for imshow)."""
+    from matplotlib.image import AxesImage
+
     H, W = img.shape
-    box = ax.get_window_extent()
-    k = int(np.ceil(max(H / max(box.height, 1.0), W / max(box.width, 1.0))))
-    if k > 1:
-        Hp, Wp = -(-H // k) * k, -(-W // k) * k
-        padded = np.zeros((Hp, Wp), dtype=img.dtype)  # 0: nothing drawn
-        padded[:H, :W] = img
-        img = padded.reshape(Hp // k, k, Wp // k, k).max(axis=(1, 3))
-        x0, x1, y0, y1 = extent  # the padding lies right of and below the map
-        extent = (x0, x0 + (x1 - x0) * Wp / W, y1 - (y1 - y0) * Hp / H, y1)
-    return ax.imshow(img, extent=extent, interpolation="nearest", **imshow)
+    vmin, vmax = imshow.pop("vmin", None), imshow.pop("vmax", None)
+
+    class BlockMaxImage(AxesImage):
+        k = 0
+
+        def reduce_for(self, box: Any) -> None:
+            (x0, x1), (y0, y1) = sorted(self.axes.get_xlim()), sorted(self.axes.get_ylim())
+            cols = W * (x1 - x0) / abs(extent[1] - extent[0])  # image pixels across the view
+            rows = H * (y1 - y0) / abs(extent[3] - extent[2])
+            k = max(1, int(np.ceil(max(rows / max(box.height, 1.0), cols / max(box.width, 1.0)))))
+            if k != self.k:
+                self.k = k
+                self.set_data(_block_max(img, k))
+
+        def make_image(self, renderer: Any, magnification: float = 1.0, unsampled: bool = False) -> Any:
+            self.reduce_for(self.axes.get_window_extent(renderer))  # this renderer's dpi and the view
+            return super().make_image(renderer, magnification, unsampled)
+
+    image = BlockMaxImage(ax, interpolation="nearest", origin="upper", extent=extent, **imshow)
+    image.set_clim(vmin, vmax)
+    image.reduce_for(ax.get_window_extent())
+    ax.add_image(image)
+    image.set_extent(extent)  # the axes' data limits, as imshow sets them
+    return image
 
 
 def density_image(density: Any, box: Any, bounds: Any = None, pixels: int = 200) -> np.ndarray:

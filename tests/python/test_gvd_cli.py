@@ -127,3 +127,19 @@ def test_cli_medial_diagram_of_an_obstacle_file_is_pythons(tmp_path):
         r = run("gvd", src, "--grid", 120, *args, "-o", bad)
         assert r.returncode == 2 and message in r.stderr, (args, r.stderr)
         assert not bad.exists()
+    # explicit defaults are not options of another input or diagram
+    assert run("gvd", src, "--grid", 60, "--unknown", "occupied", "--prune-length", 8, "-q", "-o", tmp_path / "d.json").returncode == 0
+
+
+def test_cli_labelled_diagram_without_path_or_cells_says_so(tmp_path):
+    walls = tmp_path / "walls.json"  # two rooms: no free diagram cell joins them
+    walls.write_text(json.dumps({"area": {"box": [0, 0, 10, 4]}, "obstacles": [
+        {"type": "polygon", "vertices": [[4.5, -1], [5.5, -1], [5.5, 5], [4.5, 5]]}]}))
+    r = run("gvd", walls, "--grid", 40, "-r", 0.6, "--path", 1, 2, 9, 2, "-q")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["path"] == {"found": False, "length": None, "points": []}
+    full = tmp_path / "full.json"
+    full.write_text(json.dumps({"area": {"box": [0, 0, 4, 4]}, "obstacles": [
+        {"type": "polygon", "vertices": [[-1, -1], [5, -1], [5, 5], [-1, 5]]}]}))
+    r = run("gvd", full, "--grid", 16, "-q")
+    assert r.returncode == 0 and "gvd: warning: no diagram cell: the corners of every cell share one nearest obstacle" in r.stderr

@@ -1,6 +1,7 @@
 """The grid diagram on occupancy grids (dv.grid_voronoi on arrays, OccupancyGrid and map files):
 the medial definition against an independent numpy oracle and the C++ brute force, invariants on
 real-shaped maps, map files, updates, paths and clearance."""
+import io
 import json
 import os
 import pickle
@@ -502,7 +503,30 @@ def test_plots_of_maps_larger_than_the_axes_keep_every_diagram_line():
         assert lines(shown == line) == lines(result.diagram_mask)  # no line dropped
     lo, hi = gv.plot().get_xlim()
     assert (lo, hi) == pytest.approx((5.0, 155.0))
+    # saved at a lower dpi, each drawing reduces for that renderer's pixels
+    ax = gv.plot()
+    image = [a for a in ax.get_images() if a.get_gid() == "dvoronoi-gvd-medial"][0]
+    ax.figure.savefig(io.BytesIO(), dpi=40, format="png")
+    shown, box = np.asarray(image.get_array()), ax.get_window_extent()
+    assert shown.shape[0] <= box.height * 40 / ax.figure.dpi + 1
     plt.close("all")
+
+
+def test_plots_do_not_depend_on_matplotlibs_image_origin_setting():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    occ = occupancy_maps.rooms_with_islands((40, 60), 1)
+    doc = dv.obstacles_from_occupancy_grid(occ.astype(float), 0.5)
+    pictures = []
+    for origin in ("upper", "lower"):
+        with matplotlib.rc_context({"image.origin": origin}):
+            for result in (dv.grid_voronoi(occ, resolution=0.5), dv.grid_voronoi(doc, cells=60)):
+                buf = io.BytesIO()
+                result.plot().figure.savefig(buf, format="png")
+                pictures.append(buf.getvalue())
+                plt.close("all")
+    assert pictures[0] == pictures[2] and pictures[1] == pictures[3]
 
 
 def test_pickle_json_svg_and_plot(tmp_path):
@@ -560,7 +584,7 @@ def test_empty_labelled_and_document_diagrams_are_explained():
     assert len(dv.grid_voronoi(ring)) > 0  # the medial diagram splits it
     covered = {"area": {"box": [0, 0, 10, 10]},
                "obstacles": [{"type": "polygon", "vertices": [[-1, -1], [11, -1], [11, 11], [-1, 11]]}]}
-    with pytest.warns(UserWarning, match="the obstacles cover the whole working area"):
+    with pytest.warns(UserWarning, match="every pixel of the document drawn on 16 x 16 pixels meets an obstacle"):
         assert len(dv.grid_voronoi(covered, cells=16, diagram="medial")) == 0
     with pytest.warns(UserWarning, match="no diagram cell: the corners of every cell share one nearest obstacle"):
         assert len(dv.grid_voronoi(covered, cells=16).cells) == 0
@@ -789,7 +813,7 @@ def test_path_costs_stay_in_range_and_a_start_at_the_goal_is_a_zero_length_path(
             gv.path(start, goal, off_diagram_cost=bad)
     route = gv.path(start, start)
     assert route.tolist() == [list(start), list(start)] and gv.path_length(start, start) == 0.0
-    with pytest.raises(ValueError, match=r"is blocked: its clearance 1 is not greater than the robot radius 1e\+300$"):
+    with pytest.raises(ValueError, match=r"is blocked: its clearance 1 is not greater than the robot radius 1e\+300 by more than rounding"):
         gv.path(start, goal, robot_radius=1e300)  # numbers in errors are short
     for name, kwargs in (("robot_radius", {"robot_radius": "0.3"}), ("off_diagram_cost", {"off_diagram_cost": "2"})):
         with pytest.raises(TypeError, match=f"{name} must be a real number"):
@@ -829,11 +853,14 @@ def test_arguments_the_diagram_or_input_does_not_read_are_refused():
             (doc, {"diagram": "medial", "origin": (5, 5)}, "origin: an obstacle document's coordinates are its own"),
             (doc, {"unknown": "maybe"}, "unknown and occupied_thresh say how an occupancy array"),
             (doc, {"occupied_thresh": 7}, "unknown and occupied_thresh say how an occupancy array"),
-            (doc, {"diagram": "medial", "visibility": False}, "the medial diagram does not use them")):
+            (doc, {"diagram": "medial", "visibility": False}, "the medial diagram does not use them"),
+            (dv.OccupancyGrid(occ), {"unknown": "free"}, "an OccupancyGrid is read already"),
+            (dv.OccupancyGrid(occ), {"occupied_thresh": 0.3}, "an OccupancyGrid is read already")):
         with pytest.raises((ValueError, TypeError), match=match):
             dv.grid_voronoi(source, **kwargs)
     # what each reads is still taken
     assert len(dv.grid_voronoi(occ, diagram="labels", mode="independent", visibility=False).cells) > 0
+    assert len(dv.grid_voronoi(occ, diagram="labels", visibility=0).cells) > 0  # 0/1 as bools
     assert len(dv.grid_voronoi(doc, diagram="medial", cells=32, prune_length=4)) > 0
 
 
@@ -857,6 +884,9 @@ def test_pixel_centres_take_pixels_as_updates_do_and_pixels_at_inverts_them():
     np.testing.assert_array_equal(grid.pixels_at([(-1.0, 2.0), (2.5, 4.5), (-0.5, 3.0), (1.0 - 1e-12, 3.0)]),
                                   [[4, 0], [0, 6], [3, 1], [3, 3]])
     np.testing.assert_array_equal(grid.pixels_at((0.0, 3.5)), [[2, 2]])  # on the edge between rows 1 and 2
+    odd = dv.OccupancyGrid(np.zeros((12, 32), bool), 0.1, (0.3, 0.7))  # extent (0.3, 3.5, 0.7, 1.9000000000000001)
+    x0, x1, y0, y1 = odd.extent
+    np.testing.assert_array_equal(odd.pixels_at([(x1, y1), (x0, y0), (x1, y0), (x0, y1)]), [[0, 31], [11, 0], [11, 31], [0, 0]])
     for bad in ((-1.0001, 3.0), (0.0, 4.50001), (np.nan, 3.0)):
         with pytest.raises(ValueError, match=r"points\[0\] = .* is outside the 5 x 7 map"):
             grid.pixels_at([bad])

@@ -210,6 +210,8 @@ def test_gvd_mpi_refuses_options_its_input_does_not_read(tmp_path):
         proc = mpirun(2, *args, "-o", str(tmp_path / "out.json"), program=GVD_MPI, timeout=120)
         assert proc.returncode == 2 and message in proc.stderr, (args, proc.stderr[-2000:])
         assert not (tmp_path / "out.json").exists()
+    proc = mpirun(2, str(path), "--mode", "cooperative", "--unknown", "occupied", program=GVD_MPI, timeout=120)
+    assert proc.returncode == 0, proc.stderr[-2000:]  # explicit defaults, as dvoronoi gvd takes them
 
 
 @needs_gvd

@@ -250,6 +250,11 @@ def regressions(out: Path) -> None:
     write(out / "obstacles", "regress_area_out_of_exact_range.json",
           '{"area": {"polygon": [[0, 0], [8, 0], [10, 6], [4, 1e308], [-2, 5]]}, '
           '"obstacles": [{"type": "circle", "center": [4, 4], "radius": 1.5}]}')
+    # an area wider than DBL_MAX (finite corners 1.8e308 apart): the grid's cell size was infinite and
+    # the obstacle index wrote out of bounds (signal 11); found by the byte-mutation pass
+    write(out / "obstacles", "regress_area_wider_than_dbl_max.json",
+          '{"area": {"box": [-1e300, -1e300, 1.7976931348623157e308, 1e300]}, '
+          '"obstacles": [{"type": "point", "position": [1e-300, 0]}]}')
     # not UTF-8: UnicodeDecodeError from python -m dvoronoi.mpi's point reader
     write(out / "points", "regress_latin1.txt", b"1 2\n3 4\xe9\n")
 

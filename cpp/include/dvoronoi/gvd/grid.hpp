@@ -38,6 +38,11 @@ inline GridSpec make_grid(const Scene& s, std::int64_t resolution) {
     if (resolution > (std::int64_t{1} << 30)) throw InputError("resolution is too large");
     GridSpec g;
     const double w = s.box.x1 - s.box.x0, hh = s.box.y1 - s.box.y0;
+    // finite coordinates can still lie more than DBL_MAX apart: the grid's cell size would be infinite
+    if (!std::isfinite(w) || !std::isfinite(hh))
+        throw InputError("the working area spans " + ::dvoronoi::detail::shortest_text(w) + " x " +
+                         ::dvoronoi::detail::shortest_text(hh) + " map units: its width and height must be finite "
+                         "(coordinates less than 8.9e307 apart)");
     g.x0 = s.box.x0;
     g.y0 = s.box.y0;
     g.h = std::max(w, hh) / static_cast<double>(resolution);

@@ -156,8 +156,9 @@ inline GridPath find_grid_path(const MedialDiagram& m, const Vec2& start, const 
         const double cl = point_clearance(m, p);
         if (!detail::clearer_than(cl * cl, r_px))
             throw InputError(std::string(name) + " " + show(orig) + " is blocked: its clearance " +
-                             ::dvoronoi::detail::shortest_text(cl * g.resolution) + " is not greater than the robot radius " +
-                             ::dvoronoi::detail::shortest_text(robot_radius));
+                             ::dvoronoi::detail::shortest_text(cl * g.resolution) +
+                             " is not greater than the robot radius " + ::dvoronoi::detail::shortest_text(robot_radius) +
+                             " by more than rounding (a relative 1e-12)");
     }
     GridPath out;
     if (start == goal) {  // already there (and clear)
