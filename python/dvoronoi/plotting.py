@@ -700,6 +700,37 @@ def _block_max(img: np.ndarray, k: int) -> np.ndarray:
     return np.maximum.reduceat(rows, np.arange(0, img.shape[1], k), axis=1)
 
 
+_BLOCK_MAX_IMAGE: Any = None
+
+
+def _block_max_image_type() -> Any:
+    """An AxesImage that shows its full image (``_full``, extent ``_full_extent``) reduced by
+    _block_max for each drawing: k follows the renderer's pixels and the axes' view. Made on first
+    use (matplotlib is optional)."""
+    global _BLOCK_MAX_IMAGE
+    if _BLOCK_MAX_IMAGE is not None:
+        return _BLOCK_MAX_IMAGE
+    from matplotlib.image import AxesImage
+
+    def reduce_for(self: Any, box: Any) -> None:
+        H, W = self._full.shape
+        e = self._full_extent
+        (x0, x1), (y0, y1) = sorted(self.axes.get_xlim()), sorted(self.axes.get_ylim())
+        cols = W * (x1 - x0) / abs(e[1] - e[0])  # image pixels across the view
+        rows = H * (y1 - y0) / abs(e[3] - e[2])
+        k = max(1, int(np.ceil(max(rows / max(box.height, 1.0), cols / max(box.width, 1.0)))))
+        if k != self.block:
+            self.block = k
+            self.set_data(_block_max(self._full, k))
+
+    def make_image(self: Any, renderer: Any, magnification: float = 1.0, unsampled: bool = False) -> Any:
+        self.reduce_for(self.axes.get_window_extent(renderer))  # this renderer's dpi and the view
+        return AxesImage.make_image(self, renderer, magnification, unsampled)
+
+    _BLOCK_MAX_IMAGE = type("BlockMaxImage", (AxesImage,), {"block": 0, "reduce_for": reduce_for, "make_image": make_image})
+    return _BLOCK_MAX_IMAGE
+
+
 def category_image(ax: Any, img: np.ndarray, extent: Tuple[float, float, float, float], **imshow: Any) -> Any:
     """An image of small integers (row 0 at the top; larger values are drawn over smaller ones) that
     stays readable at any size: when the axes show more of its pixels than they have display pixels
@@ -707,28 +738,9 @@ def category_image(ax: Any, img: np.ndarray, extent: Tuple[float, float, float, 
     k x k block, so that a line one pixel wide stays visible (nearest-neighbour sampling would keep
     one row in k and drop the rest); zoomed in, the pixels themselves. Blocks are placed to within a
     display pixel. Returns the AxesImage (``gid`` and the other keywords as for imshow)."""
-    from matplotlib.image import AxesImage
-
-    H, W = img.shape
     vmin, vmax = imshow.pop("vmin", None), imshow.pop("vmax", None)
-
-    class BlockMaxImage(AxesImage):
-        k = 0
-
-        def reduce_for(self, box: Any) -> None:
-            (x0, x1), (y0, y1) = sorted(self.axes.get_xlim()), sorted(self.axes.get_ylim())
-            cols = W * (x1 - x0) / abs(extent[1] - extent[0])  # image pixels across the view
-            rows = H * (y1 - y0) / abs(extent[3] - extent[2])
-            k = max(1, int(np.ceil(max(rows / max(box.height, 1.0), cols / max(box.width, 1.0)))))
-            if k != self.k:
-                self.k = k
-                self.set_data(_block_max(img, k))
-
-        def make_image(self, renderer: Any, magnification: float = 1.0, unsampled: bool = False) -> Any:
-            self.reduce_for(self.axes.get_window_extent(renderer))  # this renderer's dpi and the view
-            return super().make_image(renderer, magnification, unsampled)
-
-    image = BlockMaxImage(ax, interpolation="nearest", origin="upper", extent=extent, **imshow)
+    image = _block_max_image_type()(ax, interpolation="nearest", origin="upper", extent=extent, **imshow)
+    image._full, image._full_extent = img, extent
     image.set_clim(vmin, vmax)
     image.reduce_for(ax.get_window_extent())
     ax.add_image(image)
