@@ -121,7 +121,7 @@ int run_gvd(const GvdCliOptions& o) {
         throw UsageError("'" + o.obstacles + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
     if (o.grid < 1) throw UsageError("--grid: required for obstacle files, at least 1, got " + std::to_string(o.grid));
     // an option this input or diagram does not read is an error, not silently dropped
-    if (o.map.resolution_given || !o.map.origin.empty() || o.map.unknown != "occupied")
+    if (o.map.reading_given())
         throw UsageError("--resolution, --origin and --unknown are for map files: an obstacle file has its own "
                          "coordinates and no unknown pixels");
     const bool medial = o.diagram == "medial";

@@ -29,6 +29,9 @@ struct MapOptions {
     double min_separation = 1.5, prune_length = 8.0;
     /// Were the medial diagram's parameters given other values than the defaults?
     bool medial_changed() const { return min_separation != 1.5 || prune_length != 8.0; }
+    /// Were the options that say how a map file is read (--resolution, --origin, --unknown) given
+    /// (or, for --unknown, given another value than the default)? Obstacle files refuse them.
+    bool reading_given() const { return resolution_given || !origin.empty() || unknown != "occupied"; }
 
     /// Registers --resolution, --origin, --unknown, --min-separation and --prune-length on `app`.
     void add_to(CLI::App& app) {

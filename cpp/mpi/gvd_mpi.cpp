@@ -112,7 +112,7 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
 
 int run_obstacles(const Args& a, int rank, int size) {
     if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
-    if (a.map.resolution_given || !a.map.origin.empty() || a.map.unknown != "occupied" || a.map.medial_changed())
+    if (a.map.reading_given() || a.map.medial_changed())
         throw InputError("--resolution, --origin, --unknown, --min-separation and --prune-length are for map files: "
                          "dvoronoi_gvd_mpi draws the labelled diagram of obstacle files");
     // Rank 0 reads the file and broadcasts its text; every rank parses it (same scene everywhere).

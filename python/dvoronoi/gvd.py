@@ -306,9 +306,6 @@ class GridVoronoi(Result):
         if path is not None and len(path):
             p = np.asarray(path)
             ax.plot(p[:, 0], p[:, 1], "-", color="#2e7d32", lw=2, zorder=5, gid="dvoronoi-gvd-path")
-        ax.set_aspect("equal")
-        ax.set_xlim(area[:, 0].min(), area[:, 0].max())
-        ax.set_ylim(area[:, 1].min(), area[:, 1].max())
         return ax
 
     def __repr__(self) -> str:

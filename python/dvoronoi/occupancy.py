@@ -505,7 +505,8 @@ class OccupancyVoronoi:
         img[self.blocked_mask] = 3
         cmap = ListedColormap([(1, 1, 1, 0), (0.26, 0.26, 0.26, 1), (0.12, 0.47, 0.71, 1), (0.96, 0.65, 0.65, 1)])
         # crisp pixels at any size: no antialiasing (it would blur thin diagram lines), and a map larger
-        # than the axes is reduced block by block, diagram over walls, so no line drops out
+        # than the axes is reduced block by block, diagram over walls, so no line drops out. The view
+        # is set first: the reduction follows it (and stays: later artists do not autoscale it).
         ax.set_aspect("equal")
         ax.set_xlim(extent[0], extent[1])
         ax.set_ylim(extent[2], extent[3])
@@ -514,9 +515,6 @@ class OccupancyVoronoi:
             p = np.asarray(path)
             ax.plot(p[:, 0], p[:, 1], "-", color="#2e7d32", lw=2, zorder=3, gid="dvoronoi-gvd-path")
             ax.plot(p[[0, -1], 0], p[[0, -1], 1], "o", color="#2e7d32", ms=5, zorder=4)
-        ax.set_aspect("equal")
-        ax.set_xlim(extent[0], extent[1])
-        ax.set_ylim(extent[2], extent[3])
         return ax
 
     # -- pickling: the map and the options; the diagram is rebuilt (exactly the same) -------------
@@ -560,11 +558,11 @@ def medial_voronoi(grid: OccupancyGrid, robot_radius: float, workers: int, min_s
     # the caller's grid, and the caller's later edits never reach the result.
     min_separation = _args.real(min_separation, "min_separation")
     prune_length = _args.real(prune_length, "prune_length")
-    options: Dict[str, Any] = {"min_separation": float(min_separation), "prune_length": float(prune_length),
+    options: Dict[str, Any] = {"min_separation": min_separation, "prune_length": prune_length,
                                "workers": int(workers), "occupied_thresh": float(occupied_thresh), "unknown": unknown}
     try:
         core = _core._medial_build(_as_bytes(grid.occupied), grid.resolution, grid.origin[0], grid.origin[1],
-                                   float(min_separation), float(prune_length), int(workers))
+                                   min_separation, prune_length, int(workers))
     except ValueError as e:
         raise ValueError(str(e)) from None
     if core.count == 0:

@@ -49,6 +49,18 @@ std::string error_of(const std::string& path, const MapReadOptions& o = {}) {
     return "";
 }
 
+/// Each text, written as `name` in `d`, must make the reader fail with a message whose part after the
+/// folder starts with its expected message ("": read without error).
+void check_error_tails(TempDir& d, const std::string& name, const std::vector<std::pair<std::string, std::string>>& cases) {
+    for (const auto& [text, want] : cases) {
+        CAPTURE(text);
+        const std::string err = error_of(d.write(name, text));
+        const std::string tail = err.substr(err.find_last_of('/') + 1);
+        if (want.empty()) CHECK_MESSAGE(err.empty(), err);
+        else CHECK_MESSAGE(tail.compare(0, want.size(), want) == 0, tail);
+    }
+}
+
 bool ends_with(const std::string& s, const std::string& tail) {
     return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
@@ -211,13 +223,7 @@ TEST_CASE("YAML this reader does not follow is an error naming file and line, ne
         {"resolution: 1\n", "f.yaml: missing 'image'"},
         {"image: m.pgm\nresolution: 1\nmode: raw\n", "f.yaml:3: mode: 'raw' is not supported"},
     };
-    for (const auto& [text, want] : cases) {
-        CAPTURE(text);
-        const std::string err = error_of(d.write("f.yaml", text));
-        const std::string tail = err.substr(err.find_last_of('/') + 1);
-        if (want.empty()) CHECK_MESSAGE(err.empty(), err);
-        else CHECK_MESSAGE(tail.compare(0, want.size(), want) == 0, tail);
-    }
+    check_error_tails(d, "f.yaml", cases);
 }
 
 TEST_CASE("thresholds, resolution and origin are checked for bare images, .map files and YAML alike") {
@@ -330,10 +336,5 @@ TEST_CASE("MovingAI maps: one set of rules (Python's read_movingai_map is this r
         {"type octile\nheight 1\nwidth 3\n", "b.map:4: header ends before the 'map' line"},
         {"type octile\nheight 1\nwidth 2\nmap\n.\xc3\xa9\n", "b.map:5: not an ASCII MovingAI map file"},
     };
-    for (const auto& [text, want] : cases) {
-        CAPTURE(text);
-        const std::string err = error_of(d.write("b.map", text));
-        const std::string tail = err.substr(err.find_last_of('/') + 1);
-        CHECK_MESSAGE(tail.compare(0, want.size(), want) == 0, tail);
-    }
+    check_error_tails(d, "b.map", cases);
 }
