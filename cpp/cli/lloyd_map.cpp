@@ -26,6 +26,7 @@ int run_lloyd_map(const LloydMapRequest& r) {
     const std::string ext = io::detail::lower_ext(r.map);
     if ((ext == ".yaml" || ext == ".yml") && (r.resolution > 0 || !r.origin.empty()))
         throw UsageError("--resolution/--origin: a map_server YAML brings its own resolution and origin");
+    if (ext == ".map" && r.unknown != "occupied") throw UsageError("--unknown: a MovingAI map has no unknown cells");
     const bool to_stdout = r.output.empty() || r.output == "-";
     if (!to_stdout && lower_extension(r.output) != ".json")
         throw UsageError("-o/--output: the run is written as JSON; use a .json file name or '-', got '" + r.output + "'");

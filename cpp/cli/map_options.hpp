@@ -61,6 +61,8 @@ struct MapOptions {
         const std::string ext = io::detail::lower_ext(input);
         if ((ext == ".yaml" || ext == ".yml") && (resolution_given || !origin.empty()))
             throw InputError("--resolution/--origin: a map_server YAML brings its own resolution and origin");
+        if (ext == ".map" && unknown != "occupied")
+            throw InputError("--unknown: a MovingAI map has no unknown cells");
         if (!origin.empty() && origin.size() != 2) throw InputError("--origin: expects X Y");
         for (double v : origin)
             if (!std::isfinite(v)) throw InputError("--origin: coordinates must be finite, got " + num(v));

@@ -154,6 +154,10 @@ class OccupancyGrid:
             if occupied_thresh != 0.65 or free_thresh != 0.196 or negate:
                 raise ValueError(f"{path}: a map_server YAML brings its own occupied_thresh, free_thresh and negate; "
                                  "do not pass them (edit the YAML)")
+        elif path.lower().endswith(".map"):
+            if occupied_thresh != 0.65 or free_thresh != 0.196 or negate or unknown != "occupied":
+                raise ValueError(f"{path}: a MovingAI map has no grey levels and no unknown cells; do not pass "
+                                 "occupied_thresh, free_thresh, negate or unknown")
         res = 1.0 if resolution is None else _positive(resolution, "resolution")
         ox, oy = (0.0, 0.0) if origin is None else _origin(origin)
         try:

@@ -15,6 +15,7 @@ import dvoronoi as dv
 from dvoronoi import _core, occupancy_maps
 
 CLI = os.environ.get("DVORONOI_CLI")
+REST = "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"  # keys map_server requires besides image, resolution, origin
 
 
 # -- an independent oracle of the definition (numpy; doubled pixel units) ------------------------
@@ -295,7 +296,7 @@ def test_real_city_map_from_movingai():
     ("t.pgm", b"P5\n10 10\n255\n" + bytes(20), r"t.pgm: truncated PGM data \(20 of 100"),
     ("h.pgm", b"P5\n10", r"h.pgm: truncated PGM header"),
     ("x.pgm", b"P7\n1 1\n255\n\x00", r"x.pgm: not a PGM image"),
-    ("a.yaml", b"image: a.pgm\nresolution: fast\n", r"a.yaml:2: resolution: expected a finite number"),
+    ("a.yaml", b"image: a.pgm\nresolution: fast\n", r"a.yaml:2: resolution: expected a finite decimal number"),
     ("b.yaml", b"image: a.pgm\nresolution: 0.1\norigin: [1.0]\n", r"b.yaml:3: origin: expected \[x, y, yaw\]"),
     ("c.yaml", b"resolution: 0.1\n", r"c.yaml.*missing 'image'"),
     ("m.map", b"type octile\nheight 2\nwidth 3\nmap\n...\n..\n", r"m.map:6: map row 1 has 2 characters, width is 3"),
@@ -636,12 +637,12 @@ def test_update_reads_arrays_as_the_build_did():
 
 def test_yaml_brings_its_own_resolution_and_origin(tmp_path):
     write_pgm(tmp_path / "m.pgm", np.full((5, 6), 254, np.uint8))
-    (tmp_path / "m.yaml").write_text("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n")
+    (tmp_path / "m.yaml").write_text("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n" + REST)
     with pytest.raises(ValueError, match="brings its own resolution"):
         dv.OccupancyGrid.load(tmp_path / "m.yaml", resolution=0.5)
     with pytest.raises(ValueError, match="brings its own resolution"):
         dv.grid_voronoi(tmp_path / "m.yaml", origin=(1, 1))
-    (tmp_path / "s.yaml").write_text("image: m.pgm\nresolution: 0.1\nmode: scale\n")
+    (tmp_path / "s.yaml").write_text("image: m.pgm\nresolution: 0.1\nmode: scale\n" + REST)
     with pytest.raises(ValueError, match=r"s.yaml:3: mode: 'scale' is not supported"):
         dv.OccupancyGrid.load(tmp_path / "s.yaml")
 
@@ -676,7 +677,7 @@ def test_labelled_diagram_of_a_file_reads_it_as_the_medial_one(tmp_path):
     img[5:9, 5:9] = 205    # unknown: occupied by default
     img[12:15, 20:25] = 0
     write_pgm(tmp_path / "u.pgm", img)
-    (tmp_path / "u.yaml").write_text("image: u.pgm\nresolution: 0.5\norigin: [0, 0, 0]\n")
+    (tmp_path / "u.yaml").write_text("image: u.pgm\nresolution: 0.5\norigin: [0, 0, 0]\n" + REST)
     doc = dv.obstacles_from_occupancy_grid(tmp_path / "u.yaml")
     assert len(doc["obstacles"]) == 2
     assert np.array_equal(dv.OccupancyGrid.load(tmp_path / "u.yaml").occupied, (img == 0) | (img == 205))
@@ -686,6 +687,22 @@ def test_movingai_unknown_character_is_an_error(tmp_path):
     (tmp_path / "x.map").write_text("type octile\nheight 1\nwidth 3\nmap\n.x.\n")
     with pytest.raises(ValueError, match=r"x.map:5: unknown character 'x' in column 2 \(free '\.G'"):
         dv.OccupancyGrid.load(tmp_path / "x.map")
+
+
+def test_movingai_map_refuses_what_it_does_not_have(tmp_path):
+    # no grey levels and no unknown cells: options that would do nothing are errors, not ignored
+    (tmp_path / "s.map").write_text("type octile\nheight 1\nwidth 5\nmap\n.@@@.\n")
+    assert dv.OccupancyGrid.load(tmp_path / "s.map").occupied.sum() == 3
+    for kw in ({"negate": True}, {"occupied_thresh": 0.9}, {"free_thresh": 0.1}, {"unknown": "free"}):
+        with pytest.raises(ValueError, match=r"s\.map: a MovingAI map has no grey levels and no unknown cells"):
+            dv.OccupancyGrid.load(tmp_path / "s.map", **kw)
+    with pytest.raises(ValueError, match="no grey levels"):
+        dv.grid_voronoi(tmp_path / "s.map", negate=True)
+    if CLI:
+        proc = subprocess.run([CLI, "gvd", str(tmp_path / "s.map"), "--unknown", "free", "-q", "-o", str(tmp_path / "o.json")],
+                              capture_output=True, text=True, timeout=60)
+        assert proc.returncode == 2 and "--unknown: a MovingAI map has no unknown cells" in proc.stderr, proc.stderr
+        assert not (tmp_path / "o.json").exists()
 
 
 @pytest.mark.skipif(not CLI, reason="DVORONOI_CLI not set")

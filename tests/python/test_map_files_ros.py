@@ -229,7 +229,7 @@ def test_truncated_or_corrupt_png_is_a_valueerror_naming_the_file(tmp_path):
             refused += 1
     assert refused >= 11   # every truncation and the bad CRC at least
     # through a YAML the message names both files
-    (tmp_path / "m.yaml").write_text("image: bad.png\nresolution: 1\n")
+    (tmp_path / "m.yaml").write_text("image: bad.png\nresolution: 1\norigin: [0, 0, 0]\n" + REST)
     bad.write_bytes(good[:len(good) // 2])
     with pytest.raises(ValueError, match=r"m\.yaml: image: .*bad\.png: cannot decode PNG image"):
         dv.OccupancyGrid.load(tmp_path / "m.yaml")
@@ -268,16 +268,18 @@ def test_thresholds_at_the_ends_of_the_range_are_allowed(tmp_path):
 def test_yaml_thresholds_name_the_line(tmp_path):
     (tmp_path / "m.pgm").write_bytes(b"P5\n2 1\n255\n\x00\xfe")
     (tmp_path / "a.yaml").write_text("image: m.pgm\nresolution: 1\nfree_thresh: .nan\n")
-    with pytest.raises(ValueError, match=r"a\.yaml:3: free_thresh: expected a finite number, got '\.nan'"):
+    with pytest.raises(ValueError, match=r"a\.yaml:3: free_thresh: expected a finite decimal number, got '\.nan'"):
         dv.OccupancyGrid.load(tmp_path / "a.yaml")
-    (tmp_path / "b.yaml").write_text("image: m.pgm\nresolution: 1\n\noccupied_thresh: -0.5\n")
-    with pytest.raises(ValueError, match=r"b\.yaml:4: occupied_thresh: expected a number in \[0, 1\], got -0\.5"):
+    (tmp_path / "b.yaml").write_text("image: m.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\n\noccupied_thresh: -0.5\n"
+                                     "free_thresh: 0\n")
+    with pytest.raises(ValueError, match=r"b\.yaml:6: occupied_thresh: expected a number in \[0, 1\], got -0\.5"):
         dv.OccupancyGrid.load(tmp_path / "b.yaml")
 
 
 # -- YAML forms -------------------------------------------------------------------------------------
 
 BASE = "image: m.pgm\nresolution: 0.05\norigin: [1.5, -2.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
+REST = "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"  # keys map_server requires besides image, resolution, origin
 
 
 @pytest.mark.parametrize("text", [
@@ -290,11 +292,12 @@ BASE = "image: m.pgm\nresolution: 0.05\norigin: [1.5, -2.0, 0.0]\nnegate: 0\nocc
     "---\n" + BASE + "...\n",
     "\ufeff" + BASE,
     "{image: m.pgm, resolution: 0.05, origin: [1.5, -2.0, 0], negate: 0, occupied_thresh: 0.65, free_thresh: 0.196}\n",
-    "{image: 'm.pgm', resolution: 0.05,  # a comment\n origin: [1.5, -2.0, 0]}\n",
-    "image: \"m.pgm\"   # quoted\nresolution: '0.05'\norigin: [1.5, -2.0, 0.0]\nmode: trinary\n",
+    "{image: 'm.pgm', resolution: 0.05,  # a comment\n origin: [1.5, -2.0, 0], negate: 0,\n occupied_thresh: 0.65, free_thresh: 0.196}\n",
+    "image: \"m.pgm\"   # quoted\nresolution: '0.05'\norigin: [1.5, -2.0, 0.0]\nmode: trinary\n" + REST,
+    BASE.replace("resolution: 0.05", "resolution: 5E-2"),
     BASE + "extra:\n  nested: {a: 1}\n  list:\n    - x\n",
 ], ids=["negate false", "negate False", "negate no", "block origin", "block origin, same indent", "---", "--- ...",
-        "BOM", "flow mapping", "flow mapping over lines", "quotes and comments", "nested ignored key"])
+        "BOM", "flow mapping", "flow mapping over lines", "quotes and comments", "exponent", "nested ignored key"])
 def test_map_server_yaml_forms_are_read(tmp_path, text):
     img = np.array([[0, 205, 254, 254]], np.uint8)
     (tmp_path / "m.pgm").write_bytes(b"P5\n4 1\n255\n" + img.tobytes())
@@ -304,7 +307,7 @@ def test_map_server_yaml_forms_are_read(tmp_path, text):
     assert g.occupied.tolist() == [[True, False, False, False]] and g.unknown_pixels == 1
 
 
-@pytest.mark.parametrize("value", ["true", "True", "TRUE", "yes", "Yes", "on", "1"])
+@pytest.mark.parametrize("value", ["true", "True", "TRUE", "yes", "Yes", "on", "1", "2", "-1"])  # nav2: an int, nonzero true
 def test_negate_as_a_boolean(tmp_path, value):
     img = np.array([[0, 205, 254]], np.uint8)
     (tmp_path / "m.pgm").write_bytes(b"P5\n3 1\n255\n" + img.tobytes())
@@ -317,8 +320,11 @@ def test_negate_as_a_boolean(tmp_path, value):
 @pytest.mark.parametrize("text, message", [
     ("image: m.pgm\nresolution: &r 0.05\n", r"m\.yaml:2: resolution: YAML anchors, aliases, tags"),
     ("{image: m.pgm, resolution: 0.05\n", r"m\.yaml:1: the flow mapping '\{' is not closed"),
-    ("image: m.pgm\nresolution: 0.05\nnegate: maybe\n", r"m\.yaml:3: negate: expected 0, 1, true or false, got 'maybe'"),
-    ("image: m.pgm\nresolution: 0.05\norigin:\n  - 0\n  - oops\n", r"m\.yaml:5: origin: expected a finite number, got 'oops'"),
+    ("image: m.pgm\nresolution: 0.05\nnegate: maybe\n", r"m\.yaml:3: negate: expected an integer \(0: false, others: true\), true or false, got 'maybe'"),
+    ("image: m.pgm\nresolution: 0.05\norigin:\n  - 0\n  - oops\n", r"m\.yaml:5: origin: expected a finite decimal number, got 'oops'"),
+    ("image: m.pgm\nresolution: 0x1p-4\n", r"m\.yaml:2: resolution: expected a finite decimal number, got '0x1p-4'"),
+    ("image: m.pgm\nresolution: 0.05\norigin: [0x10, 0, 0]\n", r"m\.yaml:3: origin: expected a finite decimal number, got '0x10'"),
+    ("image: m.pgm\nresolution: 0.05\norigin: [-1, 2]\n", r"m\.yaml:3: origin: expected \[x, y, yaw\], got 2 numbers"),
     ("image: m.pgm\nresolution: 0.05\n  deeper: 1\n", r"m\.yaml:3: resolution: unexpected indented line under its value"),
     ("- image: m.pgm\n- resolution: 0.05\n", r"m\.yaml:1: expected 'key: value', got '- image: m\.pgm'"),
 ])
@@ -328,6 +334,22 @@ def test_unsupported_yaml_names_the_line_not_a_missing_key(tmp_path, text, messa
     with pytest.raises(ValueError, match=message) as info:
         dv.OccupancyGrid.load(tmp_path / "m.yaml")
     assert "missing" not in str(info.value)
+
+
+@pytest.mark.parametrize("key", ["origin", "negate", "occupied_thresh", "free_thresh"])
+def test_a_yaml_without_a_key_map_server_requires_is_refused(tmp_path, key):
+    # map_server and nav2 refuse such a file (only mode is optional): read with defaults, a map whose
+    # origin was forgotten would sit at (0, 0) without a word
+    (tmp_path / "m.pgm").write_bytes(b"P5\n1 1\n255\n\x00")
+    (tmp_path / "m.yaml").write_text("".join(line + "\n" for line in BASE.splitlines() if not line.startswith(key + ":")))
+    with pytest.raises(ValueError, match=rf"m\.yaml: missing '{key}'"):
+        dv.OccupancyGrid.load(tmp_path / "m.yaml")
+    cli = _cli()
+    if cli is not None:
+        proc = subprocess.run([cli, "gvd", str(tmp_path / "m.yaml"), "-q", "-o", str(tmp_path / "o.json")],
+                              capture_output=True, text=True, timeout=120)
+        assert proc.returncode == 2 and f"m.yaml: missing '{key}'" in proc.stderr, proc.stderr
+        assert not (tmp_path / "o.json").exists()
 
 
 # -- plain PGM ----------------------------------------------------------------------------------------
@@ -358,7 +380,8 @@ def test_cli_reads_a_flow_mapping_yaml_and_names_the_line_of_a_bad_one(tmp_path)
     img[:2], img[-2:], img[:, :2], img[:, -2:] = 0, 0, 0, 0
     img[12:18, 15:25] = 0
     (tmp_path / "m.pgm").write_bytes(b"P5\n40 30\n255\n" + img.tobytes())
-    (tmp_path / "m.yaml").write_text("---\n{image: m.pgm, resolution: 0.5, origin: [-1, 2, 0], negate: false}\n")
+    (tmp_path / "m.yaml").write_text("---\n{image: m.pgm, resolution: 0.5, origin: [-1, 2, 0], negate: false,\n"
+                                     " occupied_thresh: 0.65, free_thresh: 0.196}\n")
     out = tmp_path / "out.json"
     proc = subprocess.run([cli, "gvd", str(tmp_path / "m.yaml"), "-q", "-o", str(out)], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr

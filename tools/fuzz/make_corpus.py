@@ -204,16 +204,20 @@ def maps(out: Path) -> None:
     d = out / "ros_yaml"
     write(d, "room.pgm", pgm_p5(occ))
     write(d, "room.png", png_bytes([r.tobytes() for r in grey], w, h, 8, 0))
-    write(d, "map.yaml", "image: room.pgm\nresolution: 0.05\norigin: [-1.0, -2.5, 0.0]\nnegate: 0\n"
-                         "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
-    write(d, "png.yaml", "image: \"room.png\"  # quoted\nresolution: 1\norigin: [0, 0]\nmode: trinary\n")
-    write(d, "negate.yml", "image: room.pgm\nresolution: 2\norigin: [0.5, 0.5, 0]\nnegate: 1\nextra_key: ignored\n")
-    write(d, "rotated.yaml", "image: room.pgm\nresolution: 1\norigin: [0, 0, 0.5]\n")
-    write(d, "missing_image.yaml", "resolution: 1\norigin: [0, 0, 0]\n")
-    write(d, "scale_mode.yaml", "image: room.pgm\nresolution: 1\nmode: scale\n")
-    write(d, "bad_threshold.yaml", "image: room.pgm\nresolution: 1\noccupied_thresh: 1.5\n")
-    write(d, "thresholds_crossed.yaml", "image: room.pgm\nresolution: 1\noccupied_thresh: 0.1\nfree_thresh: 0.9\n")
-    write(d, "no_such_image.yaml", "image: nowhere.pgm\nresolution: 1\n")
+    rest = "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"  # keys map_server requires
+    write(d, "map.yaml", "image: room.pgm\nresolution: 0.05\norigin: [-1.0, -2.5, 0.0]\n" + rest)
+    write(d, "png.yaml", "image: \"room.png\"  # quoted\nresolution: 1\norigin: [0, 0, 0]\nmode: trinary\n" + rest)
+    write(d, "negate.yml", "image: room.pgm\nresolution: 2\norigin: [0.5, 0.5, 0]\nnegate: 1\nextra_key: ignored\n"
+                           "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    write(d, "rotated.yaml", "image: room.pgm\nresolution: 1\norigin: [0, 0, 0.5]\n" + rest)
+    write(d, "missing_image.yaml", "resolution: 1\norigin: [0, 0, 0]\n" + rest)
+    write(d, "missing_origin.yaml", "image: room.pgm\nresolution: 1\n" + rest)
+    write(d, "scale_mode.yaml", "image: room.pgm\nresolution: 1\norigin: [0, 0, 0]\nmode: scale\n" + rest)
+    write(d, "bad_threshold.yaml", "image: room.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 1.5\n"
+                                   "free_thresh: 0.196\n")
+    write(d, "thresholds_crossed.yaml", "image: room.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\n"
+                                        "occupied_thresh: 0.1\nfree_thresh: 0.9\n")
+    write(d, "no_such_image.yaml", "image: nowhere.pgm\nresolution: 1\norigin: [0, 0, 0]\n" + rest)
 
 
 def regressions(out: Path) -> None:

@@ -84,6 +84,8 @@ std::string pgm_row(const std::vector<int>& grey, int maxval = 255) {
 std::vector<int> cells(const LoadedMap& m) { return std::vector<int>(m.grid.occupied.begin(), m.grid.occupied.end()); }
 
 const char* const kBase = "image: m.pgm\nresolution: 0.05\norigin: [1.5, -2.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+/// The keys map_server requires besides image and resolution, for texts about other things.
+const std::string kRest = "origin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
 
 }  // namespace
 
@@ -152,8 +154,9 @@ TEST_CASE("map_server YAML written in the forms yaml-cpp accepts") {
              return s;
          }()},
         {"flow mapping", "{image: m.pgm, resolution: 0.05, origin: [1.5, -2.0, 0.0], negate: 0, occupied_thresh: 0.65, free_thresh: 0.196}\n"},
-        {"flow mapping over lines", "# header\n{image: \"m.pgm\",  # the image\n resolution: 0.05, origin: [1.5, -2.0, 0],\n extra: {a: [1, 2]}}\n"},
-        {"quoted values and keys", "'image': 'm.pgm'\n\"resolution\": \"0.05\"\norigin: ['1.5', \"-2.0\", 0]\n"},
+        {"flow mapping over lines", "# header\n{image: \"m.pgm\",  # the image\n resolution: 0.05, origin: [1.5, -2.0, 0],\n extra: {a: [1, 2]},\n negate: 0, occupied_thresh: 0.65, free_thresh: 0.196}\n"},
+        {"quoted values and keys", "'image': 'm.pgm'\n\"resolution\": \"0.05\"\norigin: ['1.5', \"-2.0\", 0]\nnegate: '0'\noccupied_thresh: \"0.65\"\nfree_thresh: 0.196\n"},
+        {"numbers with signs, points and exponents", replace("resolution: 0.05", "resolution: +5e-2")},
         {"nested mapping under an ignored key", base + "meta:\n  author: someone\n  tags:\n    - a\n    - b\nmode: trinary\n"},
         {"a second document is not read", base + "---\nimage: elsewhere.pgm\n"},
     };
@@ -172,10 +175,16 @@ TEST_CASE("map_server YAML written in the forms yaml-cpp accepts") {
     }
     MapReadOptions free_unknown;
     free_unknown.unknown_occupied = false;
-    for (const char* yes : {"1", "true", "True", "TRUE", "yes", "Yes", "y", "on", "On"}) {
+    // nav2 reads an integer first (ROS1 an int: nonzero is true), then a YAML 1.1 boolean
+    for (const char* yes : {"1", "2", "-1", "+7", "true", "True", "TRUE", "yes", "Yes", "y", "on", "On"}) {
         CAPTURE(yes);
         const LoadedMap m = read_occupancy_map(d.write("n.yaml", replace("negate: 0", std::string("negate: ") + yes)), free_unknown);
         CHECK(cells(m) == std::vector<int>{0, 1, 1, 1});  // with negate p = v: 205 and 254 occupied
+    }
+    for (const char* no : {"0", "00", "-0", "false", "No", "OFF"}) {
+        CAPTURE(no);
+        CHECK(cells(read_occupancy_map(d.write("n.yaml", replace("negate: 0", std::string("negate: ") + no)), free_unknown)) ==
+              std::vector<int>{1, 0, 0, 0});
     }
 }
 
@@ -184,7 +193,7 @@ TEST_CASE("a '#' inside a quoted or plain value is not a comment") {
     d.write("a#1.pgm", pgm_row({0, 254}));
     for (const char* text : {"image: 'a#1.pgm'  # c\nresolution: 1\n", "image: \"a#1.pgm\"\nresolution: 1\n", "image: a#1.pgm # c\nresolution: 1\n"}) {
         CAPTURE(text);
-        const std::string err = error_of(d.write("q.yaml", text));
+        const std::string err = error_of(d.write("q.yaml", text + kRest));
         CHECK(err.empty());
     }
 }
@@ -198,7 +207,7 @@ TEST_CASE("YAML this reader does not follow is an error naming file and line, ne
         {"image: m.pgm\nresolution: &r 0.05\n", "f.yaml:2: resolution: YAML anchors, aliases, tags and block scalars are not supported"},
         {"image: m.pgm\nresolution: !!float 0.05\n", "f.yaml:2: resolution: YAML anchors"},
         {"image: |\n  m.pgm\nresolution: 1\n", "f.yaml:1: image: YAML anchors"},
-        {"image: m.pgm\nresolution: 1\nnote: a plain scalar\n  over two lines\n", ""},
+        {"image: m.pgm\nresolution: 1\nnote: a plain scalar\n  over two lines\n" + kRest, ""},
         {"image:\n  m.pgm\nresolution: 1\n", "f.yaml:1: image: expected a value on the key's line"},
         {"image:\nresolution: 1\n", "f.yaml:1: image: expected the image's file name"},
         {"{image: m.pgm, resolution: 0.05\n", "f.yaml:1: the flow mapping '{' is not closed"},
@@ -206,10 +215,16 @@ TEST_CASE("YAML this reader does not follow is an error naming file and line, ne
         {"{image: m.pgm,\n resolution 0.05}\n", "f.yaml:2: expected 'key: value', got 'resolution 0.05'"},
         {"image: m.pgm\nresolution: 0.05\nfoo: [1, 2\nbar: 3\n", "f.yaml:3: foo: '[' is not closed"},
         {"image: m.pgm\nresolution: 1\nresolution: 2\n", "f.yaml:3: duplicate key 'resolution' (first at line 2)"},
-        {"image: m.pgm\nresolution: 1\nnegate: maybe\n", "f.yaml:3: negate: expected 0, 1, true or false, got 'maybe'"},
-        {"image: m.pgm\nresolution: 1\nnegate: 2\n", "f.yaml:3: negate: expected 0, 1, true or false, got '2'"},
+        {"image: m.pgm\nresolution: 1\nnegate: maybe\n", "f.yaml:3: negate: expected an integer (0: false, others: true), true or false, got 'maybe'"},
+        {"image: m.pgm\nresolution: 1\nnegate: 1.0\n", "f.yaml:3: negate: expected an integer (0: false, others: true), true or false, got '1.0'"},
+        {"image: m.pgm\nresolution: 0x10\n", "f.yaml:2: resolution: expected a finite decimal number, got '0x10'"},
+        {"image: m.pgm\nresolution: 1e\n", "f.yaml:2: resolution: expected a finite decimal number, got '1e'"},
+        {"image: m.pgm\nresolution: inf\n", "f.yaml:2: resolution: expected a finite decimal number, got 'inf'"},
+        {"image: m.pgm\nresolution: 1\n", "f.yaml: missing 'origin' (a map_server YAML gives image, resolution, origin, negate, occupied_thresh and free_thresh)"},
+        {"image: m.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n", "f.yaml: missing 'free_thresh'"},
+        {"image: m.pgm\nresolution: 1\norigin: [1, 2]\n", "f.yaml:3: origin: expected [x, y, yaw], got 2 numbers"},
         {"image: m.pgm\nresolution: 1\norigin:\n  - 1\n  - [2]\n", "f.yaml:5: origin: expected a single value, got '[2]'"},
-        {"image: m.pgm\nresolution: 1\norigin:\n  - 1\n  - x\n", "f.yaml:5: origin: expected a finite number, got 'x'"},
+        {"image: m.pgm\nresolution: 1\norigin:\n  - 1\n  - x\n", "f.yaml:5: origin: expected a finite decimal number, got 'x'"},
         {"image: m.pgm\nresolution: 1\norigin:\n  x: 1\n", "f.yaml:3: origin: expected [x, y, yaw] or a list of numbers"},
         {"image: m.pgm\nresolution: 1\norigin: [1]\n", "f.yaml:3: origin: expected [x, y, yaw], got 1 number"},
         {"image: m.pgm\nresolution: 1\norigin: [1, 2, 0.5]\n", "f.yaml:3: origin: a rotated map (yaw 0.5) is not supported"},
@@ -263,14 +278,13 @@ TEST_CASE("thresholds, resolution and origin are checked for bare images, .map f
     edge.occupied_thresh = edge.free_thresh = 0.0;
     CHECK(error_of(pgm, edge).empty());
 
-    const std::string base = "image: m.pgm\nresolution: 1\n";
-    CHECK(ends_with(error_of(d.write("a.yaml", base + "occupied_thresh: 1.5\n")), "a.yaml:3: occupied_thresh: expected a number in [0, 1], got 1.5"));
-    CHECK(ends_with(error_of(d.write("b.yaml", base + "free_thresh: -0.1\n")), "b.yaml:3: free_thresh: expected a number in [0, 1], got -0.1"));
+    const std::string base = "image: m.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\n";
+    CHECK(ends_with(error_of(d.write("a.yaml", base + "occupied_thresh: 1.5\nfree_thresh: 0.196\n")), "a.yaml:5: occupied_thresh: expected a number in [0, 1], got 1.5"));
+    CHECK(ends_with(error_of(d.write("b.yaml", base + "occupied_thresh: 0.65\nfree_thresh: -0.1\n")), "b.yaml:6: free_thresh: expected a number in [0, 1], got -0.1"));
     CHECK(ends_with(error_of(d.write("c.yaml", base + "occupied_thresh: 0.1\nfree_thresh: 0.5\n")),
-                    "c.yaml:4: free_thresh is larger than occupied_thresh (0.5 > 0.1)"));
-    CHECK(ends_with(error_of(d.write("e.yaml", base + "occupied_thresh: 0.1\n")), "e.yaml:3: free_thresh is larger than occupied_thresh (0.196 > 0.1)"));
-    CHECK(ends_with(error_of(d.write("f.yaml", "image: m.pgm\nresolution: -1\n")), "f.yaml:2: resolution: must be a positive finite number, got -1"));
-    CHECK(ends_with(error_of(d.write("g.yaml", "image: m.pgm\nresolution: .nan\n")), "g.yaml:2: resolution: expected a finite number, got '.nan'"));
+                    "c.yaml:6: free_thresh is larger than occupied_thresh (0.5 > 0.1)"));
+    CHECK(ends_with(error_of(d.write("f.yaml", "image: m.pgm\nresolution: -1\n" + kRest)), "f.yaml:2: resolution: must be a positive finite number, got -1"));
+    CHECK(ends_with(error_of(d.write("g.yaml", "image: m.pgm\nresolution: .nan\n")), "g.yaml:2: resolution: expected a finite decimal number, got '.nan'"));
 }
 
 TEST_CASE("a map the diagrams would refuse (gvd::check_grid) is refused naming its file") {
@@ -280,10 +294,10 @@ TEST_CASE("a map the diagrams would refuse (gvd::check_grid) is refused naming i
         const char* text;
         double resolution, origin_x;
     };
-    for (const Case& c : {Case{"image: m.pgm\nresolution: 1\norigin: [1e300, 0, 0]\n", 1.0, 1e300},
+    for (const Case& c : {Case{"image: m.pgm\nresolution: 1\norigin: [1e300, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n", 1.0, 1e300},
                           Case{"image: m.pgm\nresolution: 1e300\n", 1e300, 0.0}}) {
         CAPTURE(c.text);
-        const std::string path = d.write("f.yaml", c.text);
+        const std::string path = d.write("f.yaml", c.text + (c.origin_x == 0.0 ? kRest : std::string()));
         const std::string err = error_of(path);
         bool diagram_accepts = true;
         try {

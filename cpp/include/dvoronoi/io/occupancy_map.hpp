@@ -50,7 +50,7 @@ struct MapReadOptions {
     double occupied_thresh = 0.65; ///< in [0, 1]
     double free_thresh = 0.196;    ///< in [0, 1], at most occupied_thresh
     bool negate = false;
-    std::string movingai_free = ".G";  ///< MovingAI characters that are free (the rest of @OTSW blocked)
+    std::string movingai_free = ".G";  ///< MovingAI characters that are free (the rest of @OTSW blocked; the SPEC's rule)
 };
 
 /// A loaded map and what the loader saw.
@@ -562,12 +562,36 @@ bool yaml_key_value(const std::string& t, std::string& key, std::string& value, 
     return true;
 }
 
-/// A YAML 1.1 boolean as yaml-cpp reads one (y/yes/true/on and n/no/false/off, in lower case,
-/// Capitalised or UPPER CASE), or a number 0 or 1: 1 for true, 0 for false, -1 otherwise.
+/// A decimal number as yaml-cpp reads one into a double (C++ stream extraction, the whole text):
+/// an optional sign, digits with an optional point, an optional exponent. Not hexadecimal, not
+/// inf or nan (strtod takes them; nav2 refuses them). False when `v` is not one.
+inline bool yaml_decimal(const std::string& v, double& x) {
+    std::size_t i = 0, digits = 0;
+    if (i < v.size() && (v[i] == '+' || v[i] == '-')) ++i;
+    for (; i < v.size() && std::isdigit(static_cast<unsigned char>(v[i])); ++i) ++digits;
+    if (i < v.size() && v[i] == '.')
+        for (++i; i < v.size() && std::isdigit(static_cast<unsigned char>(v[i])); ++i) ++digits;
+    if (digits == 0) return false;
+    if (i < v.size() && (v[i] == 'e' || v[i] == 'E')) {
+        std::size_t e = i + 1;
+        if (e < v.size() && (v[e] == '+' || v[e] == '-')) ++e;
+        const std::size_t first = e;
+        while (e < v.size() && std::isdigit(static_cast<unsigned char>(v[e]))) ++e;
+        if (e == first) return false;
+        i = e;
+    }
+    if (i != v.size()) return false;
+    x = std::strtod(v.c_str(), nullptr);
+    return true;
+}
+
+/// map_server's `negate` as nav2 reads it: an integer first (nonzero: true, as ROS1's int), then a
+/// YAML 1.1 boolean as yaml-cpp reads one (y/yes/true/on and n/no/false/off, in lower case,
+/// Capitalised or UPPER CASE): 1 for true, 0 for false, -1 otherwise.
 inline int yaml_flag(const std::string& v) {
-    char* end = nullptr;
-    const double x = std::strtod(v.c_str(), &end);
-    if (!v.empty() && *end == '\0' && (x == 0.0 || x == 1.0)) return x == 1.0 ? 1 : 0;
+    const std::size_t digits = v.find_first_not_of("0123456789", v.empty() || (v[0] != '+' && v[0] != '-') ? 0 : 1);
+    if (!v.empty() && digits == std::string::npos && v.find_first_of("0123456789") != std::string::npos)
+        return v.find_first_of("123456789") != std::string::npos ? 1 : 0;
     auto all = [&](std::size_t from, bool upper) {
         return std::all_of(v.begin() + static_cast<std::ptrdiff_t>(from), v.end(), [&](char c) {
             return upper ? std::isupper(static_cast<unsigned char>(c)) != 0 : std::islower(static_cast<unsigned char>(c)) != 0;
@@ -595,10 +619,11 @@ struct YamlEntry {
 };
 
 /// map_server's YAML: `image`, `resolution`, `origin: [x, y, yaw]`, `negate`, `occupied_thresh`,
-/// `free_thresh`, `mode` (trinary; scale and raw are refused). A reader of that flat schema in the
+/// `free_thresh` (all required, as map_server and nav2 require them), `mode` (optional: trinary;
+/// scale and raw are refused). Numbers are decimal, as yaml-cpp reads them. A reader of that flat schema in the
 /// YAML its files are written in: `key: value` lines or one flow mapping `{key: value, ...}`, plain
 /// or quoted scalars, `#` comments, `origin` as `[x, y, yaw]` or a block list of `- x` lines,
-/// `negate` as 0/1 or a YAML 1.1 boolean (as nav2 reads it), a UTF-8 byte order mark, `---` and `...`
+/// `negate` as an integer or a YAML 1.1 boolean (as nav2 reads it), a UTF-8 byte order mark, `---` and `...`
 /// (the first document is read, as yaml-cpp's LoadFile does). Lines indented under a key that is not
 /// read are skipped with it. Anything else is an error naming the line. Written here, not with
 /// yaml-cpp: the schema is seven flat keys, and the CLI and the wheel carry no YAML dependency for it.
@@ -617,9 +642,8 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
         throw InputError(path + (lineno > 0 ? ":" + std::to_string(lineno) : std::string()) + ": " + why);
     };
     auto number = [&](const std::string& key, const std::string& v) {
-        char* end = nullptr;
-        const double x = std::strtod(v.c_str(), &end);
-        if (v.empty() || *end != '\0' || !std::isfinite(x)) fail(printable(key) + ": expected a finite number, got '" + printable(v) + "'");
+        double x = 0.0;
+        if (!yaml_decimal(v, x) || !std::isfinite(x)) fail(printable(key) + ": expected a finite decimal number, got '" + printable(v) + "'");
         return x;
     };
 
@@ -747,9 +771,9 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
                 xs.push_back(number("origin", yaml_scalar(text, "origin", fail)));
             }
             lineno = e.line;
-            if (xs.size() != 3 && xs.size() != 2)
+            if (xs.size() != 3)  // map_server and nav2 read three
                 fail("origin: expected [x, y, yaw], got " + std::to_string(xs.size()) + " number" + (xs.size() == 1 ? "" : "s"));
-            if (xs.size() == 3 && xs[2] != 0.0) fail("origin: a rotated map (yaw " + shortest_text(xs[2]) + ") is not supported");
+            if (xs[2] != 0.0) fail("origin: a rotated map (yaw " + shortest_text(xs[2]) + ") is not supported");
             o.origin = Vec2(xs[0], xs[1]);
             continue;
         }
@@ -763,7 +787,7 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
         } else if (e.key == "negate") {
             // an int for ROS1's map_server; an int or a boolean for nav2's
             const int flag = yaml_flag(val);
-            if (flag < 0) fail("negate: expected 0, 1, true or false, got '" + printable(val) + "'");
+            if (flag < 0) fail("negate: expected an integer (0: false, others: true), true or false, got '" + printable(val) + "'");
             o.negate = flag == 1;
         } else if (e.key == "occupied_thresh" || e.key == "free_thresh") {
             (e.key == "occupied_thresh" ? o.occupied_thresh : o.free_thresh) = number(e.key, val);
@@ -773,12 +797,15 @@ inline LoadedMap read_ros_yaml(const std::string& path, MapReadOptions o) {
         }
     }
     lineno = 0;
-    if (image.empty()) fail("missing 'image'");
-    if (key_line[1] == 0) fail("missing 'resolution'");
+    // map_server and nav2 refuse a file without these (mode is optional): a forgotten origin would
+    // place the map at (0, 0) without a word
+    for (int i = 0; i < 6; ++i)
+        if (key_line[i] == 0)
+            fail("missing '" + std::string(read_keys[i]) +
+                 "' (a map_server YAML gives image, resolution, origin, negate, occupied_thresh and free_thresh)");
     std::string why;
     if (const char* key = bad_read_option(o, why)) {
         lineno = key_line[key_index(key)];
-        if (lineno == 0 && std::string(key) == "free_thresh") lineno = key_line[key_index("occupied_thresh")];
         fail(why);
     }
     std::string img = image;
