@@ -697,7 +697,7 @@ def test_movingai_map_refuses_what_it_does_not_have(tmp_path):
         with pytest.raises(ValueError, match=r"s\.map: a MovingAI map has no grey levels and no unknown cells"):
             dv.OccupancyGrid.load(tmp_path / "s.map", **kw)
     with pytest.raises(ValueError, match="no grey levels"):
-        dv.grid_voronoi(tmp_path / "s.map", negate=True)
+        dv.grid_voronoi(tmp_path / "s.map", occupied_thresh=0.9)
     if CLI:
         proc = subprocess.run([CLI, "gvd", str(tmp_path / "s.map"), "--unknown", "free", "-q", "-o", str(tmp_path / "o.json")],
                               capture_output=True, text=True, timeout=60)

@@ -254,7 +254,7 @@ def test_bad_thresholds_for_bare_images_are_refused_naming_the_parameter(tmp_pat
         with pytest.raises(ValueError, match=message):
             dv.grid_voronoi(tmp_path / "m.pgm", **kw)
     (tmp_path / "m.map").write_text("type octile\nheight 1\nwidth 2\nmap\n.@\n")
-    with pytest.raises(ValueError, match=r"m\.map: " + message):
+    with pytest.raises(ValueError, match=r"m\.map: a MovingAI map has no grey levels"):  # thresholds do nothing there
         dv.OccupancyGrid.load(tmp_path / "m.map", **kw)
 
 
