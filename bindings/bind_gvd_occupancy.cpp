@@ -220,7 +220,7 @@ void bind_gvd_occupancy(py::module_& m) {
         o.negate = negate;
         dvoronoi::io::LoadedMap lm = without_gil([&] { return dvoronoi::io::read_occupancy_map(path, o); });
         return py::make_tuple(bool_image(lm.grid.occupied, lm.grid.rows, lm.grid.cols), lm.grid.resolution,
-                              py::make_tuple(lm.grid.origin.x(), lm.grid.origin.y()), lm.unknown, lm.image);
+                              py::make_tuple(lm.grid.origin.x(), lm.grid.origin.y()), lm.unknown, lm.image, lm.occupied_thresh);
     }, py::arg("path"), py::arg("unknown_occupied"), py::arg("resolution"), py::arg("origin_x"), py::arg("origin_y"),
        py::arg("occupied_thresh"), py::arg("free_thresh"), py::arg("negate"));
 #ifdef DVORONOI_HAVE_PNG

@@ -416,6 +416,8 @@ def grid_voronoi(obstacles: Any, area: Any = None, resolution: Any = None, robot
         if cells is not None:
             raise ValueError("cells: an occupancy grid's diagram grid is its pixel grid; do not pass cells=")
         grid = as_occupancy_grid(obstacles, resolution, origin, unknown, occupied_thresh, copy=False)
+        # the rule the grid was read with (an OccupancyGrid's or a YAML's own): updates read arrays by it
+        occupied_thresh, unknown = getattr(grid, "occupied_thresh", occupied_thresh), getattr(grid, "unknown", unknown)
         if diagram in (None, "medial"):
             return medial_voronoi(grid, robot_radius, n_workers, min_separation, prune_length, occupied_thresh, unknown)
         # Labelled in pixel units, where the map's obstacles and the cell corners lie on the integer

@@ -20,6 +20,7 @@ worker count, and the same after any sequence of updates as a full build.
 from __future__ import annotations
 
 import os
+import threading
 import warnings
 from typing import TYPE_CHECKING, Any, Dict, Iterable, Optional, Sequence, Tuple, Union
 
@@ -110,13 +111,16 @@ class OccupancyGrid:
     `data` is a bool array, probabilities in [0, 1] (occupied above `occupied_thresh`, NaN unknown),
     ROS int8 values (-1 unknown, 0..100) or 0/1 integers. Unknown pixels count as occupied unless
     ``unknown="free"``; ``unknown_pixels`` counts them (a diagram's ``grid`` counts those of the map it
-    was built on or last given by ``update``).
+    was built on or last given by ``update``). ``occupied_thresh`` and ``unknown`` keep the rule the
+    grid was read with (a YAML's own threshold): a diagram's ``update`` reads new arrays by it.
     """
 
     occupied: np.ndarray
     resolution: float
     origin: Tuple[float, float]
     unknown_pixels: int
+    occupied_thresh: float
+    unknown: str
 
     def __init__(self, data: Any, resolution: float = 1.0, origin: Sequence[float] = (0.0, 0.0), *,
                  occupied_thresh: float = 0.65, unknown: str = "occupied") -> None:
@@ -134,6 +138,7 @@ class OccupancyGrid:
         self.resolution = _positive(resolution, "resolution")
         self.origin = _origin(origin)
         self.unknown_pixels = _unknown_count(data)
+        self.occupied_thresh, self.unknown = t, unknown
 
     @classmethod
     def load(cls, path: PathLike, *, unknown: str = "occupied", resolution: Optional[float] = None,
@@ -161,7 +166,7 @@ class OccupancyGrid:
         res = 1.0 if resolution is None else _positive(resolution, "resolution")
         ox, oy = (0.0, 0.0) if origin is None else _origin(origin)
         try:
-            occ, res, org, n_unknown, _image = _core._load_occupancy_map(
+            occ, res, org, n_unknown, _image, thresh = _core._load_occupancy_map(
                 path, unknown == "occupied", res, ox, oy, float(occupied_thresh), float(free_thresh), bool(negate))
         except ValueError as e:
             raise ValueError(str(e)) from None
@@ -170,6 +175,7 @@ class OccupancyGrid:
         g.resolution = float(res)
         g.origin = (float(org[0]), float(org[1]))
         g.unknown_pixels = int(n_unknown)
+        g.occupied_thresh, g.unknown = float(thresh), unknown
         return g
 
     @classmethod
@@ -294,11 +300,13 @@ def _pixel_indices(pixels: Any, shape: Tuple[int, int], name: str) -> np.ndarray
                          f"{a.shape}{hint}")
     if a.dtype.kind not in "iu" and not (a.dtype.kind == "f" and np.all(a == np.round(a))):
         raise TypeError(f"{name} must be (row, col) integer pairs or an H x W bool mask, got dtype {a.dtype}")
-    a = a.astype(np.int64)
-    bad = (a[:, 0] < 0) | (a[:, 0] >= H) | (a[:, 1] < 0) | (a[:, 1] >= W)
+    # checked in the given type: a cast first would wrap huge integers and infinities into the map
+    bad = ~((a[:, 0] >= 0) & (a[:, 0] < H) & (a[:, 1] >= 0) & (a[:, 1] < W))
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
-        raise ValueError(f"{name}[{k}] = ({a[k, 0]}, {a[k, 1]}) is outside the {H} x {W} map")
+        show = [repr(v.item()) if a.dtype.kind == "f" else str(v) for v in a[k]]
+        raise ValueError(f"{name}[{k}] = ({show[0]}, {show[1]}) is outside the {H} x {W} map")
+    a = a.astype(np.int64)
     return a[:, 0] * W + a[:, 1]
 
 
@@ -317,6 +325,9 @@ class OccupancyVoronoi:
     def __init__(self, core: "_core._MedialDiagram", grid: OccupancyGrid, robot_radius: float,
                  options: Dict[str, Any]) -> None:
         self._core = core
+        # One call at a time: the core releases the GIL while it works, so two threads (a map callback
+        # and a planner) could otherwise update it together, or cache a result of the map before.
+        self._lock = threading.RLock()
         self._unknown_pixels = grid.unknown_pixels  # the map itself lives in the core
         self.robot_radius = float(robot_radius)
         self.options = dict(options)
@@ -329,12 +340,18 @@ class OccupancyVoronoi:
         """The occupancy grid as it is now: a snapshot with a read-only ``occupied`` array (the
         diagram's own copy lives in C++). After an update, read ``grid`` again for the new map; a
         snapshot taken before keeps showing the map it was taken of."""
+        with self._lock:
+            return self._grid_snapshot()
+
+    def _grid_snapshot(self) -> OccupancyGrid:
         if "grid" not in self._cache:
             occ = self._core.occupancy
             occ.flags.writeable = False
             snap = OccupancyGrid.__new__(OccupancyGrid)
             snap.occupied, snap.resolution, snap.origin = occ, self.resolution, self.origin
             snap.unknown_pixels = self._unknown_pixels
+            snap.occupied_thresh = self.options.get("occupied_thresh", 0.65)
+            snap.unknown = self.options.get("unknown", "occupied")
             self._cache["grid"] = snap  # type: ignore[assignment]
         return self._cache["grid"]  # type: ignore[return-value]
 
@@ -351,10 +368,11 @@ class OccupancyVoronoi:
         return tuple(self._core.origin)  # type: ignore[return-value]
 
     def _cached(self, key: str, make: Any) -> np.ndarray:
-        if key not in self._cache:
-            self._cache[key] = make()
-            self._cache[key].flags.writeable = False
-        return self._cache[key]
+        with self._lock:
+            if key not in self._cache:
+                self._cache[key] = make()
+                self._cache[key].flags.writeable = False
+            return self._cache[key]
 
     @property
     def diagram_mask(self) -> np.ndarray:
@@ -397,7 +415,8 @@ class OccupancyVoronoi:
         return self._cached("nearest", lambda: self._core.nearest_points)
 
     def __len__(self) -> int:
-        return int(self._core.count)
+        with self._lock:
+            return int(self._core.count)
 
     # -- updates -------------------------------------------------------------------------------
     def _after_update(self, stats: Dict[str, Any]) -> Dict[str, Any]:
@@ -408,6 +427,9 @@ class OccupancyVoronoi:
     def update(self, new_occupancy: Any) -> Dict[str, Any]:
         """Replace the map's occupancy (same shape; any form :class:`OccupancyGrid` accepts, or an
         OccupancyGrid) and recompute only what the change can affect. Returns what was touched."""
+        if isinstance(new_occupancy, (str, os.PathLike)):
+            raise TypeError("new_occupancy: give an array or an OccupancyGrid (read a map file with "
+                            "dv.OccupancyGrid.load(path) first), got a path")
         if isinstance(new_occupancy, OccupancyGrid):
             if new_occupancy.resolution != self.resolution or tuple(new_occupancy.origin) != tuple(self.origin):
                 raise ValueError(f"new_occupancy has resolution {new_occupancy.resolution} and origin "
@@ -419,15 +441,17 @@ class OccupancyVoronoi:
             unknown = _unknown_count(new_occupancy)
         if occ.shape != self.shape:
             raise ValueError(f"new_occupancy must have the map's shape {self.shape}, got {occ.shape}")
-        stats = self._after_update(self._core.update(_as_bytes(occ)))
-        self._unknown_pixels = unknown
+        with self._lock:
+            stats = self._after_update(self._core.update(_as_bytes(occ)))
+            self._unknown_pixels = unknown
         return stats
 
     def _set(self, pixels: Any, occupied: bool) -> Dict[str, Any]:
         idx = _pixel_indices(pixels, self.shape, "pixels")
-        if idx.ndim == 2:  # a mask's bytes
-            return self._after_update(self._core.set_mask(idx, occupied))
-        return self._after_update(self._core.set_pixels(idx, occupied))
+        with self._lock:
+            if idx.ndim == 2:  # a mask's bytes
+                return self._after_update(self._core.set_mask(idx, occupied))
+            return self._after_update(self._core.set_pixels(idx, occupied))
 
     def set_occupied(self, pixels: Any) -> Dict[str, Any]:
         """Mark pixels occupied: ``(row, col)`` pairs or an H x W bool mask."""
@@ -449,7 +473,9 @@ class OccupancyVoronoi:
         Raises ValueError naming `start` or `goal` when it is outside the map or blocked.
         """
         r = self.robot_radius if robot_radius is None else _args.real(robot_radius, "robot_radius")
-        pts, length, expanded = self._core.path(start, goal, r, _args.real(off_diagram_cost, "off_diagram_cost"))
+        cost = _args.real(off_diagram_cost, "off_diagram_cost")
+        with self._lock:
+            pts, length, expanded = self._core.path(start, goal, r, cost)
         self.stats = {**self.stats, "last_path": {"length": float(length) if len(pts) else float("inf"),
                                                   "expanded": int(expanded)}}
         return pts
@@ -463,15 +489,17 @@ class OccupancyVoronoi:
         """Distance (map units) from each point to the nearest occupied pixel or the map's edge (0 inside
         an occupied pixel or outside the map): for costmaps. ``(n, 2)`` points give ``(n,)``; one point
         ``(x, y)`` gives a float."""
-        if np.ndim(points) == 1 and np.shape(points) == (2,):
-            return float(self._core.clearance(np.reshape(points, (1, 2)))[0])
-        return self._core.clearance(points)
+        with self._lock:
+            if np.ndim(points) == 1 and np.shape(points) == (2,):
+                return float(self._core.clearance(np.reshape(points, (1, 2)))[0])
+            return self._core.clearance(points)
 
     # -- export and pictures ---------------------------------------------------------------------
     def to_json(self, path: Optional[PathLike] = None, *, route: Optional[np.ndarray] = None,
                 indent: Optional[int] = None) -> Optional[str]:
         """The JSON ``dvoronoi gvd MAP`` writes (optionally with a route); text or written atomically."""
-        text = self._core.to_json(self.robot_radius, route, -1 if indent is None else indent)
+        with self._lock:
+            text = self._core.to_json(self.robot_radius, route, -1 if indent is None else indent)
         if path is None:
             return text
         atomic_write_text(path, text + "\n")
@@ -479,7 +507,8 @@ class OccupancyVoronoi:
 
     def to_svg(self, path: Optional[PathLike] = None, route: Optional[np.ndarray] = None) -> Optional[str]:
         """The picture ``dvoronoi gvd MAP --svg`` draws (optionally with a route); text or written atomically."""
-        text = self._core.to_svg(self.robot_radius, route)
+        with self._lock:
+            text = self._core.to_svg(self.robot_radius, route)
         if path is None:
             return text
         atomic_write_text(path, text)

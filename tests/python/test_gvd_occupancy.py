@@ -907,3 +907,82 @@ def test_pixel_centres_take_pixels_as_updates_do_and_pixels_at_inverts_them():
     for bad in ((-1.0001, 3.0), (0.0, 4.50001), (np.nan, 3.0)):
         with pytest.raises(ValueError, match=r"points\[0\] = .* is outside the 5 x 7 map"):
             grid.pixels_at([bad])
+
+
+def test_update_reads_arrays_by_the_rule_the_map_was_read_with(tmp_path):
+    # an OccupancyGrid's threshold and unknown rule, and a YAML's own threshold, not the defaults
+    probs = np.full((20, 30), 0.1)
+    probs[:, 14:16] = 0.5
+    probs[8:12, 14:16] = 0.1
+    gv = dv.grid_voronoi(dv.OccupancyGrid(probs, occupied_thresh=0.3))
+    built = gv.grid.occupied.copy()
+    assert built.sum() == 32
+    gv.update(probs)  # the same map: nothing changes
+    assert np.array_equal(gv.grid.occupied, built) and gv.grid.occupied_thresh == 0.3
+    ros = np.zeros((20, 30), np.int8)
+    ros[:, 14:16] = 100
+    ros[2:6, 3:8] = -1
+    gv = dv.grid_voronoi(dv.OccupancyGrid(ros, unknown="free"))
+    gv.update(ros)
+    assert gv.grid.occupied.sum() == 40 and gv.grid.unknown == "free"
+    grey = np.where(probs >= 0.5, 127, 254).astype(np.uint8)  # p = 1 - 127/255 = 0.502: occupied above 0.5
+    write_pgm(tmp_path / "m.pgm", grey)
+    (tmp_path / "m.yaml").write_text("image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+                                     "occupied_thresh: 0.5\nfree_thresh: 0.196\n")
+    gv = dv.grid_voronoi(tmp_path / "m.yaml")
+    assert gv.grid.occupied.sum() == 32 and gv.grid.occupied_thresh == 0.5
+    gv.update(np.where(probs >= 0.5, 0.51, 0.1))
+    assert gv.grid.occupied.sum() == 32
+    with pytest.raises(TypeError, match="new_occupancy: give an array or an OccupancyGrid"):
+        gv.update(tmp_path / "m.yaml")
+
+
+def test_one_diagram_shared_between_threads_stays_the_full_builds():
+    # a map callback and a planner on one object: the core releases the GIL, the object's lock keeps
+    # the calls apart (without it two writers left a wrong diagram or aborted the process)
+    import threading
+
+    occ = occupancy_maps.building(300, 1)
+    gv = dv.grid_voronoi(occ, workers=1)
+    errors = []
+
+    def writer(seed):
+        rng = np.random.default_rng(seed)
+        try:
+            for _ in range(25):
+                m = np.zeros(occ.shape, bool)
+                y, x = rng.integers(0, 200, 2)
+                m[y:y + 100, x:x + 100] = True
+                gv.set_occupied(m)
+                gv.set_free(m & ~occ)  # each writer restores the map
+        except Exception as e:  # pragma: no cover - reported below
+            errors.append(e)
+
+    def reader():
+        try:
+            for _ in range(25):
+                gv.path((20.5, 20.5), (280.5, 280.5))
+                gv.diagram_mask
+                gv.clearance_at((150.5, 150.5))
+        except Exception as e:  # pragma: no cover - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=writer, args=(k,)) for k in (0, 1)] + [threading.Thread(target=reader)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors
+    full = dv.grid_voronoi(occ, workers=1)
+    assert np.array_equal(gv.grid.occupied, occ)
+    assert np.array_equal(gv.diagram_mask, full.diagram_mask)
+    assert np.array_equal(gv.clearance_map, full.clearance_map)
+
+
+def test_pixel_errors_show_the_values_given():
+    gv = dv.grid_voronoi(np.zeros((10, 12), bool))
+    with pytest.raises(ValueError, match=r"pixels\[0\] = \(18446744073709551615, 0\) is outside the 10 x 12 map"):
+        gv.set_occupied(np.array([[2 ** 64 - 1, 0]], np.uint64))
+    with pytest.raises(ValueError, match=r"pixels\[1\] = \(inf, 1\.0\) is outside"):
+        gv.set_free(np.array([[1.0, 1.0], [np.inf, 1.0]]))
+    assert not gv.grid.occupied.any()

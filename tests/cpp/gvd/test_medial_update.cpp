@@ -38,6 +38,13 @@ std::vector<std::size_t> free_blob_pixels(const MedialDiagram& m, std::mt19937& 
     return px;
 }
 
+/// The pixels whose nearest point differs between two transforms.
+std::uint64_t moved(const FeatureMap& a, const FeatureMap& b) {
+    std::uint64_t n = 0;
+    for (std::size_t i = 0; i < a.fx.size(); ++i) n += a.fx[i] != b.fx[i] || a.fy[i] != b.fy[i];
+    return n;
+}
+
 }  // namespace
 
 TEST_CASE("after any sequence of additions and removals the diagram is the full build's") {
@@ -56,12 +63,18 @@ TEST_CASE("after any sequence of additions and removals the diagram is the full 
                 const int h = 1 + static_cast<int>(rng() % 5), w = 1 + static_cast<int>(rng() % 5);
                 for (int r = r0; r < std::min(g.rows, r0 + h); ++r)
                     for (int c = c0; c < std::min(g.cols, c0 + w); ++c) px.push_back(g.at(r, c));
-                set_pixels(m, px, kind == 0);
+                const FeatureMap before = m.features;
+                const UpdateStats st = set_pixels(m, px, kind == 0);
+                // each pixel whose nearest point changed, once (one direction: a point never moves back)
+                CHECK(st.feature_changes == moved(before, m.features));
             } else {  // scattered flips in both directions at once
                 std::vector<std::uint8_t> occ(m.grid.occupied.begin(), m.grid.occupied.end());
                 const unsigned flips = 1 + rng() % 30;
                 for (unsigned k = 0; k < flips; ++k) occ[rng() % occ.size()] ^= 1;
-                update_occupancy(m, occ);
+                const FeatureMap before = m.features;
+                const UpdateStats st = update_occupancy(m, occ);
+                CHECK(st.feature_changes >= moved(before, m.features));  // and a point moved back counts
+                CHECK(st.feature_changes >= st.changed_pixels);
             }
             INFO("seed " << seed << ", step " << step);
             require_same_as_full_build(m);

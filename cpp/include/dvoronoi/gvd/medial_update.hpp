@@ -54,7 +54,9 @@ namespace dvoronoi::gvd {
 struct UpdateStats {
     std::uint64_t changed_pixels = 0;     ///< pixels whose occupancy flipped
     std::uint64_t column_cells = 0;       ///< pass-1 values recomputed
-    std::uint64_t feature_changes = 0;    ///< pixels whose nearest point changed
+    /// pixels whose nearest point was rewritten, each once (a pixel of update_occupancy that a removal
+    /// moves and the additions move back counts too)
+    std::uint64_t feature_changes = 0;
     std::uint64_t mask_checks = 0;        ///< pixels whose diagram membership was rechecked
 };
 
@@ -158,6 +160,13 @@ public:
         return out;
     }
     std::size_t words_per_row() const { return stride_; }
+    /// The pixels set.
+    std::uint64_t count() const {
+        std::uint64_t n = 0;
+        for (const std::int32_t r : rows_)
+            for (std::size_t k = 0; k < stride_; ++k) n += static_cast<std::uint64_t>(popcount(row(r)[k]));
+        return n;
+    }
 
     /// The mask grown by each pixel's four neighbours (inside the map), whole words at a time.
     SparseRowMask dilated4() const {
@@ -318,8 +327,6 @@ public:
         }
     }
 
-    std::uint64_t feature_changes = 0;  ///< pixels whose nearest point changed
-
 private:
     /// Removals: pixel (r, x) takes the nearest point n, and its block's clearance bound grows to it.
     void take(std::int32_t r, std::int32_t x, const Candidate2& n, std::int32_t* bound) {
@@ -340,7 +347,6 @@ private:
         f_.fx[i] = static_cast<std::int16_t>(n.x);
         f_.fy[i] = static_cast<std::int16_t>(n.y);
         touched_.set(r, x);
-        ++feature_changes;
     }
 
     /// The first x in [from, W) with fx[x] >= v (fx non-decreasing), searched outward from `guess`:
@@ -408,7 +414,6 @@ private:
             _mm_storeu_si128(reinterpret_cast<__m128i*>(fx + x), vx);  // the same where they agree
             _mm_storeu_si128(reinterpret_cast<__m128i*>(fy + x), vy);
             touched_.set_eight(r, x, differ);
-            feature_changes += static_cast<std::uint64_t>(popcount(differ));
             if (bound == nullptr) continue;
             // the eight squares (pmaddwd, < 2^31); unchanged pixels are within their block's bound already
             const __m128i dx = _mm_sub_epi16(vx, _mm_add_epi16(_mm_set1_epi16(static_cast<std::int16_t>(2 * x + 1)), lane2));
@@ -501,7 +506,6 @@ private:
         _mm_storeu_si128(reinterpret_cast<__m128i*>(&f_.fx[i]), _mm_or_si128(_mm_and_si128(take, nx), _mm_andnot_si128(take, vfx)));
         _mm_storeu_si128(reinterpret_cast<__m128i*>(&f_.fy[i]), _mm_or_si128(_mm_and_si128(take, ny), _mm_andnot_si128(take, vfy)));
         touched_.set_eight(r, x0, took);
-        feature_changes += static_cast<std::uint64_t>(popcount(took));
     }
 #endif
 
@@ -594,7 +598,6 @@ public:
             if (k == 0 || cells.rows[k] / kBlock != cells.rows[k - 1] / kBlock) groups.push_back(k);
         }
         groups.push_back(cells.rows.size());
-        std::atomic<std::uint64_t> feature_changes{0};
         const auto n_groups = static_cast<std::int32_t>(groups.size() - 1);
         // a few rows are not worth a thread's wake-up
         const int workers = cells.cols.size() < kCellsPerWorker ? 1 : std::min(m_.options.workers, n_groups);
@@ -607,9 +610,7 @@ public:
                 if (occupied) pass.add_row(cells.rows[k], cols, n);
                 else pass.remove_row(cells.rows[k], cols, n);
             }
-            feature_changes += std::exchange(pass.feature_changes, 0);
         });
-        stats.feature_changes += feature_changes.load();
     }
 
     /// Rechecks the diagram where the changes can reach it. A pixel's membership is a function of
@@ -617,6 +618,7 @@ public:
     /// row segment as a build marks them.
     void refresh_mask() {
         if (changed_.empty()) return;
+        stats.feature_changes = touched_.count();  // each pixel once: its occupancy or nearest point changed
         SparseRowMask redo = touched_.dilated4();  // touched pixels and their 4-neighbours (they share a pair)
         find_boxed(redo);
         const std::vector<std::int32_t> rows = redo.rows();  // a row's marks are its own: rows go to the workers

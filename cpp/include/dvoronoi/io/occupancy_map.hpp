@@ -58,6 +58,7 @@ struct LoadedMap {
     gvd::OccupancyGrid grid;
     std::size_t unknown = 0;  ///< pixels between the thresholds (counted as set by unknown_occupied)
     std::string image;        ///< the image file a YAML pointed to
+    double occupied_thresh = 0.65;  ///< the threshold the map was read with (a YAML's own)
 };
 
 namespace detail {
@@ -110,6 +111,7 @@ inline const char* bad_read_option(const MapReadOptions& o, std::string& why) {
 inline LoadedMap from_grey(const std::vector<double>& grey, std::int32_t h, std::int32_t w, const MapReadOptions& o) {
     LoadedMap out;
     out.grid = gvd::OccupancyGrid(h, w, o.resolution, o.origin);
+    out.occupied_thresh = o.occupied_thresh;
     for (std::size_t i = 0; i < grey.size(); ++i) {
         const double p = o.negate ? grey[i] : 1.0 - grey[i];
         if (p > o.occupied_thresh) {
