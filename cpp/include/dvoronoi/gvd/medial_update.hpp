@@ -29,6 +29,9 @@
 // What an update touches is kept as row-sparse bit masks (SparseRowMask): its cost follows the
 // change, not the map. Its rows lie far apart in memory, out of the hardware prefetcher's sight:
 // the column walks and the row pass fetch ahead.
+// Thread safety: as for the standard containers, concurrent reads of a MedialDiagram are safe, and an
+// update needs it to itself (no other update or read meanwhile); its own workers are its business.
+// Python's OccupancyVoronoi takes a lock per call.
 #pragma once
 
 #include "dvoronoi/core/pages.hpp"
