@@ -540,10 +540,32 @@ def test_path_errors_and_no_route():
      r"obstacles\[0\]\.parts\[0\]\.position\[1\]: expected a number"),
     ({"area": {"polygon": [[0, 0], [10, 0], [5, 2], [10, 10], [0, 10]]}, "obstacles": []}, r"area: the working area must be a convex polygon"),
     ({"obstacles": []}, r"area: required"),
+    ({"area": {"box": [0, 0, 100, 100]}, "obstacles": [{"type": "polygon", "vertices": [[50, 90], [73, 20], [13, 63], [87, 63], [27, 20]]}]},
+     r"obstacles\[0\]\.vertices: polygon is not simple"),  # a pentagram: left turns only, two windings
+    ({"area": {"box": [0, 0, 16, 16]}, "obstacles": [{"type": "polygon", "vertices": [[2, 2], [6, 2], [6, 6], [12, 6], [6, 6], [2, 6]]}]},
+     r"obstacles\[0\]\.vertices: the polygon turns back on itself at vertex 3 \(a spike"),
 ])
 def test_bad_obstacles_name_index_and_field(doc, message):
     with pytest.raises(ValueError, match=message):
         dv.grid_voronoi(doc, cells=16)
+
+
+@pytest.mark.parametrize("shift", [0.0, 5000000264.0, 10395970331.0])
+def test_polygons_far_from_the_origin_keep_their_shape(shift):
+    # the ring's orientation was a shoelace sum in doubles: at these shifts a triangle vanished (no
+    # label 0 anywhere, an empty raster) and a notched square became its notch
+    def doc(ring, at):
+        return {"area": {"box": [at - 16, at - 16, at + 16, at + 16]},
+                "obstacles": [{"type": "polygon", "vertices": [[at + x, at + y] for x, y in ring]}]}
+    triangle, notched = [(3, 2), (7, 2), (3, 6)], [(-5, 2), (-3, 2), (-3, 4), (-4, 3), (-5, 4)]
+    for ring, area in ((triangle, 8.0), (notched, 3.0)):
+        parts = [p[2] - shift for p in dv.gvd.load_obstacles(doc(ring, shift)).parts() if p[1] == 0]
+        shoelace = sum(0.5 * (np.roll(v[:, 0], -1) * v[:, 1] - v[:, 0] * np.roll(v[:, 1], -1)).sum() for v in parts)
+        assert abs(shoelace) == area  # small integers after the exact shift: exact
+        assert 0 in dv.grid_voronoi(doc(ring, shift), cells=32, workers=1).labels
+    medial = dv.grid_voronoi(doc(triangle, shift), cells=32, diagram="medial", workers=1)
+    at_origin = dv.grid_voronoi(doc(triangle, 0.0), cells=32, diagram="medial", workers=1)
+    assert at_origin.grid.occupied.sum() == 26 and np.array_equal(medial.grid.occupied, at_origin.grid.occupied)
 
 
 def test_closed_rings_keep_every_corner():

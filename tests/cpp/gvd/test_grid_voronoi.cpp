@@ -345,6 +345,55 @@ TEST_CASE("bad input names the obstacle and field") {
     CHECK(msg([] { make_scene({Obstacle(Shape::point(Vec2(NAN, 1)))}, box_area(0, 0, 10, 10)); }).find("obstacles[0].position") != std::string::npos);
 }
 
+TEST_CASE("polygon rings are read exactly: far from the origin, tiny, spikes and second windings") {
+    auto msg = [](const std::vector<Obstacle>& obs, const std::vector<Vec2>& area) {
+        try { make_scene(obs, area); } catch (const InputError& e) { return std::string(e.what()); }
+        return std::string();
+    };
+    // The parts of a polygon, relative to a shift: the shoelace sum in doubles cancelled at large
+    // coordinates and turned rings the wrong way (a triangle vanished, a notch became the polygon).
+    const std::vector<Vec2> notched = {Vec2(-5, 2), Vec2(-3, 2), Vec2(-3, 4), Vec2(-4, 3), Vec2(-5, 4)};
+    const std::vector<Vec2> triangle = {Vec2(3, 2), Vec2(7, 2), Vec2(3, 6)};
+    auto parts_at = [](const std::vector<Vec2>& ring, double shift, double scale) {
+        std::vector<Vec2> v;
+        for (const Vec2& p : ring) v.push_back(Vec2(shift + scale * p.x(), shift + scale * p.y()));
+        const Scene sc = make_scene({Obstacle(Shape::polygon(v))}, box_area(shift - 16 * scale, shift - 16 * scale, shift + 16 * scale, shift + 16 * scale));
+        std::vector<std::vector<std::pair<double, double>>> out;
+        for (const ConvexPart& p : sc.parts) {
+            if (p.label != 0) continue;
+            std::vector<std::pair<double, double>> q;
+            for (std::uint32_t k = 0; k < p.count; ++k)
+                q.push_back({(sc.part_vertices(p)[k].x() - shift) / scale, (sc.part_vertices(p)[k].y() - shift) / scale});
+            out.push_back(q);
+        }
+        return out;
+    };
+    for (const auto* ring : {&notched, &triangle}) {
+        const auto want = parts_at(*ring, 0.0, 1.0);
+        CHECK(want.size() == (ring == &notched ? 2u : 1u));
+        for (double shift : {5000000264.0, 10395970331.0, 1.0e15}) {  // exact shifts of small integers
+            CAPTURE(shift);
+            CHECK(parts_at(*ring, shift, 1.0) == want);
+        }
+        for (double scale : {0x1p-560, 0x1p-300, 0x1p400}) {  // and exact scales, tiny to huge
+            CAPTURE(scale);
+            CHECK(parts_at(*ring, 0.0, scale) == want);
+        }
+    }
+    CHECK(msg({}, box_area(12345678901, 12345678901, 12345678917, 12345678917)).empty());
+    // a second winding is not simple, and a spike changes the shape: both are errors
+    const std::vector<Vec2> star = {Vec2(50, 90), Vec2(73, 20), Vec2(13, 63), Vec2(87, 63), Vec2(27, 20)};
+    CHECK(msg({Obstacle(Shape::polygon(star))}, box_area(0, 0, 100, 100)).find("obstacles[0].vertices: polygon is not simple") == 0);
+    CHECK(msg({}, star).find("area: the working area must be a convex polygon") == 0);
+    const std::vector<Vec2> spike = {Vec2(2, 2), Vec2(6, 2), Vec2(6, 6), Vec2(12, 6), Vec2(6, 6), Vec2(2, 6)};
+    CHECK(msg({Obstacle(Shape::polygon(spike))}, box_area(0, 0, 16, 16)) ==
+          "obstacles[0].vertices: the polygon turns back on itself at vertex 3 (a spike: its edges overlap)");
+    CHECK(msg({}, spike).find("area: the polygon turns back on itself at vertex 3") == 0);
+    // closed rings, repeated and straight-on vertices are spellings of one polygon
+    const std::vector<Vec2> spelled = {Vec2(3, 2), Vec2(5, 2), Vec2(7, 2), Vec2(7, 2), Vec2(3, 6), Vec2(3, 2)};
+    CHECK(parts_at(spelled, 0.0, 1.0) == parts_at(triangle, 0.0, 1.0));
+}
+
 TEST_CASE("non-convex polygons split into convex parts with one label") {
     const Scene scene = make_scene({Obstacle(ell(Vec2(10, 10), 30)), Obstacle(Shape::point(Vec2(80, 80)))}, box_area(0, 0, 100, 100), true);
     int parts0 = 0;
@@ -354,7 +403,8 @@ TEST_CASE("non-convex polygons split into convex parts with one label") {
             ++parts0;
             std::vector<Vec2> v(scene.part_vertices(p), scene.part_vertices(p) + p.count);
             CHECK(gvd::detail::ring_is_convex(v));
-            area += gvd::detail::signed_area2(v) / 2;
+            for (std::size_t k = 0; k < v.size(); ++k)  // the shoelace sum: small integer coordinates, exact
+                area += (v[k].x() * v[(k + 1) % v.size()].y() - v[k].y() * v[(k + 1) % v.size()].x()) / 2;
         }
     CHECK(parts0 == 2);
     CHECK(area == doctest::Approx(30.0 * 30.0 * (1.0 - 4.0 / 9.0)));

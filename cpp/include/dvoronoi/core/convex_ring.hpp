@@ -13,6 +13,20 @@
 
 namespace dvoronoi::detail {
 
+/// How many times the edges of a ring that turns the same way (left) at every vertex go round: the
+/// edge direction turns by less than pi at each vertex, so it passes the direction (1, 0) once a
+/// round, from below to above. Exact: the signs of coordinate differences are comparisons.
+inline std::size_t windings(const std::vector<Vec2>& v) {
+    const std::size_t n = v.size();
+    auto upper = [&](std::size_t k) {  // edge k's direction lies in [0, pi)
+        const Vec2 &a = v[k], &b = v[(k + 1) % n];
+        return b.y() > a.y() || (b.y() == a.y() && b.x() > a.x());
+    };
+    std::size_t w = 0;
+    for (std::size_t k = 0; k < n; ++k) w += !upper(k) && upper((k + 1) % n);
+    return w;
+}
+
 /// The strictly convex, counter-clockwise vertex ring of the polygon `v` describes.
 ///
 /// Spellings of the same polygon give the same ring: either orientation; a closed ring (the first
@@ -71,14 +85,8 @@ inline std::vector<Vec2> convex_ring(std::vector<Vec2> v, const std::string& nam
     }
     if (kept.size() < 3) throw no_polygon(std::to_string(kept.size()) + " corners");
     if (turn < 0) std::reverse(kept.begin(), kept.end());
-    // The turns all agree, so the polygon is simple exactly when its exterior angles sum to 2 pi.
-    double winding = 0.0;
-    for (std::size_t k = 0; k < kept.size(); ++k) {
-        const Vec2 e0 = kept[(k + 1) % kept.size()] - kept[k];
-        const Vec2 e1 = kept[(k + 2) % kept.size()] - kept[(k + 1) % kept.size()];
-        winding += std::atan2(e0.x() * e1.y() - e0.y() * e1.x(), e0.dot(e1));
-    }
-    if (winding > 7.0) throw InputError(name + ": the polygon winds around more than once (not simple)");
+    // The turns all agree, so the polygon is simple exactly when it goes round once.
+    if (windings(kept) != 1) throw InputError(name + ": the polygon winds around more than once (not simple)");
     return kept;
 }
 

@@ -12,6 +12,7 @@
 // All decisions about shapes (convexity, simplicity, ears) use the exact orientation predicate.
 #pragma once
 
+#include "dvoronoi/core/convex_ring.hpp"
 #include "dvoronoi/core/predicates.hpp"
 #include "dvoronoi/core/types.hpp"
 
@@ -100,48 +101,63 @@ inline std::string where(std::size_t obstacle, std::size_t shape, std::size_t n_
     return s;
 }
 
-inline double signed_area2(const std::vector<Vec2>& v) {
-    double a = 0.0;
-    for (std::size_t i = 0, n = v.size(); i < n; ++i) {
-        const Vec2& p = v[i];
-        const Vec2& q = v[(i + 1) % n];
-        a += p.x() * q.y() - p.y() * q.x();
+/// The ring `v` without repeated vertices (a closed ring's last vertex included) and without vertices
+/// exactly on the straight segment between their neighbours: every spelling of one polygon gives one
+/// ring (the same reading as core/convex_ring.hpp). Exact orientation tests and comparisons.
+/// \throws InputError naming `name` when fewer than three vertices that are not collinear remain, or
+///         at a spike: the boundary going out to a vertex and back along one line (dropping it would
+///         change the shape).
+inline std::vector<Vec2> clean_ring(const std::vector<Vec2>& in, const std::string& name) {
+    std::vector<Vec2> v;
+    std::vector<std::size_t> at;  // each kept vertex's index in `in`, for messages
+    for (std::size_t k = 0; k < in.size(); ++k)
+        if (v.empty() || in[k] != v.back()) v.push_back(in[k]), at.push_back(k);
+    while (v.size() > 1 && v.back() == v.front()) v.pop_back(), at.pop_back();
+    const auto no_polygon = [&] { return InputError(name + ": a polygon needs at least 3 distinct, non-collinear vertices"); };
+    bool turns = false;  // all on one line: say so before a turn back would be called a spike
+    for (std::size_t k = 0, n = v.size(); k < n && n >= 3 && !turns; ++k)
+        turns = pred::orient(v[(k + n - 1) % n], v[k], v[(k + 1) % n]) != 0;
+    if (!turns) throw no_polygon();
+    for (bool changed = true; changed && v.size() >= 3;) {
+        changed = false;
+        for (std::size_t k = 0; k < v.size() && v.size() >= 3; ++k) {
+            const std::size_t n = v.size();
+            const Vec2 &p = v[(k + n - 1) % n], &c = v[k], &q = v[(k + 1) % n];
+            if (pred::orient(p, c, q) != 0) continue;
+            // on the line p-q: straight on (c between p and q) is dropped; turning back is a spike
+            const bool between = std::min(p.x(), q.x()) <= c.x() && c.x() <= std::max(p.x(), q.x()) &&
+                                 std::min(p.y(), q.y()) <= c.y() && c.y() <= std::max(p.y(), q.y());
+            if (!between || p == q)
+                throw InputError(name + ": the polygon turns back on itself at vertex " + std::to_string(at[k]) +
+                                 " (a spike: its edges overlap)");
+            v.erase(v.begin() + static_cast<std::ptrdiff_t>(k));
+            at.erase(at.begin() + static_cast<std::ptrdiff_t>(k));
+            changed = true;
+            --k;
+        }
     }
-    return a;
+    if (v.size() < 3) throw no_polygon();
+    return v;
 }
 
-/// Removes repeated consecutive vertices (including last == first) and exactly collinear vertices.
-inline std::vector<Vec2> clean_ring(std::vector<Vec2> v) {
-    bool changed = true;
-    while (changed && v.size() >= 3) {
-        changed = false;
-        // Runs of equal consecutive vertices (cyclically: a closed ring repeats its first vertex at
-        // the end) become one vertex first. Testing a copy against its original neighbours would drop
-        // both copies (orient(p, c, q) is 0 when p == c), and with them a corner.
-        std::vector<Vec2> out;
-        for (const Vec2& c : v)
-            if (out.empty() || c != out.back()) out.push_back(c);
-        while (out.size() > 1 && out.back() == out.front()) out.pop_back();
-        changed = out.size() != v.size();
-        v.swap(out);
-        out.clear();
-        const std::size_t n = v.size();
-        if (n < 3) break;
-        for (std::size_t i = 0; i < n; ++i) {
-            const Vec2& p = v[(i + n - 1) % n];
-            const Vec2& c = v[i];
-            const Vec2& q = v[(i + 1) % n];
-            if (pred::orient(p, c, q) == 0) {
-                // c lies on the line p-q: drop it (a spike p-c-p also lands here). Neighbours are
-                // distinct, so two adjacent drops mean all four vertices lie on one line.
-                changed = true;
-                continue;
-            }
-            out.push_back(c);
-        }
-        v.swap(out);
-    }
-    return v;
+/// +1 when the ring (clean_ring's: no repeats, no straight-on vertices) runs counter-clockwise, -1
+/// clockwise, exactly: the turn at the lowest of the leftmost vertices, a corner of the polygon's
+/// hull, has the polygon's orientation (for a simple ring; other rings are refused later anyway).
+/// Not the shoelace sum: in doubles it cancels at large coordinates and underflows at tiny ones.
+inline int ring_orientation(const std::vector<Vec2>& v) {
+    std::size_t m = 0;
+    for (std::size_t k = 1; k < v.size(); ++k)
+        if (v[k].x() < v[m].x() || (v[k].x() == v[m].x() && v[k].y() < v[m].y())) m = k;
+    const std::size_t n = v.size();
+    return pred::orient(v[(m + n - 1) % n], v[m], v[(m + 1) % n]) >= 0 ? 1 : -1;
+}
+
+/// Is the CCW ring (clean_ring's) convex and simple: a left turn at every vertex, one winding?
+inline bool ring_is_convex(const std::vector<Vec2>& v) {
+    const std::size_t n = v.size();
+    for (std::size_t i = 0; i < n; ++i)
+        if (pred::orient(v[i], v[(i + 1) % n], v[(i + 2) % n]) < 0) return false;
+    return ::dvoronoi::detail::windings(v) == 1;
 }
 
 /// Do segments ab and cd share a point (exact)?
@@ -171,13 +187,6 @@ inline bool ring_is_simple(const std::vector<Vec2>& v, long& e1, long& e2) {
             }
         }
     e1 = e2 = -1;
-    return true;
-}
-
-inline bool ring_is_convex(const std::vector<Vec2>& v) {  // CCW ring, no collinear vertices
-    const std::size_t n = v.size();
-    for (std::size_t i = 0; i < n; ++i)
-        if (pred::orient(v[i], v[(i + 1) % n], v[(i + 2) % n]) < 0) return false;
     return true;
 }
 
@@ -305,14 +314,9 @@ inline Scene make_scene(const std::vector<Obstacle>& obstacles, const std::vecto
     // Area: CCW convex polygon.
     for (std::size_t k = 0; k < area_in.size(); ++k)
         detail::require_finite(area_in[k], "area.vertices[" + std::to_string(k) + "]");
-    std::vector<Vec2> area = detail::clean_ring(area_in);
-    if (area.size() < 3) throw InputError("area: needs at least 3 distinct, non-collinear vertices");
-    if (detail::signed_area2(area) < 0) std::reverse(area.begin(), area.end());
+    std::vector<Vec2> area = detail::clean_ring(area_in, "area");
+    if (detail::ring_orientation(area) < 0) std::reverse(area.begin(), area.end());
     if (!detail::ring_is_convex(area)) throw InputError("area: the working area must be a convex polygon");
-    {
-        long e1, e2;
-        if (!detail::ring_is_simple(area, e1, e2)) throw InputError("area: polygon is not simple");
-    }
     s.area = area;
     s.area_is_box = area_is_box;
     for (const Vec2& p : area) s.box.add(p);
@@ -370,11 +374,8 @@ inline Scene make_scene(const std::vector<Obstacle>& obstacles, const std::vecto
                 case ShapeKind::Polygon: {
                     for (std::size_t t = 0; t < sh.vertices.size(); ++t)
                         detail::require_finite(sh.vertices[t], name + ".vertices[" + std::to_string(t) + "]");
-                    std::vector<Vec2> ring = detail::clean_ring(sh.vertices);
-                    if (ring.size() < 3)
-                        throw InputError(name + ".vertices: a polygon needs at least 3 distinct, "
-                                                "non-collinear vertices");
-                    if (detail::signed_area2(ring) < 0) std::reverse(ring.begin(), ring.end());
+                    std::vector<Vec2> ring = detail::clean_ring(sh.vertices, name + ".vertices");
+                    if (detail::ring_orientation(ring) < 0) std::reverse(ring.begin(), ring.end());
                     if (detail::ring_is_convex(ring)) {
                         add_part(ShapeKind::Polygon, label, ring, ring[0], 0.0);
                         break;
@@ -386,8 +387,8 @@ inline Scene make_scene(const std::vector<Obstacle>& obstacles, const std::vecto
                     for (const auto& cyc : detail::convex_decomposition(ring)) {
                         std::vector<Vec2> pts;
                         for (auto id : cyc) pts.push_back(ring[id]);
-                        pts = detail::clean_ring(pts);
-                        if (pts.size() >= 3) add_part(ShapeKind::Polygon, label, pts, pts[0], 0.0);
+                        pts = detail::clean_ring(pts, name + ".vertices");  // merged pieces may hold straight-on vertices
+                        add_part(ShapeKind::Polygon, label, pts, pts[0], 0.0);
                     }
                     break;
                 }
