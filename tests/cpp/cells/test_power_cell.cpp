@@ -134,6 +134,9 @@ TEST_CASE("bad radii name the argument") {
     CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0}), doctest::Contains("radius"), InputError);
     CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0, -1.0}), doctest::Contains("radius"), InputError);
     CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0, NAN}), doctest::Contains("radius"), InputError);
+    // an entry out of the documented range names its index, as a bad one does
+    CHECK_THROWS_WITH_AS(limited_cells(P, std::vector<double>{1.0, 1e151}), doctest::Contains("radius[1] must lie between 1e-150 and 1e150"),
+                         RangeError);
 }
 
 TEST_CASE("nearly tangent disks: a tiny cap and a disk minus a tiny cap") {
@@ -183,4 +186,48 @@ TEST_CASE("every method with unequal radii, and computed_by says which ran") {
     CHECK(a.indices == c.indices);
     CHECK(a.is_empty(3));
     CHECK_THROWS_WITH_AS(power_limited_cell(Vec2(0, 0), others, 1.0, {1.0, 2.0}), doctest::Contains("other_radii"), InputError);
+}
+
+TEST_CASE("dyadic scales: heterogeneous cells scale exactly, across the documented radius range") {
+    // The half chord has terms of degree 4 in the radii: beyond radii of 2^+-256 they overflowed or
+    // underflowed (arc ends at the chord's midpoint, full disks, NaN areas).
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 6.0), ur(0.5, 1.5);
+    const Index n = 60;
+    Points P(n, 2);
+    std::vector<double> R(static_cast<std::size_t>(n));
+    for (Index i = 0; i < n; ++i) P(i, 0) = u(rng), P(i, 1) = u(rng), R[static_cast<std::size_t>(i)] = ur(rng);
+    for (Method m : {Method::Auto, Method::Scan, Method::Chords}) {
+        const LimitedPartition one = limited_cells(P, R, m, 1);
+        for (int e : {-490, -300, -268, -210, 210, 256, 300, 465, 490}) {  // 2^+-490: radii within [1e-150, 1e150]
+            CAPTURE(e);
+            std::vector<double> Rs;
+            for (double r : R) Rs.push_back(std::ldexp(r, e));
+            const LimitedPartition s = limited_cells(Points(std::ldexp(1.0, e) * P), Rs, m, 1);
+            REQUIRE(s.indices == one.indices);
+            for (Index i = 0; i < n; ++i) {
+                const auto k = static_cast<std::size_t>(i);
+                CHECK(std::ldexp(s.areas[k], -2 * e) == doctest::Approx(one.areas[k]).epsilon(1e-12));
+                CHECK(std::ldexp(s.centroids(i, 0), -e) == doctest::Approx(one.centroids(i, 0)).epsilon(1e-12));
+                CHECK(std::ldexp(s.centroids(i, 1), -e) == doctest::Approx(one.centroids(i, 1)).epsilon(1e-12));
+                const LimitedCell a = one.cell(i), b = s.cell(i);
+                REQUIRE(a.pieces.size() == b.pieces.size());
+                if (a.pieces.empty()) continue;
+                // the same cycle of pieces, maybe from another first piece
+                std::size_t shift = 0;
+                auto gap = [&](std::size_t q, std::size_t t) {
+                    return std::hypot(std::ldexp(b.pieces[t].start.x(), -e) - a.pieces[q].start.x(),
+                                      std::ldexp(b.pieces[t].start.y(), -e) - a.pieces[q].start.y());
+                };
+                for (std::size_t t = 1; t < b.pieces.size(); ++t)
+                    if (gap(0, t) < gap(0, shift)) shift = t;
+                for (std::size_t q = 0; q < a.pieces.size(); ++q) {
+                    const std::size_t t = (q + shift) % b.pieces.size();
+                    CHECK(b.pieces[t].neighbor == a.pieces[q].neighbor);
+                    CHECK(b.pieces[t].arc_span == doctest::Approx(a.pieces[q].arc_span).epsilon(1e-12));
+                    CHECK(gap(q, t) <= 1e-12 * R[k]);
+                }
+            }
+        }
+    }
 }

@@ -342,26 +342,40 @@ inline void emit_power_cell(const pred::power::Frame& f, const std::vector<pred:
                             const std::vector<Index>& ids, const std::vector<int>& cycle, const std::vector<char>& meets,
                             LimitedCell& out, std::vector<Vec2>& rel, std::vector<char>& is_arc, std::vector<double>& span) {
     const std::size_t s = cycle.size();
-    const auto line = [&](std::size_t t) -> const pred::power::WLine& { return L[static_cast<std::size_t>(cycle[t % s])]; };
+    // The constructions have terms of degree 4 in the radii (the half chord's 4 r^2 |a|^2 - s^2):
+    // at radii beyond 2^+-200 they would overflow or underflow, so the frame is then scaled by a power
+    // of two near the largest radius (exact) and the results scaled back.
+    double big = f.r;
+    for (std::size_t t = 0; t < s; ++t) big = std::max(big, L[static_cast<std::size_t>(cycle[t])].R);
+    int k = std::abs(std::ilogb(big)) > 200 ? std::ilogb(big) : 0;
+    auto down = [&k](const Vec2& v) { return Vec2(std::ldexp(v.x(), -k), std::ldexp(v.y(), -k)); };
+    if (k != 0 && !down(f.c).allFinite()) k = 0;  // a frame beyond doubles' range: as it is
+    const pred::power::Frame fs{down(f.c), std::ldexp(f.r, -k)};
+    const auto line = [&](std::size_t t) {
+        pred::power::WLine l = L[static_cast<std::size_t>(cycle[t % s])];
+        if (k != 0 && l.box < 0) l.p = down(l.p), l.R = std::ldexp(l.R, -k);
+        return l;
+    };
     const auto start_of = [&](std::size_t t) {
         const std::size_t tp = (t + s - 1) % s;
-        return meets[tp] ? power_vertex(f, line(tp), line(t)) : power_chord_end(f, line(t), -1);
+        return meets[tp] ? power_vertex(fs, line(tp), line(t)) : power_chord_end(fs, line(t), -1);
     };
+    auto up = [k](const Vec2& v) { return Vec2(std::ldexp(v.x(), k), std::ldexp(v.y(), k)); };
     out.pieces.clear();
-    rel.clear();
+    rel.clear();  // relative to c, in the scaled frame
     is_arc.clear();
     span.clear();
     for (std::size_t t = 0; t < s; ++t) {
         const Vec2 st = start_of(t).value();
         Piece edge;
         edge.neighbor = ids[static_cast<std::size_t>(cycle[t])];
-        edge.start = f.c + st;
+        edge.start = f.c + up(st);
         out.pieces.push_back(edge);
         rel.push_back(st);
         is_arc.push_back(0);
         span.push_back(0.0);
         if (meets[t]) continue;
-        const DDPoint ud = power_chord_end(f, line(t), +1), wd = start_of(t + 1);
+        const DDPoint ud = power_chord_end(fs, line(t), +1), wd = start_of(t + 1);
         const Vec2 u = ud.value();
         // The span from the double-double ends (before rounding), so that only an arc shorter than
         // about 2^-100 radians could be mistaken for a full turn; the exact combinatorics already
@@ -370,15 +384,17 @@ inline void emit_power_cell(const pred::power::Frame& f, const std::vector<pred:
         double a = std::atan2(cr.hi + cr.lo, dt.hi + dt.lo);
         if (a <= 0.0) a += 2.0 * kPowerPi;
         Piece arc;
-        arc.start = f.c + u;
+        arc.start = f.c + up(u);
         arc.arc_span = a;
         out.pieces.push_back(arc);
         rel.push_back(u);
         is_arc.push_back(1);
         span.push_back(a);
     }
-    CellMeasures m = power_measures(rel, is_arc, span, f.r);
-    m.centroid += f.c;
+    CellMeasures m = power_measures(rel, is_arc, span, fs.r);
+    m.area = std::ldexp(m.area, 2 * k);
+    m.perimeter = std::ldexp(m.perimeter, k);
+    m.centroid = f.c + up(m.centroid);
     out.measures_ = m;
 }
 
