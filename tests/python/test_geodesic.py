@@ -194,6 +194,31 @@ def test_ties_go_to_the_lower_index():
     assert np.all(dv.coverage.geodesic_cells(np.array([b, a]), occ).labels[:, 4] == 0)
 
 
+@pytest.mark.parametrize("name, seed", [("building", 3), ("rooms", 4), ("cave", 5), ("warehouse", 6)])
+def test_agents_in_one_pixel_each_get_their_side(name, seed):
+    # a pixel holds one label: the agent that lost its own pixel to another agent there never spread,
+    # and got no cell (a corridor of 12 pixels gave areas [12, 0] instead of [1, 11])
+    corridor = dv.coverage.geodesic_cells(np.array([[0.1, 0.5], [0.9, 0.5]]), np.zeros((1, 12), bool))
+    assert corridor.areas.tolist() == [1.0, 11.0] and corridor.labels[0].tolist() == [0] + [1] * 11
+    occ = MAPS[name](seed)
+    H = occ.shape[0]
+    rng = np.random.default_rng(seed)
+    free = np.argwhere(~occ)
+    xy = []
+    for r, c in free[rng.choice(len(free), 3, replace=False)]:  # three pairs, each in one pixel
+        u = rng.uniform(0.05, 0.35)
+        xy += [[c + u, H - r - rng.uniform(0.2, 0.8)], [c + u + rng.uniform(0.3, 0.6), H - r - rng.uniform(0.2, 0.8)]]
+    xy = np.array(xy)
+    exact = geodesic_oracle.exact_distances(occ, to_uw(occ, xy))
+    cells = dv.coverage.geodesic_cells(xy, occ)
+    best = exact.min(axis=0)
+    second = np.sort(exact, axis=0)[1]
+    clear = np.isfinite(best) & (second > best * 1.05 + 0.2)  # as test_distances_match_exact_shortest_paths
+    assert np.array_equal(cells.labels[clear], exact.argmin(axis=0)[clear])
+    owners = set(exact.argmin(axis=0)[clear].tolist())
+    assert all(cells.areas[i] > 0 for i in owners)
+
+
 def test_radius_limits_the_cells():
     occ = MAPS["rooms"](1)
     xy = random_agents(occ, 4, 1)

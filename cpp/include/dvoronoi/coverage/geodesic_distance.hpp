@@ -214,11 +214,20 @@ inline void geodesic_field(const std::uint8_t* occ, std::int32_t rows, std::int3
     const auto& corner = ws.corner;
     auto convex = [&](std::int64_t i, std::int64_t j) { return corner[j * (cols + 1) + i] != 0; };
 
+    // Each source starts in its pixel and in the pixels around it that see it: a pixel holds one
+    // label, so a source whose own pixel goes to another source there (two agents in one pixel)
+    // would otherwise never spread, and get no cell.
     for (std::int32_t k = 0; k < n; ++k) {
         const auto& s = sources[static_cast<std::size_t>(k)];
         const auto c = static_cast<std::int64_t>(std::floor(s.u)), r = static_cast<std::int64_t>(std::floor(s.w));
         if (grid.blocked(r, c)) continue;  // the caller rejects this; never start inside a wall
-        offer_pixel(r * cols + c, dist2d(c + 0.5 - s.u, r + 0.5 - s.w), k, k);
+        for (std::int64_t qr = r - 1; qr <= r + 1; ++qr)
+            for (std::int64_t qc = c - 1; qc <= c + 1; ++qc) {
+                if (grid.blocked(qr, qc)) continue;  // the outside included
+                const PixelPoint cq{qc + 0.5, qr + 0.5};
+                if ((qr != r || qc != c) && !segment_free(grid, cq, s)) continue;
+                offer_pixel(qr * cols + qc, dist2d(cq.u - s.u, cq.w - s.w), k, k);
+            }
     }
 
     // Where the segment from pixel q's centre towards point A leaves q's square: -2 if A lies in q's
