@@ -35,6 +35,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 import time
 from typing import Any, Dict, List, Optional, Tuple
@@ -484,7 +485,11 @@ def main(argv: Optional[List[str]] = None) -> int:
     rank, size = comm.Get_rank(), comm.Get_size()
     bounds = args.bounds
     points = None
-    if rank == 0:
+
+    def read_inputs() -> None:  # on rank 0; an error reaches every rank (none is left waiting)
+        nonlocal bounds, points
+        if args.output and not os.path.isdir(os.path.dirname(os.path.abspath(args.output))):
+            raise ValueError(f"-o/--output: the folder of {args.output!r} does not exist")
         if args.random:
             n = args.random * (size if args.per_rank else 1)
             if bounds is None:
@@ -493,13 +498,23 @@ def main(argv: Optional[List[str]] = None) -> int:
             points = np.column_stack([rng.uniform(bounds[0], bounds[2], n),
                                       rng.uniform(bounds[1], bounds[3], n)])
         elif args.points:
-            points = _read_points(args.points)
+            try:
+                points = _read_points(args.points)
+            except OSError as e:
+                raise ValueError(f"{args.points}: {e.strerror or e}") from None
         else:
-            ap.error("give POINTS or --random N")
-    bounds = comm.bcast(bounds, root=0)
-    record = args.record_every if args.record_every > 0 else max(args.steps, 1)
-    out = lloyd(points, args.radius, steps=args.steps, gain=args.gain, bounds=bounds,
-                record_every=record, comm=comm, workers=args.threads or None)
+            raise ValueError("give POINTS or --random N")
+
+    try:
+        _check_on_root(comm, 0, read_inputs)
+        bounds = comm.bcast(bounds, root=0)
+        record = args.record_every if args.record_every > 0 else max(args.steps, 1)
+        out = lloyd(points, args.radius, steps=args.steps, gain=args.gain, bounds=bounds,
+                    record_every=record, comm=comm, workers=args.threads or None)
+    except (ValueError, TypeError) as e:  # raised on every rank alike: said once, exit 2 everywhere
+        if rank == 0:
+            print(f"{ap.prog}: error: {e}", file=sys.stderr)
+        return 2
     if rank == 0:
         assert out is not None  # lloyd returns the result on the root rank
         s = out["stats"]

@@ -101,6 +101,23 @@ def test_mpi_entry_point(tmp_path):
     assert all(b <= a * (1 + 1e-12) for a, b in zip(doc["cost"], doc["cost"][1:]))
 
 
+@pytest.mark.parametrize("args, message", [
+    (["MISSING", "-r", "0.05"], "MISSING: No such file or directory"),
+    (["BAD", "-r", "0.05"], "BAD:2: expected 'x y'"),
+    (["-r", "0.05"], "give POINTS or --random N"),
+    (["--random", "20", "-r", "-1"], "radius must be a positive finite number"),
+    (["--random", "20", "-r", "0.1", "-o", "NODIR/x.json"], "-o/--output: the folder of"),
+])
+def test_mpi_entry_point_errors_end_every_rank(tmp_path, args, message):
+    # an input read on rank 0 only: its error used to leave the other ranks waiting for ever
+    (tmp_path / "BAD").write_text("0.1 0.2\n0.3 x\n")
+    args = [str(tmp_path / a) if a in ("MISSING", "BAD", "NODIR/x.json") else a for a in args]
+    proc = mpirun(2, "-m", "dvoronoi.mpi", *args, "--steps", "1", timeout=60)
+    assert proc.returncode == 2, proc.stderr[-3000:]
+    assert proc.stderr.count("python -m dvoronoi.mpi: error: ") == 1 and message in proc.stderr, proc.stderr[-3000:]
+    assert "Traceback" not in proc.stderr and not (tmp_path / "NODIR").exists()
+
+
 # -- dvoronoi_gvd_mpi on occupancy maps: the CLI's bytes for any rank count ---------------------------
 
 ROOT = HERE.parents[1]
