@@ -38,6 +38,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -110,24 +111,47 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
     return all;
 }
 
+/// Opens an output file on rank 0 before any work (as the CLI does), naming the option on failure.
+std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::string& option) {
+    try {
+        return std::make_unique<io::AtomicFile>(path);
+    } catch (const io::OutputError& e) {
+        throw InputError(option + ": " + e.what());
+    }
+}
+
 int run_obstacles(const Args& a, int rank, int size) {
     if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
     if (a.map.reading_given() || a.map.medial_changed())
         throw InputError("--resolution, --origin, --unknown, --min-separation and --prune-length are for map files: "
                          "dvoronoi_gvd_mpi draws the labelled diagram of obstacle files");
-    // Rank 0 reads the file and broadcasts its text; every rank parses it (same scene everywhere).
+    // The same checks and messages as `dvoronoi gvd`, on every rank alike.
+    if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
+        throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
+    const bool to_stdout = a.output.empty() || a.output == "-";
+    if (!to_stdout && io::detail::lower_ext(a.output) != ".json")
+        throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
+    if (!to_stdout && !a.svg.empty() && a.output == a.svg) throw InputError("--svg: same file as -o/--output ('" + a.svg + "')");
+    // Rank 0 reads the file and opens the outputs (an unwritable output fails before any work), then
+    // broadcasts the text; every rank parses it (same scene everywhere).
     std::string text;
+    std::unique_ptr<io::AtomicFile> out, svg;
     int ok = 1;
     std::string error;
     if (rank == 0) {
         std::ifstream in(a.input, std::ios::binary);
-        if (!in) {
-            ok = 0;
-            error = a.input + ": cannot open file";
-        } else {
+        try {
+            if (std::filesystem::is_directory(a.input))
+                throw InputError("'" + a.input + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
+            if (!in) throw InputError(a.input + ": cannot open file");
             std::ostringstream s;
             s << in.rdbuf();
             text = s.str();
+            if (!to_stdout) out = open_output(a.output, "-o/--output");
+            if (!a.svg.empty()) svg = open_output(a.svg, "--svg");
+        } catch (const InputError& e) {
+            ok = 0;
+            error = e.what();
         }
     }
     MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -247,24 +271,21 @@ int run_obstacles(const Args& a, int rank, int size) {
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::json doc = io::gvd_to_json(r);
     doc["stats"]["total_seconds"] = total;
-    if (!a.svg.empty()) io::write_atomically(a.svg, [&](std::ostream& os) { io::write_gvd_svg(os, file.scene, r); });
-    if (a.output.empty() || a.output == "-") {
-        std::cout << doc.dump() << '\n';
+    // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
+    if (svg) io::write_gvd_svg(svg->stream(), file.scene, r);
+    if (out) {
+        out->stream() << doc.dump() << '\n';
+        out->commit();
     } else {
-        io::write_atomically(a.output, [&](std::ostream& os) { os << doc.dump() << '\n'; });
+        std::cout << doc.dump() << '\n';
     }
+    if (svg) svg->commit();
     std::fprintf(stderr, "dvoronoi_gvd_mpi: %zu diagram cells, %d ranks (%s), %.3f s\n", r.size(), size,
                  io::mode_name(opt.mode), total);
+    if (r.size() == 0)  // the CLI's warning
+        std::fprintf(stderr, "dvoronoi_gvd_mpi: warning: no diagram cell: the corners of every cell share one nearest "
+                             "obstacle (an obstacle covers the working area)\n");
     return 0;
-}
-
-/// Opens an output file on rank 0 before any work (as the CLI does), naming the option on failure.
-std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::string& option) {
-    try {
-        return std::make_unique<io::AtomicFile>(path);
-    } catch (const io::OutputError& e) {
-        throw InputError(option + ": " + e.what());
-    }
 }
 
 int run_map(const Args& a, int rank, int size) {

@@ -232,6 +232,37 @@ def test_gvd_mpi_refuses_options_its_input_does_not_read(tmp_path):
 
 
 @needs_gvd
+def test_gvd_mpi_document_outputs_as_the_cli(tmp_path):
+    # outputs opened before any work, with the CLI's checks (an output in a missing folder left the
+    # SVG written and aborted; -o equal to --svg lost the SVG), and the CLI's empty-diagram warning
+    doc = tmp_path / "doc.json"
+    doc.write_text(json.dumps({"area": {"box": [0, 0, 100, 100]}, "obstacles": [
+        {"type": "polygon", "vertices": [[10, 10], [30, 10], [30, 20], [18, 20], [18, 40], [10, 40]]},
+        {"type": "circle", "center": [70, 60], "radius": 12}]}))
+    for args, message in ((["-o", "nodir/x.json", "--svg", "a.svg"], "-o/--output: "),
+                          (["-o", "c.json", "--svg", "c.json"], "--svg: same file as -o/--output"),
+                          (["-o", "b.txt"], "-o/--output: the grid diagram is written as JSON"),
+                          (["-r", "-1"], "--robot-radius: must be a finite number >= 0, got -1")):
+        args = [str(tmp_path / a) if a.endswith((".json", ".svg", ".txt")) else a for a in args]
+        proc = mpirun(3, str(doc), "--grid", "64", *args, program=GVD_MPI, timeout=120)
+        assert proc.returncode == 2 and proc.stderr.count("dvoronoi_gvd_mpi: error: ") == 1, proc.stderr[-2000:]
+        assert message in proc.stderr, proc.stderr[-2000:]
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["doc.json"]
+    out, svg, one = tmp_path / "ok.json", tmp_path / "ok.svg", tmp_path / "one.json"
+    proc = mpirun(3, str(doc), "--grid", "64", "-o", str(out), "--svg", str(svg), program=GVD_MPI, timeout=120)
+    assert proc.returncode == 0 and svg.read_text().startswith("<svg"), proc.stderr[-2000:]
+    subprocess.run([CLI, "gvd", str(doc), "--grid", "64", "-q", "-o", str(one)], check=True, timeout=120)
+    mpi, cli = json.loads(out.read_text()), json.loads(one.read_text())
+    mpi.pop("stats"), cli.pop("stats")
+    assert mpi == cli
+    full = tmp_path / "full.json"
+    full.write_text(json.dumps({"area": {"box": [0, 0, 10, 10]},
+                                "obstacles": [{"type": "polygon", "vertices": [[-1, -1], [11, -1], [11, 11], [-1, 11]]}]}))
+    proc = mpirun(2, str(full), "--grid", "16", "-o", str(tmp_path / "f.json"), program=GVD_MPI, timeout=120)
+    assert proc.returncode == 0 and proc.stderr.count("dvoronoi_gvd_mpi: warning: no diagram cell") == 1, proc.stderr
+
+
+@needs_gvd
 def test_gvd_mpi_bad_map_exits_2_naming_the_file(tmp_path):
     bad = tmp_path / "bad.map"
     bad.write_text("type octile\nheight 3\nwidth 4\nmap\n....\n..\n....\n")
