@@ -49,7 +49,7 @@ int run_lloyd_map(const LloydMapRequest& r) {
     try {
         agents = coverage::agents_on_map(g.occupied.data(), frame, xy.data(), file.points.rows());
     } catch (const std::invalid_argument& e) {
-        throw InputError(file.name + ": " + e.what() + " of the map " + r.map);
+        throw InputError(file.name + ": " + e.what() + " (--map " + r.map + ")");
     }
     std::unique_ptr<io::AtomicFile> out;
     if (!to_stdout) out = open_output(r.output, "-o/--output");
