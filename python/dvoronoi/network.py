@@ -671,7 +671,13 @@ def simulate(algorithm: str, points: Any, comm_range: float, loss: float = 0.0, 
             if not 0.0 < fraction <= 1.0:
                 raise ValueError(f"anchor_fraction must be in (0, 1], got {anchor_fraction!r}")
         elif anchors is not None:
-            anchor_list = np.asarray(anchors, dtype=np.int64).ravel().tolist()
+            a = np.asarray(anchors).ravel()
+            # node indices: a cast would truncate 0.9 to node 0 and read a bool mask as nodes 0 and 1
+            if a.size and (a.dtype == bool or a.dtype.kind not in "iuf" or
+                           (a.dtype.kind == "f" and not np.all(np.isfinite(a) & (a == np.round(a))))):
+                k = 0 if a.dtype == bool or a.dtype.kind not in "iuf" else int(np.flatnonzero(~(np.isfinite(a) & (a == np.round(a))))[0])
+                raise ValueError(f"anchors[{k}] = {a[k].item()!r} is not a node index (anchors lists node indices)")
+            anchor_list = a.astype(np.int64).tolist()
         if radius is not None:
             radius = _args.positive(radius, "radius")
     elif anchors is not None or anchor_fraction is not None:

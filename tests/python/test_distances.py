@@ -290,6 +290,8 @@ def test_predicates_exposed():
 
 
 def test_bad_input_names_the_entry():
+    with pytest.raises(ValueError, match=r"distances must be an \(n, n\) matrix.*rows have different lengths"):
+        dv.neighbors_from_distances([[0, 1], [1, 0, 2]])
     d = dense_distances(random_points(1, 6))
     bad = d.copy()
     bad[1, 4] = bad[4, 1] = -1.0

@@ -505,3 +505,13 @@ def test_cc_unbounded_cells_are_the_exact_cores():
     for i in np.flatnonzero(inner)[:10]:
         c = res.cell(int(i))
         assert sorted(c.neighbors.tolist()) == res.neighbors(int(i)).tolist()
+
+
+@pytest.mark.parametrize("anchors, shown", [([0.9, 1.99], "anchors[0] = 0.9"), ([False, True], "anchors[0] = False"),
+                                            ([0, np.nan], "anchors[1] = nan"), (["0", "1"], "anchors[0] = '0'")])
+def test_anchors_must_be_node_indices(anchors, shown):
+    # a cast truncated 0.9 to node 0 and read a bool mask as nodes 0 and 1: every DV-Hop position moved
+    pts = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [2, 2]], float)
+    with pytest.raises(ValueError, match=rf"{__import__('re').escape(shown)}.* is not a node index"):
+        net.simulate("bs", pts, 2.0, anchors=anchors)
+    assert net.simulate("bs", pts, 2.0, anchors=[0.0, 1.0]).anchors.tolist() == [0, 1]  # whole numbers are indices

@@ -150,7 +150,11 @@ def as_distance_graph(distances: Any, *, n: Optional[int] = None, squared: bool 
             raise ValueError("distances as (rows, cols, values) needs three 1-d arrays of one length")
         nn, rows, cols, vals, label = _edge_list(np.column_stack([rows, cols, vals]).astype(np.float64), n)
     else:
-        arr = np.asarray(distances)
+        try:
+            arr = np.asarray(distances)
+        except ValueError:  # rows of different lengths: numpy's message names no argument
+            raise ValueError("distances must be an (n, n) matrix, an (m, 3) edge list or (rows, cols, values); "
+                             "its rows have different lengths") from None
         if arr.dtype.kind not in "fiu":
             raise TypeError(f"distances must be numeric, got dtype {arr.dtype}")
         arr = arr.astype(np.float64, copy=False)
