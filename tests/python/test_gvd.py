@@ -543,7 +543,7 @@ def test_path_errors_and_no_route():
     ({"area": {"box": [0, 0, 100, 100]}, "obstacles": [{"type": "polygon", "vertices": [[50, 90], [73, 20], [13, 63], [87, 63], [27, 20]]}]},
      r"obstacles\[0\]\.vertices: polygon is not simple"),  # a pentagram: left turns only, two windings
     ({"area": {"box": [0, 0, 16, 16]}, "obstacles": [{"type": "polygon", "vertices": [[2, 2], [6, 2], [6, 6], [12, 6], [6, 6], [2, 6]]}]},
-     r"obstacles\[0\]\.vertices: the polygon turns back on itself at vertex 3 \(a spike"),
+     r"obstacles\[0\]\.vertices: the polygon turns back on itself at vertex 3 \(its edges overlap\)"),
 ])
 def test_bad_obstacles_name_index_and_field(doc, message):
     with pytest.raises(ValueError, match=message):
@@ -610,7 +610,7 @@ def test_closed_rings_keep_every_corner():
         got = dv.grid_voronoi(doc(ring, area), cells=80)
         assert np.array_equal(got.cells, want.cells) and np.array_equal(got.labels, want.labels), name
     # Still too few distinct vertices.
-    with pytest.raises(ValueError, match=r"obstacles\[0\]\.vertices: a polygon needs at least 3 distinct"):
+    with pytest.raises(ValueError, match=r"obstacles\[0\]\.vertices: a polygon needs at least three vertices that are not collinear"):
         dv.gvd.load_obstacles(doc([[1, 1], [1, 1], [2, 2], [2, 2], [1, 1]], box))
 
 

@@ -387,7 +387,7 @@ TEST_CASE("polygon rings are read exactly: far from the origin, tiny, spikes and
     CHECK(msg({}, star).find("area: the working area must be a convex polygon") == 0);
     const std::vector<Vec2> spike = {Vec2(2, 2), Vec2(6, 2), Vec2(6, 6), Vec2(12, 6), Vec2(6, 6), Vec2(2, 6)};
     CHECK(msg({Obstacle(Shape::polygon(spike))}, box_area(0, 0, 16, 16)) ==
-          "obstacles[0].vertices: the polygon turns back on itself at vertex 3 (a spike: its edges overlap)");
+          "obstacles[0].vertices: the polygon turns back on itself at vertex 3 (its edges overlap)");
     CHECK(msg({}, spike).find("area: the polygon turns back on itself at vertex 3") == 0);
     // closed rings, repeated and straight-on vertices are spellings of one polygon
     const std::vector<Vec2> spelled = {Vec2(3, 2), Vec2(5, 2), Vec2(7, 2), Vec2(7, 2), Vec2(3, 6), Vec2(3, 2)};

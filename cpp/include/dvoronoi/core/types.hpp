@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace dvoronoi {
 
@@ -118,6 +119,12 @@ inline void require_finite_radius(double radius, const char* name = "radius") {
     }
     require_radius_range(radius, kMinRadius, kMaxRadius, name,
                          "its square and its disk's area must be normal doubles");
+}
+
+/// require_finite_radius for each entry of a radius per agent, naming `name[i]`.
+inline void require_finite_radii(const std::vector<double>& radii, const char* name = "radius") {
+    for (std::size_t i = 0; i < radii.size(); ++i)
+        require_finite_radius(radii[i], (name + ("[" + std::to_string(i) + "]")).c_str());
 }
 
 /// Drops the last vertex of a closed ring (one that repeats the first), so a polygon given as a

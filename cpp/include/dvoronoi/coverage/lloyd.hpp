@@ -470,7 +470,7 @@ public:
         if (static_cast<Index>(radii.size()) != points.rows())
             throw InputError("radius must have one radius per agent: got " + std::to_string(radii.size()) +
                              " radii for " + std::to_string(points.rows()) + " agents");
-        for (std::size_t i = 0; i < radii.size(); ++i) detail::require_finite_radius(radii[i], ("radius[" + std::to_string(i) + "]").c_str());
+        detail::require_finite_radii(radii);
         const double rmax = radii.empty() ? 1.0 : *std::max_element(radii.begin(), radii.end());
         check(points, rmax);
         for (const double R : radii) detail::require_moment_radius(R);

@@ -101,47 +101,8 @@ inline std::string where(std::size_t obstacle, std::size_t shape, std::size_t n_
     return s;
 }
 
-/// The ring `v` without repeated vertices (a closed ring's last vertex included) and without vertices
-/// exactly on the straight segment between their neighbours: every spelling of one polygon gives one
-/// ring (the same reading as core/convex_ring.hpp). Exact orientation tests and comparisons.
-/// \throws InputError naming `name` when fewer than three vertices that are not collinear remain, or
-///         at a spike: the boundary going out to a vertex and back along one line (dropping it would
-///         change the shape).
-inline std::vector<Vec2> clean_ring(const std::vector<Vec2>& in, const std::string& name) {
-    std::vector<Vec2> v;
-    std::vector<std::size_t> at;  // each kept vertex's index in `in`, for messages
-    for (std::size_t k = 0; k < in.size(); ++k)
-        if (v.empty() || in[k] != v.back()) v.push_back(in[k]), at.push_back(k);
-    while (v.size() > 1 && v.back() == v.front()) v.pop_back(), at.pop_back();
-    const auto no_polygon = [&] { return InputError(name + ": a polygon needs at least 3 distinct, non-collinear vertices"); };
-    bool turns = false;  // all on one line: say so before a turn back would be called a spike
-    for (std::size_t k = 0, n = v.size(); k < n && n >= 3 && !turns; ++k)
-        turns = pred::orient(v[(k + n - 1) % n], v[k], v[(k + 1) % n]) != 0;
-    if (!turns) throw no_polygon();
-    for (bool changed = true; changed && v.size() >= 3;) {
-        changed = false;
-        for (std::size_t k = 0; k < v.size() && v.size() >= 3; ++k) {
-            const std::size_t n = v.size();
-            const Vec2 &p = v[(k + n - 1) % n], &c = v[k], &q = v[(k + 1) % n];
-            if (pred::orient(p, c, q) != 0) continue;
-            // on the line p-q: straight on (c between p and q) is dropped; turning back is a spike
-            const bool between = std::min(p.x(), q.x()) <= c.x() && c.x() <= std::max(p.x(), q.x()) &&
-                                 std::min(p.y(), q.y()) <= c.y() && c.y() <= std::max(p.y(), q.y());
-            if (!between || p == q)
-                throw InputError(name + ": the polygon turns back on itself at vertex " + std::to_string(at[k]) +
-                                 " (a spike: its edges overlap)");
-            v.erase(v.begin() + static_cast<std::ptrdiff_t>(k));
-            at.erase(at.begin() + static_cast<std::ptrdiff_t>(k));
-            changed = true;
-            --k;
-        }
-    }
-    if (v.size() < 3) throw no_polygon();
-    return v;
-}
-
-/// +1 when the ring (clean_ring's: no repeats, no straight-on vertices) runs counter-clockwise, -1
-/// clockwise, exactly: the turn at the lowest of the leftmost vertices, a corner of the polygon's
+/// +1 when the ring (core/convex_ring.hpp's clean_ring: no repeats, no straight-on vertices) runs
+/// counter-clockwise, -1 clockwise, exactly: the turn at the lowest of the leftmost vertices, a corner of the polygon's
 /// hull, has the polygon's orientation (for a simple ring; other rings are refused later anyway).
 /// Not the shoelace sum: in doubles it cancels at large coordinates and underflows at tiny ones.
 inline int ring_orientation(const std::vector<Vec2>& v) {
@@ -302,8 +263,8 @@ inline std::vector<Vec2> box_area(double x0, double y0, double x1, double y1) {
 /// Compiles obstacles and a convex working area into a Scene.
 ///
 /// \throws InputError naming `obstacles[i]` (and `.parts[k]`, `.vertices`, `.radius`) for a
-/// non-finite coordinate, a non-positive radius, a polygon with fewer than 3 distinct non-collinear
-/// vertices or one that is not simple; naming `area` for an area that is not a convex polygon.
+/// non-finite coordinate, a non-positive radius, a polygon with fewer than 3 non-collinear vertices, a
+/// spike or one that is not simple; naming `area` for an area that is not a convex polygon.
 /// \note O(total vertices^2) for the simplicity checks of non-convex polygons; linear otherwise.
 inline Scene make_scene(const std::vector<Obstacle>& obstacles, const std::vector<Vec2>& area_in,
                         bool area_is_box = false) {
@@ -314,7 +275,7 @@ inline Scene make_scene(const std::vector<Obstacle>& obstacles, const std::vecto
     // Area: CCW convex polygon.
     for (std::size_t k = 0; k < area_in.size(); ++k)
         detail::require_finite(area_in[k], "area.vertices[" + std::to_string(k) + "]");
-    std::vector<Vec2> area = detail::clean_ring(area_in, "area");
+    std::vector<Vec2> area = ::dvoronoi::detail::clean_ring(area_in, "area");
     if (detail::ring_orientation(area) < 0) std::reverse(area.begin(), area.end());
     if (!detail::ring_is_convex(area)) throw InputError("area: the working area must be a convex polygon");
     s.area = area;
@@ -374,7 +335,7 @@ inline Scene make_scene(const std::vector<Obstacle>& obstacles, const std::vecto
                 case ShapeKind::Polygon: {
                     for (std::size_t t = 0; t < sh.vertices.size(); ++t)
                         detail::require_finite(sh.vertices[t], name + ".vertices[" + std::to_string(t) + "]");
-                    std::vector<Vec2> ring = detail::clean_ring(sh.vertices, name + ".vertices");
+                    std::vector<Vec2> ring = ::dvoronoi::detail::clean_ring(sh.vertices, name + ".vertices");
                     if (detail::ring_orientation(ring) < 0) std::reverse(ring.begin(), ring.end());
                     if (detail::ring_is_convex(ring)) {
                         add_part(ShapeKind::Polygon, label, ring, ring[0], 0.0);
@@ -387,7 +348,7 @@ inline Scene make_scene(const std::vector<Obstacle>& obstacles, const std::vecto
                     for (const auto& cyc : detail::convex_decomposition(ring)) {
                         std::vector<Vec2> pts;
                         for (auto id : cyc) pts.push_back(ring[id]);
-                        pts = detail::clean_ring(pts, name + ".vertices");  // merged pieces may hold straight-on vertices
+                        pts = ::dvoronoi::detail::clean_ring(pts, name + ".vertices");  // merged pieces may hold straight-on vertices
                         add_part(ShapeKind::Polygon, label, pts, pts[0], 0.0);
                     }
                     break;

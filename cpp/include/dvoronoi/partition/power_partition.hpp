@@ -138,7 +138,7 @@ inline LimitedPartition limited_cells(PointsRef points, const std::vector<double
     if (static_cast<Index>(radii.size()) != n)
         throw InputError("radius must be a number or one radius per agent: " + std::to_string(radii.size()) +
                          " radii for " + std::to_string(n) + " points");
-    for (std::size_t i = 0; i < radii.size(); ++i) detail::require_finite_radius(radii[i], ("radius[" + std::to_string(i) + "]").c_str());
+    detail::require_finite_radii(radii);
     const bool equal = std::all_of(radii.begin(), radii.end(), [&](double R) { return R == radii.front(); });
     if (n == 0 || equal) return limited_cells(points, n == 0 ? 1.0 : radii.front(), method, threads, progress);
 
