@@ -18,6 +18,14 @@ CLI = os.environ.get("DVORONOI_CLI")
 REST = "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"  # keys map_server requires besides image, resolution, origin
 
 
+def assert_is_full_build(gv, occ, workers):
+    """An updated diagram equals a full build on the map it ends with."""
+    full = dv.grid_voronoi(occ, workers=workers)
+    assert np.array_equal(gv.grid.occupied, occ)
+    assert np.array_equal(gv.diagram_mask, full.diagram_mask)
+    assert np.array_equal(gv.clearance_map, full.clearance_map)
+
+
 # -- an independent oracle of the definition (numpy; doubled pixel units) ------------------------
 
 def oracle_features(occ):
@@ -334,10 +342,7 @@ def test_updates_give_the_full_build_after_random_sequences():
             else:
                 cur = cur ^ (rng.random(cur.shape) < 0.01)
                 gv.update(cur)
-            fresh = dv.grid_voronoi(cur, workers=2)
-            assert np.array_equal(gv.grid.occupied, cur)
-            assert np.array_equal(gv.diagram_mask, fresh.diagram_mask)
-            assert np.array_equal(gv.clearance_map, fresh.clearance_map)
+            assert_is_full_build(gv, cur, workers=2)
 
 
 def test_update_arguments_are_checked():
@@ -973,10 +978,7 @@ def test_one_diagram_shared_between_threads_stays_the_full_builds():
     for t in threads:
         t.join()
     assert not errors
-    full = dv.grid_voronoi(occ, workers=1)
-    assert np.array_equal(gv.grid.occupied, occ)
-    assert np.array_equal(gv.diagram_mask, full.diagram_mask)
-    assert np.array_equal(gv.clearance_map, full.clearance_map)
+    assert_is_full_build(gv, occ, workers=1)
 
 
 def test_pixel_errors_show_the_values_given():
