@@ -173,10 +173,7 @@ int run_gvd(const GvdCliOptions& o) {
             throw UsageError(std::string("--path: ") + e.what());
         }
         path_points = p.points;
-        nlohmann::json pts = nlohmann::json::array();
-        for (const Vec2& q : p.points) pts.push_back({q.x(), q.y()});
-        // no path: no length, as the medial diagram's JSON writes it (JSON has no infinity)
-        doc["path"] = {{"found", p.found()}, {"length", p.found() ? nlohmann::json(p.length) : nlohmann::json(nullptr)}, {"points", pts}};
+        doc["path"] = io::path_to_json(p);  // as the medial diagram's
     }
     if (!o.quiet)
         std::fprintf(stderr, "gvd: %zu diagram cells, %zu vertices, %llu corners labelled, %d worker(s), %.3f s\n",

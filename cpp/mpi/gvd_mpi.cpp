@@ -2,10 +2,14 @@
 // the input's extension, as `dvoronoi gvd` chooses them.
 //
 //   mpirun -n K dvoronoi_gvd_mpi OBSTACLES.json --grid N [--mode cooperative|independent]
-//          [--robot-radius R] [-o OUT.json] [--svg OUT.svg]
+//          [--robot-radius R] [--path SX SY GX GY] [-o OUT.json] [--svg OUT.svg] [-q]
+//   mpirun -n K dvoronoi_gvd_mpi OBSTACLES.json --grid N --diagram medial [--min-separation S]
+//          [--prune-length L] [--robot-radius R] [--path SX SY GX GY] [-o OUT.json] [--svg OUT.svg] [-q]
 //   mpirun -n K dvoronoi_gvd_mpi MAP.{yaml,pgm,png,map} [--robot-radius R] [--min-separation S]
 //          [--prune-length L] [--unknown occupied|free] [--resolution M] [--origin X Y]
-//          [-o OUT.json] [--svg OUT.svg]
+//          [--path SX SY GX GY] [-o OUT.json] [--svg OUT.svg] [-q]
+//
+// The options, checks, messages and outputs are `dvoronoi gvd`'s (workers are ranks here).
 //
 // Obstacle files: one vertical slice per rank (Mendes et al., Section 3), as the paper ran it on a
 // cluster. Rank 0 reads the obstacle file and broadcasts it (the paper broadcasts the obstacle data to
@@ -14,17 +18,20 @@
 // rank then sends a summary of its traced components to rank 0, which joins them across the borders
 // and answers which to keep; the kept cells go to rank 0, which writes the same JSON as `dvoronoi gvd`.
 //
-// Map files: the medial diagram (medial_diagram.hpp), one band of rows per rank. Rank 0 reads the map
-// and broadcasts it; every rank runs the column pass of the nearest-point transform over the whole map
+// Map files, and obstacle files with --diagram medial (drawn on --grid pixels by rank 0): the medial
+// diagram (medial_diagram.hpp), one band of rows per rank. Rank 0 reads the map and broadcasts it; every rank runs the column pass of the nearest-point transform over the whole map
 // (it needs whole columns, and is cheap), the row pass over its band and one halo row on each side,
-// and marks its band. Rank 0 gathers the bands and the nearest points of the diagram pixels and writes
-// the bytes `dvoronoi gvd MAP` writes.
+// and marks its band. Rank 0 gathers the bands and the nearest points of the diagram pixels (of every
+// pixel for a path: the search reads clearances anywhere) and writes the bytes `dvoronoi gvd` writes.
 //
 // The diagram is identical for every K (and both approaches).
 //
 // Exit codes as the CLI: 0 success, 2 bad command line or input (rank 0 prints the message), 1 other.
 #include "../cli/map_options.hpp"
+#include "dvoronoi/gvd/grid_path.hpp"
 #include "dvoronoi/gvd/grid_voronoi.hpp"
+#include "dvoronoi/gvd/path.hpp"
+#include "dvoronoi/gvd/rasterize.hpp"
 #include "dvoronoi/io/atomic_write.hpp"
 #include "dvoronoi/io/gvd_json.hpp"
 #include "dvoronoi/io/gvd_svg.hpp"
@@ -56,7 +63,10 @@ struct Args {
     std::string mode = "cooperative";
     double robot_radius = 0.0;
     bool no_visibility = false;
+    std::string diagram;  // empty: medial for maps, labels for obstacle files
+    std::vector<double> path;
     std::string output, svg;
+    bool quiet = false;
     cli_maps::MapOptions map;  // map files, as `dvoronoi gvd MAP`
 };
 
@@ -111,6 +121,20 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
     return all;
 }
 
+/// Checks shared by both inputs, with `dvoronoi gvd`'s messages; returns whether the JSON goes to stdout.
+bool check_common(const Args& a) {
+    if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
+        throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
+    if (!a.path.empty() && a.path.size() != 4) throw InputError("--path: expects SX SY GX GY");
+    for (double v : a.path)
+        if (!std::isfinite(v)) throw InputError("--path: coordinates must be finite");
+    const bool to_stdout = a.output.empty() || a.output == "-";
+    if (!to_stdout && io::detail::lower_ext(a.output) != ".json")
+        throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
+    if (!to_stdout && !a.svg.empty() && a.output == a.svg) throw InputError("--svg: same file as -o/--output ('" + a.svg + "')");
+    return to_stdout;
+}
+
 /// Opens an output file on rank 0 before any work (as the CLI does), naming the option on failure.
 std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::string& option) {
     try {
@@ -120,35 +144,15 @@ std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::
     }
 }
 
-int run_obstacles(const Args& a, int rank, int size) {
-    if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
-    if (a.map.reading_given() || a.map.medial_changed())
-        throw InputError("--resolution, --origin, --unknown, --min-separation and --prune-length are for map files: "
-                         "dvoronoi_gvd_mpi draws the labelled diagram of obstacle files");
-    // The same checks and messages as `dvoronoi gvd`, on every rank alike.
-    if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
-        throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
-    const bool to_stdout = a.output.empty() || a.output == "-";
-    if (!to_stdout && io::detail::lower_ext(a.output) != ".json")
-        throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
-    if (!to_stdout && !a.svg.empty() && a.output == a.svg) throw InputError("--svg: same file as -o/--output ('" + a.svg + "')");
-    // Rank 0 reads the file and opens the outputs (an unwritable output fails before any work), then
-    // broadcasts the text; every rank parses it (same scene everywhere).
-    std::string text;
-    std::unique_ptr<io::AtomicFile> out, svg;
+/// Rank 0 runs `read` (which reads the input and opens the outputs); an InputError there ends every
+/// rank with its message.
+template <class Read>
+void on_rank0(int rank, Read&& read) {
     int ok = 1;
     std::string error;
     if (rank == 0) {
-        std::ifstream in(a.input, std::ios::binary);
         try {
-            if (std::filesystem::is_directory(a.input))
-                throw InputError("'" + a.input + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
-            if (!in) throw InputError(a.input + ": cannot open file");
-            std::ostringstream s;
-            s << in.rdbuf();
-            text = s.str();
-            if (!to_stdout) out = open_output(a.output, "-o/--output");
-            if (!a.svg.empty()) svg = open_output(a.svg, "--svg");
+            read();
         } catch (const InputError& e) {
             ok = 0;
             error = e.what();
@@ -156,6 +160,51 @@ int run_obstacles(const Args& a, int rank, int size) {
     }
     MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (!ok) throw InputError(error);
+}
+
+int run_medial(const Args& a, int rank, int size, gvd::OccupancyGrid grid, std::size_t unknown, bool document,
+               std::unique_ptr<io::AtomicFile> out, std::unique_ptr<io::AtomicFile> svg);
+
+int run_obstacles(const Args& a, int rank, int size) {
+    if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
+    // The same checks and messages as `dvoronoi gvd`, on every rank alike: an option this input or
+    // diagram does not read is an error, not silently dropped.
+    if (a.map.reading_given())
+        throw InputError("--resolution, --origin and --unknown are for map files: an obstacle file has its own "
+                         "coordinates and no unknown pixels");
+    const bool medial = a.diagram == "medial";
+    if (medial && (a.mode != "cooperative" || a.no_visibility))
+        throw InputError("--mode and --no-visibility are the labelled diagram's; --diagram medial does not use them");
+    if (!medial && a.map.medial_changed())
+        throw InputError("--min-separation and --prune-length are the medial diagram's; add --diagram medial");
+    if (medial) a.map.check(a.input);
+    const bool to_stdout = check_common(a);
+    // Rank 0 reads the file and opens the outputs (an unwritable output fails before any work), then
+    // broadcasts the text; every rank parses it (same scene everywhere). For the medial diagram rank 0
+    // draws it on --grid pixels (as `dvoronoi gvd` and Python's diagram="medial") and hands the map on.
+    std::string text;
+    std::unique_ptr<io::AtomicFile> out, svg;
+    gvd::OccupancyGrid drawn;
+    on_rank0(rank, [&] {
+        if (std::filesystem::is_directory(a.input))
+            throw InputError("'" + a.input + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
+        std::ifstream in(a.input, std::ios::binary);
+        if (!in) throw InputError(a.input + ": cannot open file");
+        std::ostringstream s;
+        s << in.rdbuf();
+        text = s.str();
+        if (medial) {
+            const io::ObstacleFile file = io::parse_obstacles(text, a.input);
+            try {
+                drawn = gvd::rasterize(file.scene, a.grid);
+            } catch (const InputError& e) {  // e.g. an area too wide for a grid: name the file
+                throw InputError(a.input + ": " + e.what());
+            }
+        }
+        if (!to_stdout) out = open_output(a.output, "-o/--output");
+        if (!a.svg.empty()) svg = open_output(a.svg, "--svg");
+    });
+    if (medial) return run_medial(a, rank, size, std::move(drawn), 0, true, std::move(out), std::move(svg));
     unsigned long long len = text.size();
     MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     text.resize(len);
@@ -271,8 +320,20 @@ int run_obstacles(const Args& a, int rank, int size) {
     const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::json doc = io::gvd_to_json(r);
     doc["stats"]["total_seconds"] = total;
+    std::vector<Vec2> path_points;
+    if (!a.path.empty()) {  // as `dvoronoi gvd` plans it
+        const gvd::ObstacleIndex full_index(file.scene);
+        gvd::PathResult p;
+        try {
+            p = gvd::find_path(r, file.scene, full_index, Vec2(a.path[0], a.path[1]), Vec2(a.path[2], a.path[3]));
+        } catch (const InputError& e) {
+            throw InputError(std::string("--path: ") + e.what());
+        }
+        path_points = p.points;
+        doc["path"] = io::path_to_json(p);
+    }
     // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
-    if (svg) io::write_gvd_svg(svg->stream(), file.scene, r);
+    if (svg) io::write_gvd_svg(svg->stream(), file.scene, r, path_points);
     if (out) {
         out->stream() << doc.dump() << '\n';
         out->commit();
@@ -280,9 +341,10 @@ int run_obstacles(const Args& a, int rank, int size) {
         std::cout << doc.dump() << '\n';
     }
     if (svg) svg->commit();
-    std::fprintf(stderr, "dvoronoi_gvd_mpi: %zu diagram cells, %d ranks (%s), %.3f s\n", r.size(), size,
-                 io::mode_name(opt.mode), total);
-    if (r.size() == 0)  // the CLI's warning
+    if (!a.quiet)
+        std::fprintf(stderr, "dvoronoi_gvd_mpi: %zu diagram cells, %d ranks (%s), %.3f s\n", r.size(), size,
+                     io::mode_name(opt.mode), total);
+    if (r.size() == 0)  // the CLI's warning, shown with -q too
         std::fprintf(stderr, "dvoronoi_gvd_mpi: warning: no diagram cell: the corners of every cell share one nearest "
                              "obstacle (an obstacle covers the working area)\n");
     return 0;
@@ -291,62 +353,58 @@ int run_obstacles(const Args& a, int rank, int size) {
 int run_map(const Args& a, int rank, int size) {
     // The same checks and messages as `dvoronoi gvd MAP`; every rank sees the same arguments, so all
     // throw together.
+    if (a.diagram == "labels")
+        throw InputError("--diagram: dvoronoi_gvd_mpi draws the medial diagram of map files; for the labelled diagram use "
+                         "Python's dv.grid_voronoi(map, diagram=\"labels\")");
     if (a.grid != 0 || a.mode != "cooperative" || a.no_visibility)
         throw InputError("--grid, --mode and --no-visibility are for obstacle files: a map's diagram grid is its pixels");
-    if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
-        throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
     a.map.check(a.input);
-    const bool to_stdout = a.output.empty() || a.output == "-";
-    if (!to_stdout && io::detail::lower_ext(a.output) != ".json")
-        throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
-    if (!to_stdout && !a.svg.empty() && a.output == a.svg) throw InputError("--svg: same file as -o/--output ('" + a.svg + "')");
-    const gvd::MedialOptions mo = a.map.medial(1);
-
+    const bool to_stdout = check_common(a);
     // Rank 0 reads the map and opens the outputs (an unwritable output fails before any work).
-    const io::MapReadOptions ro = a.map.read_options();
     io::LoadedMap map;
     std::unique_ptr<io::AtomicFile> out, svg;
-    int ok = 1;
-    std::string error;
-    if (rank == 0) {
+    on_rank0(rank, [&] {
+        map = io::read_occupancy_map(a.input, a.map.read_options());
         try {
-            map = io::read_occupancy_map(a.input, ro);
-            try {
-                gvd::check_grid(map.grid);
-            } catch (const InputError& e) {
-                throw InputError(a.input + ": " + e.what());
-            }
-            if (!to_stdout) out = open_output(a.output, "-o/--output");
-            if (!a.svg.empty()) svg = open_output(a.svg, "--svg");
+            gvd::check_grid(map.grid);
         } catch (const InputError& e) {
-            ok = 0;
-            error = e.what();
+            throw InputError(a.input + ": " + e.what());
         }
-    }
-    MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    if (!ok) throw InputError(error);
+        if (!to_stdout) out = open_output(a.output, "-o/--output");
+        if (!a.svg.empty()) svg = open_output(a.svg, "--svg");
+    });
+    return run_medial(a, rank, size, std::move(map.grid), map.unknown, false, std::move(out), std::move(svg));
+}
 
+/// The medial diagram of `grid` (complete on rank 0: a map's, or an obstacle file drawn on its
+/// pixels, `document`), one band of rows per rank, written by rank 0 as `dvoronoi gvd` writes it.
+int run_medial(const Args& a, int rank, int size, gvd::OccupancyGrid grid, std::size_t unknown, bool document,
+               std::unique_ptr<io::AtomicFile> out, std::unique_ptr<io::AtomicFile> svg) {
+    const gvd::MedialOptions mo = a.map.medial(1);
     // Broadcast: sizes, resolution, origin, then the occupancy bytes.
-    std::int32_t dims[2] = {map.grid.rows, map.grid.cols};
-    double geom[3] = {map.grid.resolution, map.grid.origin.x(), map.grid.origin.y()};
+    std::int32_t dims[2] = {grid.rows, grid.cols};
+    double geom[3] = {grid.resolution, grid.origin.x(), grid.origin.y()};
     MPI_Bcast(dims, 2, MPI_INT32_T, 0, MPI_COMM_WORLD);
     MPI_Bcast(geom, 3, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    if (rank != 0) map.grid = gvd::OccupancyGrid(dims[0], dims[1], geom[0], Vec2(geom[1], geom[2]));
+    if (rank != 0) grid = gvd::OccupancyGrid(dims[0], dims[1], geom[0], Vec2(geom[1], geom[2]));
     const std::int32_t H = dims[0], W = dims[1];
-    MPI_Bcast(map.grid.occupied.data(), static_cast<int>(map.grid.size()), MPI_UINT8_T, 0, MPI_COMM_WORLD);
+    MPI_Bcast(grid.occupied.data(), static_cast<int>(grid.size()), MPI_UINT8_T, 0, MPI_COMM_WORLD);
 
     MPI_Barrier(MPI_COMM_WORLD);
     const auto t0 = std::chrono::steady_clock::now();
     gvd::MedialDiagram m;
-    m.grid = std::move(map.grid);
+    m.grid = std::move(grid);
     m.options = mo;
     m.features = gvd::feature_map_for(m.grid);  // this rank writes (and reads) only its band's rows
     gvd::FeatureMap& f = m.features;
     m.mask = gvd::PixelMask(H, W);
     m.boxed = gvd::PixelMask(H, W);
+    // the box rule reads walls anywhere near the band's nearest points; a path's segment tests anywhere
+    if (rank == 0 || H * std::int64_t{rank} / size < H * std::int64_t{rank + 1} / size) m.bits = gvd::OccupancyBits(m.grid);
     // Bands as medial_diagram splits rows over threads; with more ranks than rows some are empty.
     auto band = [&](int k) { return static_cast<std::int32_t>(static_cast<std::int64_t>(H) * k / size); };
     const std::int32_t r0 = band(rank), r1 = band(rank + 1);
+    const bool with_path = !a.path.empty();
     std::vector<std::int16_t> nearest;  // fx, fy of the band's diagram pixels, row-major
     if (r0 < r1) {
         // marking reads the nearest points of rows r0-1 .. r1: the passes cover the bands of rows that
@@ -356,50 +414,79 @@ int run_map(const Args& a, int rank, int size) {
         const std::int32_t B = gvd::detail::BandEdges::kRows;
         for (std::int32_t b = std::max(0, r0 - 1) / B; b * B < std::min(H, r1 + 1); ++b)
             passes(m.grid, f, edges, b * B, std::min(H, (b + 1) * B));
-        m.bits = gvd::OccupancyBits(m.grid);  // the box rule reads walls anywhere near the band's nearest points
         gvd::detail::RowMarker(m).mark(r0, r1);
-        for (std::int32_t r = r0; r < r1; ++r)
-            for (std::int32_t c = 0; c < W; ++c)
-                if (m.mask(r, c)) {
-                    nearest.push_back(f.fx[f.at(r, c)]);
-                    nearest.push_back(f.fy[f.at(r, c)]);
-                }
+        if (!with_path)
+            for (std::int32_t r = r0; r < r1; ++r)
+                for (std::int32_t c = 0; c < W; ++c)
+                    if (m.mask(r, c)) {
+                        nearest.push_back(f.fx[f.at(r, c)]);
+                        nearest.push_back(f.fy[f.at(r, c)]);
+                    }
     }
 
-    // Rank 0 gathers the bands into its mask (its own band is in place; every row is whole words) ...
-    const auto per_row = static_cast<std::int64_t>(m.mask.words_per_row());
-    std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
-    for (int k = 0; k < size; ++k) {
-        counts[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k + 1) - band(k)) * per_row);
-        displs[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k)) * per_row);
+    // Rank 0 gathers the bands' rows (every row is whole words) into its own arrays, in place.
+    auto gather_rows = [&](auto* data, std::int64_t per_row, MPI_Datatype type) {
+        std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
+        for (int k = 0; k < size; ++k) {
+            counts[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k + 1) - band(k)) * per_row);
+            displs[static_cast<std::size_t>(k)] = static_cast<int>(static_cast<std::int64_t>(band(k)) * per_row);
+        }
+        MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : data + r0 * per_row, counts[static_cast<std::size_t>(rank)], type, data,
+                    counts.data(), displs.data(), type, 0, MPI_COMM_WORLD);
+    };
+    gather_rows(m.mask.row_words(0), static_cast<std::int64_t>(m.mask.words_per_row()), MPI_UINT64_T);
+    // ... and the nearest points: of the diagram pixels for the writers (they read those clearances
+    // only), of every pixel for a path
+    std::vector<std::int16_t> all;
+    if (with_path) {
+        gather_rows(f.fx.data(), W, MPI_INT16_T);
+        gather_rows(f.fy.data(), W, MPI_INT16_T);
+    } else {
+        all = gather(nearest, rank, size);
     }
-    MPI_Gatherv(rank == 0 ? MPI_IN_PLACE : m.mask.row_words(r0), counts[static_cast<std::size_t>(rank)], MPI_UINT64_T,
-                m.mask.row_words(0), counts.data(), displs.data(), MPI_UINT64_T, 0, MPI_COMM_WORLD);
-    // ... and the diagram pixels' nearest points: the writers read the clearance of those pixels only.
-    const std::vector<std::int16_t> all = gather(nearest, rank, size);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (rank != 0) return 0;
 
-    std::size_t k = 0;  // bands arrive in rank order, so the pairs follow the mask's row-major order
-    for (std::int32_t r = 0; r < H; ++r)
-        for (std::int32_t c = 0; c < W; ++c)
-            if (m.mask(r, c)) {
-                f.fx[f.at(r, c)] = all[k++];
-                f.fy[f.at(r, c)] = all[k++];
-            }
-    if (k != all.size()) throw std::logic_error("gathered nearest points do not match the gathered mask");
+    if (!with_path) {
+        std::size_t k = 0;  // bands arrive in rank order, so the pairs follow the mask's row-major order
+        for (std::int32_t r = 0; r < H; ++r)
+            for (std::int32_t c = 0; c < W; ++c)
+                if (m.mask(r, c)) {
+                    f.fx[f.at(r, c)] = all[k++];
+                    f.fy[f.at(r, c)] = all[k++];
+                }
+        if (k != all.size()) throw std::logic_error("gathered nearest points do not match the gathered mask");
+    }
+    nlohmann::json doc = io::medial_to_json(m, a.robot_radius);
+    std::vector<Vec2> path_points;
+    if (with_path) {  // as `dvoronoi gvd` plans it
+        gvd::GridPath p;
+        try {
+            p = gvd::find_grid_path(m, Vec2(a.path[0], a.path[1]), Vec2(a.path[2], a.path[3]), a.robot_radius);
+        } catch (const InputError& e) {
+            throw InputError(std::string("--path: ") + e.what());
+        }
+        path_points = p.points;
+        doc["path"] = io::path_to_json(p);
+    }
     const std::size_t n = m.count();
-    std::fprintf(stderr, "dvoronoi_gvd_mpi: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d ranks, %.3f s\n",
-                 H, W, n, map.unknown, ro.unknown_occupied ? "occupied" : "free", size, seconds);
-    if (n == 0) a.map.warn_empty("dvoronoi_gvd_mpi", m.grid, map.unknown);
+    if (!a.quiet) {
+        if (document)
+            std::fprintf(stderr, "dvoronoi_gvd_mpi: obstacle file drawn on %d x %d pixels, %zu diagram pixels, %d ranks, %.3f s\n",
+                         H, W, n, size, seconds);
+        else
+            std::fprintf(stderr, "dvoronoi_gvd_mpi: %d x %d map, %zu diagram pixels, %zu unknown pixels (%s), %d ranks, %.3f s\n",
+                         H, W, n, unknown, a.map.unknown == "occupied" ? "occupied" : "free", size, seconds);
+    }
+    if (n == 0) a.map.warn_empty("dvoronoi_gvd_mpi", m.grid, unknown, document);  // shown with -q too
     // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
-    if (svg) io::write_medial_svg(svg->stream(), m, a.robot_radius);
-    const std::string doc = io::medial_to_json(m, a.robot_radius).dump();
+    if (svg) io::write_medial_svg(svg->stream(), m, a.robot_radius, path_points);
+    const std::string text = doc.dump();
     if (out) {
-        out->stream() << doc << '\n';
+        out->stream() << text << '\n';
         out->commit();
     } else {
-        std::cout << doc << '\n';
+        std::cout << text << '\n';
     }
     if (svg) svg->commit();
     return 0;
@@ -425,9 +512,14 @@ int main(int argc, char** argv) {
     app.add_option("-m,--mode", a.mode, "cooperative or independent")->check(CLI::IsMember({"cooperative", "independent"}));
     app.add_option("-r,--robot-radius", a.robot_radius, "robot radius (map units): diagram cells or pixels this close to an obstacle are blocked");
     app.add_flag("--no-visibility", a.no_visibility, "turn the paper's edge visibility test off");
+    app.add_option("--diagram", a.diagram, "medial (map files' default; obstacle files drawn on --grid pixels) or labels "
+                                           "(obstacle files' default: Mendes et al.)")
+        ->check(CLI::IsMember({"medial", "labels"}));
     a.map.add_to(app);
-    app.add_option("-o,--output", a.output, "output JSON file (default: stdout)");
+    app.add_option("--path", a.path, "also plan a path SX SY GX GY along the diagram")->expected(4);
+    app.add_option("-o,--output", a.output, "output JSON file (default or '-': stdout)");
     app.add_option("--svg", a.svg, "also draw the diagram into this SVG file");
+    app.add_flag("-q,--quiet", a.quiet, "no summary line on stderr");
     int code = 0;
     try {
         app.parse(argc, argv);

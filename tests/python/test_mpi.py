@@ -1,8 +1,8 @@
 """dv.mpi: `mpirun -n 1/2/3 --oversubscribe` give the single-process API's cells and trajectories bit
 for bit (uniform density; a density path to rounding), and the cost to rounding. dvoronoi_gvd_mpi on
-map files (MovingAI .map, YAML + PGM) writes the JSON and SVG of `dvoronoi gvd MAP` byte for byte on
-1, 2 and 3 ranks; a bad map exits 2 naming the file, nothing written. Runs when mpirun and mpi4py are
-present; the map tests when $DVORONOI_GVD_MPI (or a build*/ tree) and $DVORONOI_CLI are there."""
+map files (MovingAI .map, YAML + PGM) and on obstacle files with --diagram medial writes the JSON and
+SVG of `dvoronoi gvd` byte for byte on 1, 2 and 3 ranks, paths included; a bad map exits 2 naming the
+file, nothing written. Runs when mpirun and mpi4py are present; the map tests when $DVORONOI_GVD_MPI (or a build*/ tree) and $DVORONOI_CLI are there."""
 from __future__ import annotations
 
 import json
@@ -220,8 +220,12 @@ def test_gvd_mpi_refuses_options_its_input_does_not_read(tmp_path):
     doc = tmp_path / "doc.json"
     doc.write_text(json.dumps({"area": {"box": [0, 0, 10, 10]}, "obstacles": [{"type": "point", "position": [5, 5]}]}))
     path = _write_movingai(tmp_path / "m.map", np.zeros((6, 9), bool))
-    for args, message in (([str(doc), "--grid", "40", "--prune-length", "4"], "are for map files"),
+    for args, message in (([str(doc), "--grid", "40", "--prune-length", "4"], "add --diagram medial"),
                           ([str(doc), "--grid", "40", "--unknown", "free"], "are for map files"),
+                          ([str(doc), "--grid", "40", "--diagram", "medial", "--mode", "independent"],
+                           "--mode and --no-visibility are the labelled diagram's"),
+                          ([str(doc), "--grid", "40", "--path", "1", "1", "2"], "--path: At least 4 required"),
+                          ([str(path), "--diagram", "labels"], "dvoronoi_gvd_mpi draws the medial diagram of map files"),
                           ([str(path), "--mode", "independent"], "--grid, --mode and --no-visibility are for obstacle files"),
                           ([str(path), "--grid", "40"], "--grid, --mode and --no-visibility are for obstacle files")):
         proc = mpirun(2, *args, "-o", str(tmp_path / "out.json"), program=GVD_MPI, timeout=120)
@@ -260,6 +264,76 @@ def test_gvd_mpi_document_outputs_as_the_cli(tmp_path):
                                 "obstacles": [{"type": "polygon", "vertices": [[-1, -1], [11, -1], [11, 11], [-1, 11]]}]}))
     proc = mpirun(2, str(full), "--grid", "16", "-o", str(tmp_path / "f.json"), program=GVD_MPI, timeout=120)
     assert proc.returncode == 0 and proc.stderr.count("dvoronoi_gvd_mpi: warning: no diagram cell") == 1, proc.stderr
+
+
+# an L-shaped (non-convex) polygon and a disk: the medial diagram separates the L's two arms
+DOC = {"area": {"box": [0, 0, 100, 100]}, "obstacles": [
+    {"type": "polygon", "vertices": [[10, 10], [30, 10], [30, 20], [18, 20], [18, 40], [10, 40]]},
+    {"type": "circle", "center": [70, 60], "radius": 12}]}
+
+
+@needs_gvd
+@pytest.mark.parametrize("opts", [[], ["--min-separation", "2", "--prune-length", "5", "-r", "1.5"],
+                                  ["-r", "1", "--path", "5", "5", "95", "95"]])
+def test_gvd_mpi_document_medial_equals_cli_bytes(opts, tmp_path):
+    # --diagram medial on an obstacle file: drawn on --grid pixels by rank 0, bands over the ranks,
+    # the CLI's JSON and SVG (with its path) byte for byte
+    doc = tmp_path / "doc.json"
+    doc.write_text(json.dumps(DOC))
+    args = [str(doc), "--grid", "120", "--diagram", "medial", *opts]
+    ref_json, ref_svg = tmp_path / "cli.json", tmp_path / "cli.svg"
+    subprocess.run([CLI, "gvd", *args, "-o", str(ref_json), "--svg", str(ref_svg), "-q"], check=True, timeout=120)
+    ref = json.loads(ref_json.read_bytes())
+    assert len(ref["pixels"]["row"]) > 100
+    if "--path" in opts:
+        assert ref["path"]["found"] and len(ref["path"]["points"]) >= 2
+    for k in (1, 2, 3):
+        out, svg = tmp_path / f"mpi{k}.json", tmp_path / f"mpi{k}.svg"
+        proc = mpirun(k, *args, "-o", str(out), "--svg", str(svg), program=GVD_MPI, timeout=120)
+        assert proc.returncode == 0, proc.stderr[-3000:]
+        assert f"obstacle file drawn on 120 x 120 pixels, {len(ref['pixels']['row'])} diagram pixels, {k} ranks" in proc.stderr
+        assert out.read_bytes() == ref_json.read_bytes(), (opts, k)
+        assert svg.read_bytes() == ref_svg.read_bytes(), (opts, k)
+    proc = mpirun(2, *args, "-q", program=GVD_MPI, timeout=120)  # -q: no summary line; stdout as -o
+    assert proc.returncode == 0 and proc.stderr == "" and proc.stdout.encode() == ref_json.read_bytes()
+
+
+@needs_gvd
+def test_gvd_mpi_paths_as_the_cli(map_files, tmp_path):
+    # --path on a map (nearest points of every pixel gathered for the search) and on an obstacle file's
+    # labelled diagram: the CLI's path; a start outside the map exits 2 naming --path, nothing written
+    from scipy import ndimage
+
+    path = map_files["rooms"]
+    occ = occupancy_maps.rooms_with_islands((90, 130), 2)
+    clear = ndimage.distance_transform_edt(~occ)
+    ends = []
+    for c0, c1 in ((0, 40), (90, 130)):  # the clearest pixel of the left and right thirds: map x, y
+        r, c = np.unravel_index(np.argmax(clear[:, c0:c1]), (90, c1 - c0))
+        ends += [str(c0 + c + 0.5), str(90 - r - 0.5)]
+    ref = subprocess.run([CLI, "gvd", str(path), "--path", *ends, "-q"], check=True,
+                         capture_output=True, timeout=120).stdout
+    assert json.loads(ref)["path"]["found"]
+    for k in (1, 3):
+        proc = mpirun(k, str(path), "--path", *ends, program=GVD_MPI, timeout=120)
+        assert proc.returncode == 0 and proc.stdout.encode() == ref, proc.stderr[-3000:]
+    doc = tmp_path / "doc.json"
+    doc.write_text(json.dumps(DOC))
+    args = [str(doc), "--grid", "64", "--path", "5", "5", "95", "95"]
+    cli = json.loads(subprocess.run([CLI, "gvd", *args, "-q"], check=True, capture_output=True, timeout=120).stdout)
+    assert cli["path"]["found"]
+    for k in (1, 3):
+        proc = mpirun(k, *args, "-q", program=GVD_MPI, timeout=120)
+        assert proc.returncode == 0 and proc.stderr == "", proc.stderr[-3000:]
+        mpi = json.loads(proc.stdout)
+        mpi.pop("stats"), cli.pop("stats", None)
+        assert mpi == cli
+    out = tmp_path / "out.json"
+    for extra in ([], ["--diagram", "medial"]):
+        proc = mpirun(2, str(doc), "--grid", "64", *extra, "--path", "500", "5", "95", "95", "-o", str(out),
+                      program=GVD_MPI, timeout=120)
+        assert proc.returncode == 2 and "--path: start (500, 5) is outside the" in proc.stderr, proc.stderr[-2000:]
+        assert not out.exists()
 
 
 @needs_gvd

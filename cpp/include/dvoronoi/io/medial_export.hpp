@@ -51,7 +51,9 @@ inline nlohmann::json medial_to_json(const gvd::MedialDiagram& m, double robot_r
             {"pixels", {{"row", rows}, {"col", cols}, {"x", xs}, {"y", ys}, {"clearance", cl}, {"blocked", bl}}}};
 }
 
-inline nlohmann::json path_to_json(const gvd::GridPath& p) {
+/// A path's JSON, for either diagram (gvd::GridPath, gvd::PathResult: points, length, found()).
+template <class Path>
+nlohmann::json path_to_json(const Path& p) {
     nlohmann::json pts = nlohmann::json::array();
     for (const Vec2& q : p.points) pts.push_back({q.x(), q.y()});
     // no path: no length (JSON has no infinity; Python's stats say inf)
