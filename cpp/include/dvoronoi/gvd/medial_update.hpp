@@ -167,7 +167,8 @@ public:
     std::uint64_t count() const {
         std::uint64_t n = 0;
         for (const std::int32_t r : rows_)
-            for (std::size_t k = 0; k < stride_; ++k) n += static_cast<std::uint64_t>(popcount(row(r)[k]));
+            for (std::size_t k = 0; k < stride_; ++k)
+                if (row(r)[k] != 0) n += static_cast<std::uint64_t>(popcount(row(r)[k]));  // most words are empty
         return n;
     }
 
