@@ -264,7 +264,7 @@ auto with_progress(const std::string& label, Index total, bool quiet, const io::
 /// Returns the exit code (1 when stdout fails).
 inline int deliver(std::unique_ptr<io::AtomicFile>& out, std::unique_ptr<io::AtomicFile>& svg,
                    const std::function<void(std::ostream&)>& write_main,
-                   const std::function<void(std::ostream&)>& write_svg = nullptr) {
+                   const std::function<void(std::ostream&)>& write_svg = nullptr, const char* program = "dvoronoi") {
     if (svg && write_svg) write_svg(svg->stream());
     if (out) write_main(out->stream());
     if (out) out->commit();
@@ -273,7 +273,7 @@ inline int deliver(std::unique_ptr<io::AtomicFile>& out, std::unique_ptr<io::Ato
         write_main(std::cout);
         std::cout.flush();
         if (!std::cout) {
-            std::cerr << "dvoronoi: error: writing to stdout failed\n";
+            std::cerr << program << ": error: writing to stdout failed\n";
             return 1;
         }
     }

@@ -27,6 +27,7 @@
 // The diagram is identical for every K (and both approaches).
 //
 // Exit codes as the CLI: 0 success, 2 bad command line or input (rank 0 prints the message), 1 other.
+#include "../cli/common.hpp"
 #include "../cli/map_options.hpp"
 #include "dvoronoi/gvd/grid_path.hpp"
 #include "dvoronoi/gvd/grid_voronoi.hpp"
@@ -44,6 +45,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -71,12 +73,6 @@ struct Args {
 };
 
 using cli_maps::is_map_file;
-
-std::string show(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
 
 std::vector<std::int32_t> pack(const gvd::SliceSummary& s) {
     std::vector<std::int32_t> v{s.n_components};
@@ -124,24 +120,22 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
 /// Checks shared by both inputs, with `dvoronoi gvd`'s messages; returns whether the JSON goes to stdout.
 bool check_common(const Args& a) {
     if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
-        throw InputError("--robot-radius: must be a finite number >= 0, got " + show(a.robot_radius));
+        throw InputError("--robot-radius: must be a finite number >= 0, got " + cli::show(a.robot_radius));
     if (!a.path.empty() && a.path.size() != 4) throw InputError("--path: expects SX SY GX GY");
     for (double v : a.path)
         if (!std::isfinite(v)) throw InputError("--path: coordinates must be finite");
     const bool to_stdout = a.output.empty() || a.output == "-";
     if (!to_stdout && io::detail::lower_ext(a.output) != ".json")
         throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
-    if (!to_stdout && !a.svg.empty() && a.output == a.svg) throw InputError("--svg: same file as -o/--output ('" + a.svg + "')");
     return to_stdout;
 }
 
-/// Opens an output file on rank 0 before any work (as the CLI does), naming the option on failure.
-std::unique_ptr<io::AtomicFile> open_output(const std::string& path, const std::string& option) {
-    try {
-        return std::make_unique<io::AtomicFile>(path);
-    } catch (const io::OutputError& e) {
-        throw InputError(option + ": " + e.what());
-    }
+/// Rank 0: opens the outputs before any work, as the CLI does (--svg naming the -o file by another
+/// path, ./a.json or a link, is refused: one would be lost).
+void open_outputs(const Args& a, bool to_stdout, std::unique_ptr<io::AtomicFile>& out, std::unique_ptr<io::AtomicFile>& svg) {
+    cli::check_outputs_differ(to_stdout ? std::string() : a.output, a.svg);
+    if (!to_stdout) out = cli::open_output(a.output, "-o/--output");
+    if (!a.svg.empty()) svg = cli::open_output(a.svg, "--svg");
 }
 
 /// Rank 0 runs `read` (which reads the input and opens the outputs); an InputError there ends every
@@ -156,6 +150,9 @@ void on_rank0(int rank, Read&& read) {
         } catch (const InputError& e) {
             ok = 0;
             error = e.what();
+        } catch (const cli::UsageError& e) {
+            ok = 0;
+            error = e.what();
         }
     }
     MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -166,6 +163,10 @@ int run_medial(const Args& a, int rank, int size, gvd::OccupancyGrid grid, std::
                std::unique_ptr<io::AtomicFile> out, std::unique_ptr<io::AtomicFile> svg);
 
 int run_obstacles(const Args& a, int rank, int size) {
+    on_rank0(rank, [&] {  // the CLI's first word on a folder, before any option check
+        if (std::filesystem::is_directory(a.input))
+            throw InputError("'" + a.input + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
+    });
     if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
     // The same checks and messages as `dvoronoi gvd`, on every rank alike: an option this input or
     // diagram does not read is an error, not silently dropped.
@@ -179,37 +180,38 @@ int run_obstacles(const Args& a, int rank, int size) {
         throw InputError("--min-separation and --prune-length are the medial diagram's; add --diagram medial");
     if (medial) a.map.check(a.input);
     const bool to_stdout = check_common(a);
-    // Rank 0 reads the file and opens the outputs (an unwritable output fails before any work), then
-    // broadcasts the text; every rank parses it (same scene everywhere). For the medial diagram rank 0
-    // draws it on --grid pixels (as `dvoronoi gvd` and Python's diagram="medial") and hands the map on.
+    // Rank 0 reads and parses the file, then opens the outputs (as the CLI: a bad file is named first,
+    // an unwritable output fails before any work). For the labelled diagram it broadcasts the text and
+    // every rank parses it (same scene everywhere); for the medial diagram rank 0 draws it on --grid
+    // pixels (as `dvoronoi gvd` and Python's diagram="medial") and hands the map on.
     std::string text;
+    std::optional<io::ObstacleFile> parsed;
     std::unique_ptr<io::AtomicFile> out, svg;
     gvd::OccupancyGrid drawn;
     on_rank0(rank, [&] {
-        if (std::filesystem::is_directory(a.input))
-            throw InputError("'" + a.input + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
         std::ifstream in(a.input, std::ios::binary);
         if (!in) throw InputError(a.input + ": cannot open file");
         std::ostringstream s;
         s << in.rdbuf();
         text = s.str();
+        parsed = io::parse_obstacles(text, a.input);
         if (medial) {
-            const io::ObstacleFile file = io::parse_obstacles(text, a.input);
             try {
-                drawn = gvd::rasterize(file.scene, a.grid);
+                drawn = gvd::rasterize(parsed->scene, a.grid);
             } catch (const InputError& e) {  // e.g. an area too wide for a grid: name the file
                 throw InputError(a.input + ": " + e.what());
             }
+            gvd::check_grid(drawn);  // resolution and origin in range, as the CLI's medial_diagram checks
         }
-        if (!to_stdout) out = open_output(a.output, "-o/--output");
-        if (!a.svg.empty()) svg = open_output(a.svg, "--svg");
+        open_outputs(a, to_stdout, out, svg);
     });
     if (medial) return run_medial(a, rank, size, std::move(drawn), 0, true, std::move(out), std::move(svg));
     unsigned long long len = text.size();
     MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     text.resize(len);
     MPI_Bcast(text.data(), static_cast<int>(len), MPI_CHAR, 0, MPI_COMM_WORLD);
-    const io::ObstacleFile file = io::parse_obstacles(text, a.input);
+    if (rank != 0) parsed = io::parse_obstacles(text, a.input);
+    const io::ObstacleFile& file = *parsed;
 
     gvd::GvdOptions opt;
     opt.resolution = a.grid;
@@ -332,22 +334,17 @@ int run_obstacles(const Args& a, int rank, int size) {
         path_points = p.points;
         doc["path"] = io::path_to_json(p);
     }
-    // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
-    if (svg) io::write_gvd_svg(svg->stream(), file.scene, r, path_points);
-    if (out) {
-        out->stream() << doc.dump() << '\n';
-        out->commit();
-    } else {
-        std::cout << doc.dump() << '\n';
-    }
-    if (svg) svg->commit();
+    // As the CLI delivers: each file appears whole or not at all
+    const int code = cli::deliver(
+        out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
+        [&](std::ostream& os) { io::write_gvd_svg(os, file.scene, r, path_points); }, "dvoronoi_gvd_mpi");
     if (!a.quiet)
         std::fprintf(stderr, "dvoronoi_gvd_mpi: %zu diagram cells, %d ranks (%s), %.3f s\n", r.size(), size,
                      io::mode_name(opt.mode), total);
     if (r.size() == 0)  // the CLI's warning, shown with -q too
         std::fprintf(stderr, "dvoronoi_gvd_mpi: warning: no diagram cell: the corners of every cell share one nearest "
                              "obstacle (an obstacle covers the working area)\n");
-    return 0;
+    return code;
 }
 
 int run_map(const Args& a, int rank, int size) {
@@ -370,8 +367,7 @@ int run_map(const Args& a, int rank, int size) {
         } catch (const InputError& e) {
             throw InputError(a.input + ": " + e.what());
         }
-        if (!to_stdout) out = open_output(a.output, "-o/--output");
-        if (!a.svg.empty()) svg = open_output(a.svg, "--svg");
+        open_outputs(a, to_stdout, out, svg);
     });
     return run_medial(a, rank, size, std::move(map.grid), map.unknown, false, std::move(out), std::move(svg));
 }
@@ -479,17 +475,10 @@ int run_medial(const Args& a, int rank, int size, gvd::OccupancyGrid grid, std::
                          H, W, n, unknown, a.map.unknown == "occupied" ? "occupied" : "free", size, seconds);
     }
     if (n == 0) a.map.warn_empty("dvoronoi_gvd_mpi", m.grid, unknown, document);  // shown with -q too
-    // As the CLI delivers: the SVG first, then the JSON; each file appears whole or not at all.
-    if (svg) io::write_medial_svg(svg->stream(), m, a.robot_radius, path_points);
-    const std::string text = doc.dump();
-    if (out) {
-        out->stream() << text << '\n';
-        out->commit();
-    } else {
-        std::cout << text << '\n';
-    }
-    if (svg) svg->commit();
-    return 0;
+    // As the CLI delivers: each file appears whole or not at all
+    return cli::deliver(
+        out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
+        [&](std::ostream& os) { io::write_medial_svg(os, m, a.robot_radius, path_points); }, "dvoronoi_gvd_mpi");
 }
 
 int run(const Args& a, int rank, int size) {
@@ -499,6 +488,7 @@ int run(const Args& a, int rank, int size) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    std::ios::sync_with_stdio(false);  // as the CLI: std::cout's own buffer, so a failed write shows at its flush
     MPI_Init(&argc, &argv);
     int rank = 0, size = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -520,6 +510,9 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", a.output, "output JSON file (default or '-': stdout)");
     app.add_option("--svg", a.svg, "also draw the diagram into this SVG file");
     app.add_flag("-q,--quiet", a.quiet, "no summary line on stderr");
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {  // as the CLI words it
+        return std::string("dvoronoi_gvd_mpi: error: ") + e.what() + "\nRun with --help for more information.\n";
+    });
     int code = 0;
     try {
         app.parse(argc, argv);

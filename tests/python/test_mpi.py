@@ -29,7 +29,8 @@ FIELDS = ("piece_ptr", "piece_neighbor", "piece_x", "piece_y", "piece_span", "in
           "areas", "centroids", "radii")
 
 
-def mpirun(k: int, *args: str, timeout: float = 240, program: str = sys.executable) -> subprocess.CompletedProcess:
+def mpirun(k: int, *args: str, timeout: float = 240, program: str = sys.executable,
+           cwd: Path | None = None) -> subprocess.CompletedProcess:
     env = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1", OMP_NUM_THREADS="1")
     if not (shutil.which("ssh") or shutil.which("rsh")):
         # Open MPI 4 refuses to start without an rsh agent even for local ranks (a container with
@@ -39,7 +40,7 @@ def mpirun(k: int, *args: str, timeout: float = 240, program: str = sys.executab
     if hasattr(os, "geteuid") and os.geteuid() == 0:
         cmd.append("--allow-run-as-root")
     return subprocess.run(cmd + [program, *args], capture_output=True, text=True, env=env,
-                          timeout=timeout)
+                          timeout=timeout, cwd=cwd)
 
 
 @pytest.fixture(scope="module")
@@ -296,6 +297,29 @@ def test_gvd_mpi_document_medial_equals_cli_bytes(opts, tmp_path):
         assert svg.read_bytes() == ref_svg.read_bytes(), (opts, k)
     proc = mpirun(2, *args, "-q", program=GVD_MPI, timeout=120)  # -q: no summary line; stdout as -o
     assert proc.returncode == 0 and proc.stderr == "" and proc.stdout.encode() == ref_json.read_bytes()
+
+
+@needs_gvd
+def test_gvd_mpi_refuses_what_the_cli_refuses(tmp_path):
+    # a drawn grid out of range (the CLI's check_grid), -o and --svg naming one file by two paths, a
+    # folder named before any option check: exit 2 with the CLI's message, nothing written
+    far = tmp_path / "far.json"
+    far.write_text(json.dumps({"area": {"box": [1e15, 1e15, 1e15 + 100, 1e15 + 100]},
+                               "obstacles": [{"type": "circle", "center": [1e15 + 50, 1e15 + 50], "radius": 10}]}))
+    doc = tmp_path / "doc.json"
+    doc.write_text(json.dumps(DOC))
+    (tmp_path / "folder").mkdir()
+    cases = (([str(far), "--grid", "50", "--diagram", "medial", "-o", "a.json"], "lies more than 2^40 pixels"),
+             ([str(doc), "--grid", "32", "-o", "a.json", "--svg", "./a.json"], "--svg: same file as -o/--output ('./a.json')"),
+             ([str(doc), "--grid", "32", "--diagram", "medial", "-o", "a.json", "--svg", "./a.json"], "--svg: same file"),
+             ([str(tmp_path / "folder"), "-r", "-1"], "is a folder"))
+    for args, message in cases:
+        cli = subprocess.run([CLI, "gvd", *args], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+        assert cli.returncode == 2 and message in cli.stderr, cli.stderr
+        proc = mpirun(2, *args, program=GVD_MPI, timeout=120, cwd=tmp_path)
+        assert proc.returncode == 2 and message in proc.stderr, (args, proc.stderr[-2000:])
+        assert proc.stderr.count("dvoronoi_gvd_mpi: error: ") == 1
+        assert not (tmp_path / "a.json").exists()
 
 
 @needs_gvd
