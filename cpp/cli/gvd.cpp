@@ -119,17 +119,8 @@ int run_gvd(const GvdCliOptions& o) {
     if (is_map_file(o.obstacles)) return run_map(o);
     if (std::filesystem::is_directory(o.obstacles))
         throw UsageError("'" + o.obstacles + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
-    if (o.grid < 1) throw UsageError("--grid: required for obstacle files, at least 1, got " + std::to_string(o.grid));
-    // an option this input or diagram does not read is an error, not silently dropped
-    if (o.map.reading_given())
-        throw UsageError("--resolution, --origin and --unknown are for map files: an obstacle file has its own "
-                         "coordinates and no unknown pixels");
     const bool medial = o.diagram == "medial";
-    if (medial && (o.mode != "cooperative" || o.no_visibility))
-        throw UsageError("--mode and --no-visibility are the labelled diagram's; --diagram medial does not use them");
-    if (!medial && o.map.medial_changed())
-        throw UsageError("--min-separation and --prune-length are the medial diagram's; add --diagram medial");
-    if (medial) o.map.check(o.obstacles);
+    cli_maps::check_document_options(o.map, o.obstacles, o.grid, medial, o.mode, o.no_visibility);
     const bool to_stdout = check_common(o);
 
     const io::ObstacleFile file = io::read_obstacles(o.obstacles);

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -113,5 +114,21 @@ struct MapOptions {
                      program, min_separation, prune_length);
     }
 };
+
+/// The checks of an obstacle file's options in both programs (after the folder check): --grid is
+/// required, and an option this input or diagram does not read is an error, not silently dropped.
+/// \throws InputError naming the option.
+inline void check_document_options(const MapOptions& map, const std::string& input, std::int64_t grid, bool medial,
+                                   const std::string& mode, bool no_visibility) {
+    if (grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(grid));
+    if (map.reading_given())
+        throw InputError("--resolution, --origin and --unknown are for map files: an obstacle file has its own "
+                         "coordinates and no unknown pixels");
+    if (medial && (mode != "cooperative" || no_visibility))
+        throw InputError("--mode and --no-visibility are the labelled diagram's; --diagram medial does not use them");
+    if (!medial && map.medial_changed())
+        throw InputError("--min-separation and --prune-length are the medial diagram's; add --diagram medial");
+    if (medial) map.check(input);
+}
 
 }  // namespace dvoronoi::cli_maps

@@ -167,18 +167,9 @@ int run_obstacles(const Args& a, int rank, int size) {
         if (std::filesystem::is_directory(a.input))
             throw InputError("'" + a.input + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
     });
-    if (a.grid < 1) throw InputError("--grid: required for obstacle files, at least 1, got " + std::to_string(a.grid));
-    // The same checks and messages as `dvoronoi gvd`, on every rank alike: an option this input or
-    // diagram does not read is an error, not silently dropped.
-    if (a.map.reading_given())
-        throw InputError("--resolution, --origin and --unknown are for map files: an obstacle file has its own "
-                         "coordinates and no unknown pixels");
+    // the same checks and messages as `dvoronoi gvd`, on every rank alike
     const bool medial = a.diagram == "medial";
-    if (medial && (a.mode != "cooperative" || a.no_visibility))
-        throw InputError("--mode and --no-visibility are the labelled diagram's; --diagram medial does not use them");
-    if (!medial && a.map.medial_changed())
-        throw InputError("--min-separation and --prune-length are the medial diagram's; add --diagram medial");
-    if (medial) a.map.check(a.input);
+    cli_maps::check_document_options(a.map, a.input, a.grid, medial, a.mode, a.no_visibility);
     const bool to_stdout = check_common(a);
     // Rank 0 reads and parses the file, then opens the outputs (as the CLI: a bad file is named first,
     // an unwritable output fails before any work). For the labelled diagram it broadcasts the text and
