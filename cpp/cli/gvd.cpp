@@ -48,14 +48,7 @@ using cli_maps::is_map_file;
 /// Checks shared by both inputs; returns whether the JSON goes to stdout.
 bool check_common(const GvdCliOptions& o) {
     if (o.workers < 0) throw UsageError("--workers: must be 0 (all cores) or positive, got " + std::to_string(o.workers));
-    if (!std::isfinite(o.robot_radius) || o.robot_radius < 0.0)
-        throw UsageError("--robot-radius: must be a finite number >= 0, got " + show(o.robot_radius));
-    if (!o.path.empty() && o.path.size() != 4) throw UsageError("--path: expects SX SY GX GY");
-    for (double v : o.path)
-        if (!std::isfinite(v)) throw UsageError("--path: coordinates must be finite");
-    const bool to_stdout = o.output.empty() || o.output == "-";
-    if (!to_stdout && lower_extension(o.output) != ".json")
-        throw UsageError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
+    const bool to_stdout = cli_maps::check_run_options(o.robot_radius, o.path, o.output);
     check_outputs_differ(o.output, o.svg);
     return to_stdout;
 }
@@ -72,18 +65,8 @@ int write_medial(const GvdCliOptions& o, const gvd::OccupancyGrid& grid, std::si
     const auto t0 = std::chrono::steady_clock::now();
     const gvd::MedialDiagram m = gvd::medial_diagram(grid, mo);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    nlohmann::json doc = io::medial_to_json(m, o.robot_radius);
     std::vector<Vec2> path_points;
-    if (!o.path.empty()) {
-        gvd::GridPath p;
-        try {
-            p = gvd::find_grid_path(m, Vec2(o.path[0], o.path[1]), Vec2(o.path[2], o.path[3]), o.robot_radius);
-        } catch (const InputError& e) {
-            throw UsageError(std::string("--path: ") + e.what());
-        }
-        path_points = p.points;
-        doc["path"] = io::path_to_json(p);
-    }
+    const nlohmann::json doc = cli_maps::medial_json(m, o.robot_radius, o.path, path_points);
     const std::size_t n = m.count();
     if (!o.quiet) {
         if (document)

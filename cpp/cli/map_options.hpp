@@ -1,8 +1,11 @@
 // The map options of `dvoronoi gvd MAP` and `dvoronoi_gvd_mpi MAP` (one set of flags, checks and
-// messages for both programs): how a map file is read and the medial diagram's parameters.
+// messages for both programs): how a map file is read and the medial diagram's parameters; the checks
+// both programs make of their other options, and the medial diagram's JSON with its path.
 #pragma once
 
+#include "dvoronoi/gvd/grid_path.hpp"
 #include "dvoronoi/gvd/medial_diagram.hpp"
+#include "dvoronoi/io/medial_export.hpp"
 #include "dvoronoi/io/occupancy_map.hpp"
 
 #include <CLI/CLI.hpp>
@@ -129,6 +132,41 @@ inline void check_document_options(const MapOptions& map, const std::string& inp
     if (!medial && map.medial_changed())
         throw InputError("--min-separation and --prune-length are the medial diagram's; add --diagram medial");
     if (medial) map.check(input);
+}
+
+/// The checks of --robot-radius, --path and -o in both programs, for either input; returns whether
+/// the JSON goes to stdout. \throws InputError naming the option.
+inline bool check_run_options(double robot_radius, const std::vector<double>& path, const std::string& output) {
+    if (!std::isfinite(robot_radius) || robot_radius < 0.0) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.10g", robot_radius);
+        throw InputError(std::string("--robot-radius: must be a finite number >= 0, got ") + buf);
+    }
+    if (!path.empty() && path.size() != 4) throw InputError("--path: expects SX SY GX GY");
+    for (double v : path)
+        if (!std::isfinite(v)) throw InputError("--path: coordinates must be finite");
+    const bool to_stdout = output.empty() || output == "-";
+    if (!to_stdout && io::detail::lower_ext(output) != ".json")
+        throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
+    return to_stdout;
+}
+
+/// The medial diagram's JSON, with the path of --path SX SY GX GY (when given) planned for the robot
+/// radius; its points go to `points` for the picture. One function, so that both programs write the
+/// same bytes. \throws InputError naming --path.
+inline nlohmann::json medial_json(const gvd::MedialDiagram& m, double robot_radius, const std::vector<double>& path,
+                                  std::vector<Vec2>& points) {
+    nlohmann::json doc = io::medial_to_json(m, robot_radius);
+    if (path.empty()) return doc;
+    gvd::GridPath p;
+    try {
+        p = gvd::find_grid_path(m, Vec2(path[0], path[1]), Vec2(path[2], path[3]), robot_radius);
+    } catch (const InputError& e) {
+        throw InputError(std::string("--path: ") + e.what());
+    }
+    points = p.points;
+    doc["path"] = io::path_to_json(p);
+    return doc;
 }
 
 }  // namespace dvoronoi::cli_maps

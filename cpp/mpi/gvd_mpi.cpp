@@ -19,8 +19,9 @@
 // and answers which to keep; the kept cells go to rank 0, which writes the same JSON as `dvoronoi gvd`.
 //
 // Map files, and obstacle files with --diagram medial (drawn on --grid pixels by rank 0): the medial
-// diagram (medial_diagram.hpp), one band of rows per rank. Rank 0 reads the map and broadcasts it; every rank runs the column pass of the nearest-point transform over the whole map
-// (it needs whole columns, and is cheap), the row pass over its band and one halo row on each side,
+// diagram (medial_diagram.hpp), one band of rows per rank. Rank 0 reads the map and broadcasts it;
+// every rank runs the column pass of the nearest-point transform over the whole map (it needs whole
+// columns, and is cheap), the row pass over its band and one halo row on each side,
 // and marks its band. Rank 0 gathers the bands and the nearest points of the diagram pixels (of every
 // pixel for a path: the search reads clearances anywhere) and writes the bytes `dvoronoi gvd` writes.
 //
@@ -29,7 +30,6 @@
 // Exit codes as the CLI: 0 success, 2 bad command line or input (rank 0 prints the message), 1 other.
 #include "../cli/common.hpp"
 #include "../cli/map_options.hpp"
-#include "dvoronoi/gvd/grid_path.hpp"
 #include "dvoronoi/gvd/grid_voronoi.hpp"
 #include "dvoronoi/gvd/path.hpp"
 #include "dvoronoi/gvd/rasterize.hpp"
@@ -45,12 +45,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -117,19 +117,6 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
     return all;
 }
 
-/// Checks shared by both inputs, with `dvoronoi gvd`'s messages; returns whether the JSON goes to stdout.
-bool check_common(const Args& a) {
-    if (!std::isfinite(a.robot_radius) || a.robot_radius < 0.0)
-        throw InputError("--robot-radius: must be a finite number >= 0, got " + cli::show(a.robot_radius));
-    if (!a.path.empty() && a.path.size() != 4) throw InputError("--path: expects SX SY GX GY");
-    for (double v : a.path)
-        if (!std::isfinite(v)) throw InputError("--path: coordinates must be finite");
-    const bool to_stdout = a.output.empty() || a.output == "-";
-    if (!to_stdout && io::detail::lower_ext(a.output) != ".json")
-        throw InputError("-o/--output: the grid diagram is written as JSON; use a .json file or '-'");
-    return to_stdout;
-}
-
 /// Rank 0: opens the outputs before any work, as the CLI does (--svg naming the -o file by another
 /// path, ./a.json or a link, is refused: one would be lost).
 void open_outputs(const Args& a, bool to_stdout, std::unique_ptr<io::AtomicFile>& out, std::unique_ptr<io::AtomicFile>& svg) {
@@ -170,7 +157,7 @@ int run_obstacles(const Args& a, int rank, int size) {
     // the same checks and messages as `dvoronoi gvd`, on every rank alike
     const bool medial = a.diagram == "medial";
     cli_maps::check_document_options(a.map, a.input, a.grid, medial, a.mode, a.no_visibility);
-    const bool to_stdout = check_common(a);
+    const bool to_stdout = cli_maps::check_run_options(a.robot_radius, a.path, a.output);
     // Rank 0 reads and parses the file, then opens the outputs (as the CLI: a bad file is named first,
     // an unwritable output fails before any work). For the labelled diagram it broadcasts the text and
     // every rank parses it (same scene everywhere); for the medial diagram rank 0 draws it on --grid
@@ -347,7 +334,7 @@ int run_map(const Args& a, int rank, int size) {
     if (a.grid != 0 || a.mode != "cooperative" || a.no_visibility)
         throw InputError("--grid, --mode and --no-visibility are for obstacle files: a map's diagram grid is its pixels");
     a.map.check(a.input);
-    const bool to_stdout = check_common(a);
+    const bool to_stdout = cli_maps::check_run_options(a.robot_radius, a.path, a.output);
     // Rank 0 reads the map and opens the outputs (an unwritable output fails before any work).
     io::LoadedMap map;
     std::unique_ptr<io::AtomicFile> out, svg;
@@ -386,11 +373,11 @@ int run_medial(const Args& a, int rank, int size, gvd::OccupancyGrid grid, std::
     gvd::FeatureMap& f = m.features;
     m.mask = gvd::PixelMask(H, W);
     m.boxed = gvd::PixelMask(H, W);
-    // the box rule reads walls anywhere near the band's nearest points; a path's segment tests anywhere
-    if (rank == 0 || H * std::int64_t{rank} / size < H * std::int64_t{rank + 1} / size) m.bits = gvd::OccupancyBits(m.grid);
     // Bands as medial_diagram splits rows over threads; with more ranks than rows some are empty.
     auto band = [&](int k) { return static_cast<std::int32_t>(static_cast<std::int64_t>(H) * k / size); };
     const std::int32_t r0 = band(rank), r1 = band(rank + 1);
+    // the box rule reads walls anywhere near the band's nearest points; a path's segment tests anywhere
+    if (rank == 0 || r0 < r1) m.bits = gvd::OccupancyBits(m.grid);
     const bool with_path = !a.path.empty();
     std::vector<std::int16_t> nearest;  // fx, fy of the band's diagram pixels, row-major
     if (r0 < r1) {
@@ -444,18 +431,8 @@ int run_medial(const Args& a, int rank, int size, gvd::OccupancyGrid grid, std::
                 }
         if (k != all.size()) throw std::logic_error("gathered nearest points do not match the gathered mask");
     }
-    nlohmann::json doc = io::medial_to_json(m, a.robot_radius);
     std::vector<Vec2> path_points;
-    if (with_path) {  // as `dvoronoi gvd` plans it
-        gvd::GridPath p;
-        try {
-            p = gvd::find_grid_path(m, Vec2(a.path[0], a.path[1]), Vec2(a.path[2], a.path[3]), a.robot_radius);
-        } catch (const InputError& e) {
-            throw InputError(std::string("--path: ") + e.what());
-        }
-        path_points = p.points;
-        doc["path"] = io::path_to_json(p);
-    }
+    const nlohmann::json doc = cli_maps::medial_json(m, a.robot_radius, a.path, path_points);  // as `dvoronoi gvd`
     const std::size_t n = m.count();
     if (!a.quiet) {
         if (document)
