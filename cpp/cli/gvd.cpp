@@ -13,7 +13,6 @@
 #include <thread>
 
 #include "dvoronoi/gvd/grid_voronoi.hpp"
-#include "dvoronoi/gvd/path.hpp"
 #include "dvoronoi/gvd/rasterize.hpp"
 #include "dvoronoi/io/gvd_json.hpp"
 #include "dvoronoi/io/gvd_svg.hpp"
@@ -138,17 +137,7 @@ int run_gvd(const GvdCliOptions& o) {
     }();
     nlohmann::json doc = io::gvd_to_json(r);
     std::vector<Vec2> path_points;
-    if (!o.path.empty()) {
-        const gvd::ObstacleIndex index(file.scene);
-        gvd::PathResult p;
-        try {
-            p = gvd::find_path(r, file.scene, index, Vec2(o.path[0], o.path[1]), Vec2(o.path[2], o.path[3]));
-        } catch (const InputError& e) {
-            throw UsageError(std::string("--path: ") + e.what());
-        }
-        path_points = p.points;
-        doc["path"] = io::path_to_json(p);  // as the medial diagram's
-    }
+    cli_maps::add_labelled_path(doc, r, file.scene, o.path, path_points);
     if (!o.quiet)
         std::fprintf(stderr, "gvd: %zu diagram cells, %zu vertices, %llu corners labelled, %d worker(s), %.3f s\n",
                      r.size(), r.vertices.size(), static_cast<unsigned long long>(r.stats.corners_labelled),

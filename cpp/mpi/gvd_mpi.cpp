@@ -301,17 +301,7 @@ int run_obstacles(const Args& a, int rank, int size) {
     nlohmann::json doc = io::gvd_to_json(r);
     doc["stats"]["total_seconds"] = total;
     std::vector<Vec2> path_points;
-    if (!a.path.empty()) {  // as `dvoronoi gvd` plans it
-        const gvd::ObstacleIndex full_index(file.scene);
-        gvd::PathResult p;
-        try {
-            p = gvd::find_path(r, file.scene, full_index, Vec2(a.path[0], a.path[1]), Vec2(a.path[2], a.path[3]));
-        } catch (const InputError& e) {
-            throw InputError(std::string("--path: ") + e.what());
-        }
-        path_points = p.points;
-        doc["path"] = io::path_to_json(p);
-    }
+    cli_maps::add_labelled_path(doc, r, file.scene, a.path, path_points);  // as `dvoronoi gvd` plans it
     // As the CLI delivers: each file appears whole or not at all
     const int code = cli::deliver(
         out, svg, [&](std::ostream& os) { os << doc.dump() << '\n'; },
