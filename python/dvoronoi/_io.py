@@ -1,7 +1,10 @@
-"""Atomic file output: a file is either written completely or left untouched (temp file + os.replace)."""
+"""Atomic file output: a file is either written completely or left untouched (temp file + os.replace).
+A link is followed (the file it names is replaced, the link stays); a device or a pipe (/dev/null, a
+FIFO) is written in place, as renaming over it would replace the device itself."""
 from __future__ import annotations
 
 import os
+import stat
 import tempfile
 from typing import IO, Callable, Union
 
@@ -23,17 +26,26 @@ def atomic_write(path: PathLike, write: Callable[[IO[bytes]], object]) -> None:
     On any error the temporary file is removed and `path` is not touched.
     """
     path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
+    target = os.path.realpath(path)  # links followed as far as they lead
+    try:
+        mode = os.stat(target).st_mode
+    except FileNotFoundError:
+        mode = None
+    if mode is not None and not stat.S_ISREG(mode) and not stat.S_ISDIR(mode):  # a device or a pipe
+        with open(target, "wb") as f:
+            write(f)
+        return
+    folder = os.path.dirname(target)
     if not os.path.isdir(folder):  # else the error would name the temporary file
         raise FileNotFoundError(f"{path}: the folder {folder} does not exist")
-    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=".tmp", dir=folder)
+    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(target) + ".", suffix=".tmp", dir=folder)
     try:
         with os.fdopen(fd, "wb") as f:
             write(f)
             f.flush()
             os.fsync(f.fileno())
-        os.chmod(tmp, _MODE)
-        os.replace(tmp, path)
+        os.chmod(tmp, stat.S_IMODE(mode) if mode is not None else _MODE)  # a replaced file keeps its mode
+        os.replace(tmp, target)
     except BaseException:
         try:
             os.unlink(tmp)

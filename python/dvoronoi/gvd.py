@@ -111,7 +111,7 @@ class GridVoronoi(Result):
         self.origin = (float(x0), float(y0))
         self.cell_size = float(h)
         self.shape = (int(ny), int(nx))
-        self.robot_radius = float(core.robot_radius)
+        self._robot_radius = float(core.robot_radius)
         self.n_obstacles = int(core.n_obstacles)
         self.n_labels = int(core.n_labels)
         self.labels = core.labels
@@ -120,6 +120,12 @@ class GridVoronoi(Result):
         self.vertices = core.vertices
         self.stats: Dict[str, Any] = core.stats
         self._relation: Optional[Tuple[np.ndarray, np.ndarray]] = None
+
+    @property
+    def robot_radius(self) -> float:
+        """The robot radius the diagram was built for (read-only: ``blocked``, the graph's blocked
+        edges and paths were decided with it; build again for another radius)."""
+        return self._robot_radius
 
     # cells and centers are built on first use: a few ms for a large diagram that many callers
     # never read.

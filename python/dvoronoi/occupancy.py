@@ -61,15 +61,15 @@ def _origin(origin: Any) -> Tuple[float, float]:
     return float(o[0]), float(o[1])
 
 
-def _occupied(data: Any, occupied_thresh: float, unknown: str) -> np.ndarray:
+def _occupied(data: Any, occupied_thresh: float, unknown: str, name: str = "occupancy") -> np.ndarray:
     """Occupancy values as a bool array: bool as is; floats are probabilities in [0, 1] (occupied
     above `occupied_thresh`, NaN unknown); int8 is ROS's OccupancyGrid (-1 unknown, 0..100 percent);
-    other integers must be 0/1."""
+    other integers must be 0/1. Errors name the argument `name`."""
     a = np.asarray(data)
     if a.ndim != 2:
-        raise ValueError(f"occupancy must be a 2-d array (rows x cols, row 0 at the top), got shape {a.shape}")
+        raise ValueError(f"{name} must be a 2-d array (rows x cols, row 0 at the top), got shape {a.shape}")
     if a.shape[0] < 1 or a.shape[1] < 1:
-        raise ValueError(f"occupancy must have at least one row and one column, got shape {a.shape}")
+        raise ValueError(f"{name} must have at least one row and one column, got shape {a.shape}")
     unknown_occ = unknown == "occupied"
     if a.dtype == bool:
         return a
@@ -77,21 +77,21 @@ def _occupied(data: Any, occupied_thresh: float, unknown: str) -> np.ndarray:
         bad = ~np.isnan(a) & ((a < 0) | (a > 1))
         if bad.any():
             r, c = np.argwhere(bad)[0]
-            raise ValueError(f"occupancy[{r}, {c}] = {float(a[r, c])!r}: probabilities must lie in [0, 1] (NaN = unknown)")
+            raise ValueError(f"{name}[{r}, {c}] = {float(a[r, c])!r}: probabilities must lie in [0, 1] (NaN = unknown)")
         return np.where(np.isnan(a), unknown_occ, a > occupied_thresh)
     if a.dtype == np.int8:
         bad = (a < -1) | (a > 100)
         if bad.any():
             r, c = np.argwhere(bad)[0]
-            raise ValueError(f"occupancy[{r}, {c}] = {int(a[r, c])}: ROS occupancy values are -1 (unknown) or 0..100")
+            raise ValueError(f"{name}[{r}, {c}] = {int(a[r, c])}: ROS occupancy values are -1 (unknown) or 0..100")
         return np.where(a < 0, unknown_occ, a > occupied_thresh * 100)
     if a.dtype.kind in "iu":
         if not np.isin(a, (0, 1)).all():
             r, c = np.argwhere(~np.isin(a, (0, 1)))[0]
-            raise ValueError(f"occupancy[{r}, {c}] = {int(a[r, c])}: integer maps must be 0/1 (or int8 ROS values "
+            raise ValueError(f"{name}[{r}, {c}] = {int(a[r, c])}: integer maps must be 0/1 (or int8 ROS values "
                              "-1..100, or probabilities as floats)")
         return a.astype(bool)
-    raise TypeError(f"occupancy must be a bool, float, int8 or 0/1 integer array, got dtype {a.dtype}")
+    raise TypeError(f"{name} must be a bool, float, int8 or 0/1 integer array, got dtype {a.dtype}")
 
 
 def _unknown_count(data: Any) -> int:
@@ -283,11 +283,18 @@ def _pixel_indices(pixels: Any, shape: Tuple[int, int], name: str) -> np.ndarray
                              f"{rows.shape} and {cols.shape}")
         a = np.stack([rows, cols], axis=1) if rows.size else np.empty((0, 2), dtype=np.int64)
     else:
-        a = np.asarray(pixels)
+        try:
+            a = np.asarray(pixels)
+        except ValueError as e:  # ragged: numpy's message alone would not name the argument
+            raise ValueError(f"{name} must be (row, col) pairs of shape (k, 2) or an H x W bool mask: {e}") from None
     if a.dtype == bool:
         if a.shape != shape:
             raise ValueError(f"{name}: a mask must have the map's shape {shape}, got {a.shape}")
         return np.ascontiguousarray(a).view(np.uint8)
+    if a.shape == shape and shape[1] == 2 and a.dtype.kind in "iu" and np.isin(a, (0, 1)).all():
+        # on a 2-column map an integer mask also has the shape of pairs: refused, not guessed
+        raise ValueError(f"{name}: an integer array of the map's shape {shape} with 0/1 values reads both as a "
+                         "mask and as (row, col) pairs; pass mask.astype(bool) for a mask")
     if a.size == 0:
         return np.empty(0, dtype=np.int64)
     if a.ndim == 1 and a.shape[0] == 2:
@@ -329,10 +336,26 @@ class OccupancyVoronoi:
         # and a planner) could otherwise update it together, or cache a result of the map before.
         self._lock = threading.RLock()
         self._unknown_pixels = grid.unknown_pixels  # the map itself lives in the core
-        self.robot_radius = float(robot_radius)
+        self._cache: Dict[str, np.ndarray] = {}
+        self.robot_radius = robot_radius
         self.options = dict(options)
         self.stats: Dict[str, Any] = {}
-        self._cache: Dict[str, np.ndarray] = {}
+
+    @property
+    def robot_radius(self) -> float:
+        """The robot radius (map units) of ``blocked``, ``blocked_mask``, ``path`` and the exports.
+        Settable: the diagram does not depend on it, and what does is recomputed."""
+        return self._robot_radius
+
+    @robot_radius.setter
+    def robot_radius(self, value: float) -> None:
+        r = _args.real(value, "robot_radius")
+        if not np.isfinite(r) or r < 0:
+            raise ValueError(f"robot_radius must be a finite number >= 0, got {r}")
+        with self._lock:
+            self._robot_radius = r
+            self._cache.pop("blocked", None)
+            self._cache.pop("blocked_mask", None)
 
     # -- the map and the diagram ---------------------------------------------------------------
     @property
@@ -437,7 +460,8 @@ class OccupancyVoronoi:
                                  "an update changes occupancy only (build a new diagram for another frame)")
             occ, unknown = new_occupancy.occupied, new_occupancy.unknown_pixels
         else:  # read as the map was: the build's threshold and unknown rule
-            occ = _occupied(new_occupancy, self.options.get("occupied_thresh", 0.65), self.options.get("unknown", "occupied"))
+            occ = _occupied(new_occupancy, self.options.get("occupied_thresh", 0.65), self.options.get("unknown", "occupied"),
+                            "new_occupancy")
             unknown = _unknown_count(new_occupancy)
         if occ.shape != self.shape:
             raise ValueError(f"new_occupancy must have the map's shape {self.shape}, got {occ.shape}")

@@ -2,8 +2,13 @@
 or pair where there is one)."""
 from __future__ import annotations
 
+import json
 import os
+import stat
 import re
+
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -138,6 +143,29 @@ def test_good_workers_and_the_deprecated_threads(call):
                 WORKER_CALLS[call](threads=threads)
         with pytest.raises(ValueError, match="not both"):
             WORKER_CALLS[call](workers=1, threads=1)
+
+
+def test_huge_worker_counts_run_and_give_the_same_answers():
+    # Before: workers=100000 went to the OpenMP team as asked, and a map over 2^20 pixels or an
+    # update killed the interpreter (libgomp could not start the threads). Run apart, so that a crash
+    # fails this test, not the suite.
+    code = """
+import numpy as np, dvoronoi as dv
+occ = np.zeros((1100, 1000), bool); occ[:, 500] = True; occ[300, :] = True; occ[700:710, 100:900] = True
+big = dv.grid_voronoi(occ, workers=100000)
+one = dv.grid_voronoi(occ, workers=1)
+assert np.array_equal(big.diagram_mask, one.diagram_mask)
+blob = np.zeros_like(occ); blob[::4, ::4] = True
+big.set_occupied(blob); one.set_occupied(blob)
+assert np.array_equal(big.diagram_mask, one.diagram_mask) and big.diagram_mask.any()
+doc = {"area": {"box": [0, 0, 100, 10]}, "obstacles": [{"type": "polygon", "vertices": [[20, 2], [30, 2], [30, 8], [20, 8]]}]}
+a = dv.grid_voronoi(doc, cells=3000, diagram="labels", workers=100000)
+b = dv.grid_voronoi(doc, cells=3000, diagram="labels", workers=1)
+assert len(a) == len(b) > 0
+print("ok")
+"""
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0 and run.stdout.strip() == "ok", run.stderr[-2000:]
 
 
 def LIMITED_CELLS(v):
@@ -341,3 +369,26 @@ def test_failed_write_leaves_nothing(tmp_path):
     assert os.listdir(tmp_path) == ["keep.json"]  # no temporary file left behind
     atomic_write_text(target, "new")
     assert target.read_text() == "new" and os.listdir(tmp_path) == ["keep.json"]
+
+
+def test_writes_follow_links_and_keep_pipes(tmp_path):
+    # Before: to_json through a link replaced the link by a file (the file it named kept its old
+    # content), and a FIFO (or, run as root, /dev/null) was replaced by a regular file.
+    part = dv.limited_cells(GOOD, 1.0)
+    real, link = tmp_path / "real.json", tmp_path / "link.json"
+    real.write_text("old")
+    os.chmod(real, 0o600)
+    os.symlink("real.json", link)
+    part.to_json(link)
+    assert link.is_symlink() and json.loads(real.read_text())
+    assert os.stat(real).st_mode & 0o777 == 0o600  # a replaced file keeps its mode
+    assert sorted(os.listdir(tmp_path)) == ["link.json", "real.json"]
+    fifo = tmp_path / "out.json"
+    os.mkfifo(fifo)
+    fd = os.open(fifo, os.O_RDONLY | os.O_NONBLOCK)  # a reader, so that the writer's open returns
+    try:
+        atomic_write_text(fifo, "through the pipe")
+        assert os.read(fd, 100) == b"through the pipe"
+    finally:
+        os.close(fd)
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode)

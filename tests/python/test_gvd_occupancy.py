@@ -988,3 +988,111 @@ def test_pixel_errors_show_the_values_given():
     with pytest.raises(ValueError, match=r"pixels\[1\] = \(inf, 1\.0\) is outside"):
         gv.set_free(np.array([[1.0, 1.0], [np.inf, 1.0]]))
     assert not gv.grid.occupied.any()
+
+
+def test_refused_pixel_forms_name_the_argument():
+    # Before: a 2-column map read an integer 0/1 mask as pairs, a ragged list gave numpy's bare
+    # message, and update() named its argument `occupancy`.
+    gv = dv.grid_voronoi(np.zeros((5, 2), bool))
+    m = np.zeros((5, 2), int)
+    m[0, 0] = 1
+    with pytest.raises(ValueError, match=r"^pixels: an integer array of the map's shape \(5, 2\).*astype\(bool\)"):
+        gv.set_occupied(m)
+    gv.set_occupied(np.array([[0, 1], [4, 1]]))  # pairs that are not 0/1 only: read as pairs
+    assert np.argwhere(gv.grid.occupied).tolist() == [[0, 1], [4, 1]]
+    with pytest.raises(ValueError, match=r"^pixels must be \(row, col\) pairs"):
+        gv.set_occupied([(1, 1), (3,)])
+    with pytest.raises(ValueError, match=r"^new_occupancy\[0, 0\] = 1.5"):
+        gv.update(np.full((5, 2), 1.5))
+    assert np.argwhere(gv.grid.occupied).tolist() == [[0, 1], [4, 1]]  # nothing changed by the refused calls
+
+
+def test_robot_radius_set_later_redoes_what_depends_on_it():
+    # Before: robot_radius was a plain attribute; `blocked` and `blocked_mask` kept the old radius's
+    # answer while paths and exports used the new one.
+    occ = np.zeros((20, 30), bool)
+    occ[:, 14] = True
+    gv = dv.grid_voronoi(occ, robot_radius=0.5)
+    assert gv.blocked.sum() == 0
+    gv.robot_radius = 100.0
+    fresh = dv.grid_voronoi(occ, robot_radius=100.0)
+    assert np.array_equal(gv.blocked, fresh.blocked) and gv.blocked.all()
+    assert np.array_equal(gv.blocked_mask, fresh.blocked_mask)
+    assert json.loads(gv.to_json())["pixels"]["blocked"] == json.loads(fresh.to_json())["pixels"]["blocked"]
+    for bad, err in ((-1.0, ValueError), (float("nan"), ValueError), ("1", TypeError)):
+        with pytest.raises(err, match="robot_radius"):
+            gv.robot_radius = bad
+    assert gv.robot_radius == 100.0
+    labelled = dv.grid_voronoi({"area": {"box": [0, 0, 10, 10]}, "obstacles": []}, cells=16, robot_radius=1.0,
+                               diagram="labels")
+    with pytest.raises(AttributeError):
+        labelled.robot_radius = 2.0  # its blocked cells and graph were decided with the radius it was built for
+
+
+def _exact_sq_clearance(occ, p, q):
+    """Exact squared distance (pixel units, Fractions) from segment pq to the occupied squares."""
+    from fractions import Fraction as F
+    H, W = occ.shape
+    best = None
+    for r, c in np.argwhere(occ):
+        x0, x1, y0, y1 = F(int(c)), F(int(c) + 1), F(H - 1 - int(r)), F(H - int(r))
+        # distance from a segment to a box: minimise over the segment by sampling its critical points
+        # (ends, and the parameters where it meets the box's lines or is nearest to its corners)
+        px, py, qx, qy = p[0], p[1], q[0], q[1]
+        dx, dy = qx - px, qy - py
+        ts = {F(0), F(1)}
+        for v, d, a in ((x0, dx, px), (x1, dx, px), (y0, dy, py), (y1, dy, py)):
+            if d != 0:
+                ts.add((v - a) / d)
+        l2 = dx * dx + dy * dy
+        for cx, cy in ((x0, y0), (x0, y1), (x1, y0), (x1, y1)):
+            if l2 != 0:
+                ts.add(((cx - px) * dx + (cy - py) * dy) / l2)
+        for t in ts:
+            if 0 <= t <= 1:
+                x, y = px + t * dx, py + t * dy
+                ex = max(x0 - x, 0, x - x1)
+                ey = max(y0 - y, 0, y - y1)
+                d2 = ex * ex + ey * ey
+                best = d2 if best is None or d2 < best else best
+    return best
+
+
+def test_returned_path_segments_clear_the_radius_in_map_coordinates():
+    # Before: segments were tested on rounded pixel coordinates, and returned rounded again in map
+    # coordinates: with robot_radius 0 a segment could run exactly through an occupied pixel's corner,
+    # and far from (0, 0) a vertex came nearer than the radius. Checked exactly (Fractions) on the
+    # returned floats.
+    from fractions import Fraction as F
+    occ = np.zeros((6, 6), bool)
+    occ[3, 3] = True
+    gv = dv.grid_voronoi(occ, resolution=0.05, origin=(0.87, 8.7))
+    S, G = gv.grid.pixel_centers([(3, 2), (2, 3)])  # diagonal neighbours across the corner of (3, 3)
+    route = gv.path(S, G)
+    assert len(route) >= 2
+    to_px = lambda v: ((F(float(v[0])) - F(0.87)) / F(0.05), (F(float(v[1])) - F(8.7)) / F(0.05))  # noqa: E731
+    for a, b in zip(route[:-1], route[1:]):
+        assert _exact_sq_clearance(occ, to_px(a), to_px(b)) > 0
+    H, W = 12, 14
+    occ = np.ones((H, W), bool)
+    occ[1:6, 1:4] = False
+    occ[3, 4:9] = False
+    occ[4:9, 8] = False
+    occ[9:11, 6:12] = False  # an L-shaped corridor, one pixel wide in places
+    res = 0.1
+    origin = (0.0, 2.0 ** 38 * res)
+    gv = dv.grid_voronoi(occ, resolution=res, origin=origin)
+    r = res * (0.5 - 1e-6)
+    S, G = gv.grid.pixel_centers([(3, 2), (10, 9)])
+    try:
+        route = gv.path(S, G, robot_radius=r)
+    except ValueError as e:  # right too: the corridor clears r by less than the coordinates' rounding
+        assert "by more than rounding" in str(e)
+        route = np.empty((0, 2))
+    to_px = lambda v: ((F(float(v[0])) - F(origin[0])) / F(res), (F(float(v[1])) - F(origin[1])) / F(res))  # noqa: E731
+    for a, b in zip(route[:-1], route[1:]):
+        assert _exact_sq_clearance(occ, to_px(a), to_px(b)) > (F(r) / F(res)) ** 2
+    route = gv.path(S, G, robot_radius=res * 0.499)  # a gap far above rounding: found, and clear
+    assert len(route) >= 2
+    for a, b in zip(route[:-1], route[1:]):
+        assert _exact_sq_clearance(occ, to_px(a), to_px(b)) > (F(res * 0.499) / F(res)) ** 2

@@ -10,6 +10,12 @@
 #include <stdexcept>
 #include <string>
 
+#ifndef _WIN32
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
+
 namespace fs = std::filesystem;
 using dvoronoi::io::AtomicFile;
 using dvoronoi::io::OutputError;
@@ -114,3 +120,33 @@ TEST_CASE("an unwritable destination fails at construction, naming the path") {
     CHECK_THROWS_AS(AtomicFile(dir.path.string()), OutputError);  // a directory
     CHECK(dir.entries() == 0);
 }
+
+#ifndef _WIN32
+TEST_CASE("a link is followed: the file it names gets the content, the link stays a link") {
+    // Before: the rename replaced the link by a regular file and the file it named kept its old content.
+    TempDir dir;
+    const fs::path real = dir.path / "real.json", link = dir.path / "link.json";
+    std::ofstream(real) << "old";
+    fs::create_symlink("real.json", link);  // relative, as `ln -s` makes it
+    write_atomically(link.string(), [](std::ostream& os) { os << "new"; });
+    CHECK(fs::is_symlink(link));
+    CHECK(slurp(real) == "new");
+    CHECK(dir.entries() == 2);
+}
+
+TEST_CASE("a pipe is written in place, not replaced by a file") {
+    // Before: the rename replaced a FIFO (or, run as root, `--svg /dev/null`'s device) by a regular file.
+    TempDir dir;
+    const fs::path fifo = dir.path / "out.svg";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    const int fd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // a reader, so that the writer's open returns
+    REQUIRE(fd >= 0);
+    write_atomically(fifo.string(), [](std::ostream& os) { os << "<svg/>"; });
+    char buf[16] = {};
+    const auto n = ::read(fd, buf, sizeof buf);
+    ::close(fd);
+    CHECK(std::string(buf, n > 0 ? static_cast<std::size_t>(n) : 0) == "<svg/>");
+    CHECK(fs::is_fifo(fifo));
+    CHECK(dir.entries() == 1);
+}
+#endif

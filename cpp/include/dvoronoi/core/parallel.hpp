@@ -121,8 +121,15 @@ auto naming_range_error(const char* what, F&& f) -> decltype(f()) {
 /// Agents per block of the parallel drivers (the unit of scheduling and of progress reports).
 inline constexpr Index kBlock = 2048;
 
+/// The most threads a team starts: answers are the same for any count, and a request of 100,000
+/// threads would fail in the system (libgomp aborts, std::thread throws) long before it could help.
+inline int max_team() {
+    static const int cap = static_cast<int>(std::max(64u, 8u * std::thread::hardware_concurrency()));
+    return cap;
+}
+
 /// OpenMP team size for `blocks` blocks: `threads` (0 = all cores), never more than one thread per
-/// block, so small inputs start no team.
+/// block, so small inputs start no team, nor more than max_team().
 inline int thread_team(int threads, Index blocks) {
 #ifdef _OPENMP
     const int wanted = threads > 0 ? threads : omp_get_max_threads();
@@ -130,7 +137,7 @@ inline int thread_team(int threads, Index blocks) {
     const int wanted = 1;
     (void)threads;
 #endif
-    return static_cast<int>(std::min<Index>(wanted, std::max<Index>(blocks, 1)));
+    return static_cast<int>(std::min<Index>({wanted, std::max<Index>(blocks, 1), ::dvoronoi::detail::max_team()}));
 }
 
 /// Blocks of kBlock agents that cover n agents.
@@ -185,7 +192,7 @@ void for_each_block(Index n, int team, ProgressTracker& tracker, Make&& make, Wo
 }  // namespace detail
 
 /// fn(k) for k = 0..count-1, one std::thread each (the calling thread alone when count is 1, so one
-/// worker never pays for a thread).
+/// worker never pays for a thread). Callers bound count by max_team().
 template <class Fn>
 void run_team(int count, Fn&& fn) {
     if (count <= 1) {
@@ -205,6 +212,8 @@ void run_team(int count, Fn&& fn) {
 /// same result for any split.
 template <class Make, class Fn>
 void run_chunks(int workers, std::int32_t count, std::int32_t chunk, Make&& make, Fn&& fn) {
+    // one thread a chunk at most, and never more than max_team()
+    workers = std::min({workers, (count + chunk - 1) / std::max(chunk, 1), ::dvoronoi::detail::max_team()});
     std::atomic<std::int32_t> next{0};
     auto take_chunks = [&] {
         auto state = make();

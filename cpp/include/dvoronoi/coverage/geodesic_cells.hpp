@@ -121,7 +121,7 @@ inline GeodesicMoments geodesic_moments(const GeodesicField& f, const double* we
     std::vector<double> extra(static_cast<std::size_t>(n), 0.0);  // R̄^2 - R_i^2
     if (ranges)
         for (std::size_t i = 0; i < extra.size(); ++i) extra[i] = r2 - (*ranges)[i] * (*ranges)[i];
-    run_team(std::max(1, std::min(workers, blocks)), [&](int) {
+    run_team(std::max(1, std::min({workers, blocks, ::dvoronoi::detail::max_team()})), [&](int) {
         for (std::int32_t b; (b = next++) < blocks;) {
             GeodesicMoments& m = part[static_cast<std::size_t>(b)];
             m.mass.assign(static_cast<std::size_t>(n), 0.0);
@@ -175,7 +175,7 @@ inline std::vector<std::int64_t> nearest_cell_pixels(const GeodesicField& f, con
     std::vector<double> best(std::size_t(blocks) * n, inf);
     std::vector<std::int64_t> arg(std::size_t(blocks) * n, -1);
     std::atomic<std::int32_t> next{0};
-    run_team(std::max(1, std::min(workers, blocks)), [&](int) {
+    run_team(std::max(1, std::min({workers, blocks, ::dvoronoi::detail::max_team()})), [&](int) {
         for (std::int32_t b; (b = next++) < blocks;) {
             double* bb = best.data() + std::size_t(b) * n;
             std::int64_t* ab = arg.data() + std::size_t(b) * n;

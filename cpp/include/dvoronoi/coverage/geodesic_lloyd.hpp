@@ -81,7 +81,7 @@ public:
         std::vector<std::vector<PixelPoint>> path(static_cast<std::size_t>(n));
         std::vector<double> length(static_cast<std::size_t>(n), 0.0);
         std::atomic<std::int32_t> next{0};
-        run_team(std::max(1, std::min(workers_, n)), [&](int) {
+        run_team(std::max(1, std::min({workers_, n, ::dvoronoi::detail::max_team()})), [&](int) {
             for (std::int32_t i; (i = next++) < n;) {
                 if (!(moments_.mass[i] > 0) || nearest[i] < 0) continue;
                 PixelPoint t = centroid[i];

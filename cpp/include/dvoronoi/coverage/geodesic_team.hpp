@@ -42,7 +42,7 @@ inline void geodesic_team_field(const std::uint8_t* occ, std::int32_t rows, std:
     const auto n = static_cast<std::int32_t>(agents.size());
     waves.resize(static_cast<std::size_t>(n));
     std::atomic<std::int32_t> next{0};
-    run_team(std::max(1, std::min(workers, n)), [&](int) {
+    run_team(std::max(1, std::min({workers, n, ::dvoronoi::detail::max_team()})), [&](int) {
         for (std::int32_t i; (i = next++) < n;) {
             AgentWave& w = waves[static_cast<std::size_t>(i)];
             const PixelPoint& a = agents[static_cast<std::size_t>(i)];

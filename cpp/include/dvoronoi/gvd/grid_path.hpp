@@ -142,11 +142,15 @@ inline GridPath find_grid_path(const MedialDiagram& m, const Vec2& start, const 
     // that cost stays far below float's range
     if (!(off_diagram_cost >= 1.0 && off_diagram_cost <= 1e6))
         throw InputError("off_diagram_cost must be a number in [1, 1e6], got " + ::dvoronoi::detail::shortest_text(off_diagram_cost));
-    const double r_px = robot_radius / g.resolution;
+    // The tests run in pixel units on rounded pixel coordinates (to_pixels), and the path returns in
+    // map coordinates rounded again (origin + resolution * p): each is off by a few ulps of the
+    // larger of |origin| / resolution and the map's side. Clearances must beat r by that too, or a
+    // segment cleared in pixels could touch a corner in map units (r = 0) or come nearer than r far
+    // from (0, 0).
+    const double span = std::max(std::abs(g.origin.x()), std::abs(g.origin.y())) / g.resolution + std::max(g.cols, g.rows) + 1.0;
+    const double r_px = robot_radius / g.resolution + 8.0 * std::numeric_limits<double>::epsilon() * span;
     auto show = [](const Vec2& p) {
-        char buf[80];
-        std::snprintf(buf, sizeof buf, "(%.10g, %.10g)", p.x(), p.y());
-        return std::string(buf);
+        return "(" + ::dvoronoi::detail::shortest_text(p.x()) + ", " + ::dvoronoi::detail::shortest_text(p.y()) + ")";
     };
     const Vec2 sp = g.to_pixels(start), gp = g.to_pixels(goal);
     for (auto [p, name, orig] : {std::tuple<Vec2, const char*, Vec2>{sp, "start", start}, {gp, "goal", goal}}) {
@@ -158,7 +162,7 @@ inline GridPath find_grid_path(const MedialDiagram& m, const Vec2& start, const 
             throw InputError(std::string(name) + " " + show(orig) + " is blocked: its clearance " +
                              ::dvoronoi::detail::shortest_text(cl * g.resolution) +
                              " is not greater than the robot radius " + ::dvoronoi::detail::shortest_text(robot_radius) +
-                             " by more than rounding (a relative 1e-12)");
+                             " by more than rounding");
     }
     GridPath out;
     if (start == goal) {  // already there (and clear)

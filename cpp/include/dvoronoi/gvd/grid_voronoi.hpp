@@ -132,7 +132,7 @@ inline void check_options(const GvdOptions& o) {
 inline GridVoronoi grid_voronoi(const Scene& scene, const GvdOptions& options) {
     check_options(options);
     const GridSpec grid = make_grid(scene, options.resolution);
-    const int workers = std::min<int>(options.workers, grid.nx);
+    const int workers = std::min<int>({options.workers, grid.nx, ::dvoronoi::detail::max_team()});  // the answer is the same for any count
     const ObstacleIndex index(scene, options.visibility, workers);
     const auto bounds = slice_bounds(grid.nx, workers);
 

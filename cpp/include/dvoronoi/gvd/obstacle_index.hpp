@@ -355,7 +355,7 @@ private:
     /// Candidate lists of every bucket, rows split between threads (each builds its rows' lists;
     /// they are joined in row order, so the result does not depend on the thread count).
     void build_candidates(int threads) {
-        const int T = std::max(1, std::min(threads, ny_));
+        const int T = std::max(1, std::min({threads, ny_, ::dvoronoi::detail::max_team()}));
         const std::size_t nb = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
         std::vector<std::uint32_t> count(nb, 0);
         std::vector<std::vector<std::uint32_t>> items(static_cast<std::size_t>(T));

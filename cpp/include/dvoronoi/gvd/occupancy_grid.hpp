@@ -139,7 +139,7 @@ public:
     }
     /// The bits of `g`, its rows split over `workers` threads (rows never share a word).
     explicit OccupancyBits(const OccupancyGrid& g, int workers = 1) : OccupancyBits(g.rows, g.cols) {
-        const int team = std::max(1, std::min(workers, rows_));
+        const int team = std::max(1, std::min({workers, rows_, ::dvoronoi::detail::max_team()}));
         run_team(team, [&](int t) {
             fill_rows(g, static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * t / team),
                       static_cast<std::int32_t>(static_cast<std::int64_t>(rows_) * (t + 1) / team));

@@ -1,7 +1,9 @@
 // Writing output files atomically: the content goes to a temporary file in the target's directory,
 // which is renamed over the target only when everything was written and flushed. A failure (an
 // exception, a full disk, a crash) never leaves a half-written output: either the old file (or no
-// file) or the complete new one is there.
+// file) or the complete new one is there. A link is followed (the file it names is replaced, the link
+// stays), and a device or a pipe (/dev/null, /dev/stdout, a FIFO) is written in place: renaming over
+// it would replace the device itself.
 #pragma once
 
 #include "dvoronoi/core/types.hpp"
@@ -47,9 +49,16 @@ public:
     /// \throws OutputError "PATH: ..." if PATH is a directory or the temporary file cannot be created.
     explicit AtomicFile(std::string path) : path_(std::move(path)) {
         namespace fs = std::filesystem;
-        const fs::path target(path_);
+        const fs::path target = followed(path_);
+        target_ = target.string();
         std::error_code ec;
-        if (fs::is_directory(target, ec)) throw OutputError(path_ + ": is a directory");
+        const fs::file_status st = fs::status(target, ec);
+        if (fs::is_directory(st)) throw OutputError(path_ + ": is a directory");
+        if (fs::exists(st) && !fs::is_regular_file(st)) {  // a device or a pipe: written in place
+            out_.open(target_, std::ios::binary);
+            if (!out_) throw OutputError(path_ + ": cannot open for writing");
+            return;
+        }
         const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
         const std::string base = target.filename().string();
         if (base.empty() || base == "." || base == "..") throw OutputError(path_ + ": not a file name");
@@ -107,11 +116,15 @@ public:
             remove_temp();
             throw OutputError(path_ + ": writing failed (disk full or I/O error)");
         }
+        if (temp_.empty()) {  // written in place
+            committed_ = true;
+            return;
+        }
         std::error_code ec;
-        const fs::file_status old = fs::status(path_, ec);
+        const fs::file_status old = fs::status(target_, ec);
         if (!ec && fs::is_regular_file(old))
             fs::permissions(temp_, old.permissions(), fs::perm_options::replace, ec);
-        fs::rename(temp_, path_, ec);
+        fs::rename(temp_, target_, ec);
         if (ec) {
             remove_temp();
             throw OutputError(path_ + ": cannot move the finished file into place: " + ec.message());
@@ -120,6 +133,20 @@ public:
     }
 
 private:
+    /// `path` with its links followed as far as they lead (at most 40, as the kernel): the file a
+    /// write through the link lands in. A dangling link gives the path it names.
+    static std::filesystem::path followed(const std::string& path) {
+        namespace fs = std::filesystem;
+        fs::path p(path);
+        std::error_code ec;
+        for (int hop = 0; hop < 40 && fs::is_symlink(p, ec); ++hop) {
+            const fs::path to = fs::read_symlink(p, ec);
+            if (ec) break;
+            p = to.is_absolute() ? to : p.parent_path() / to;
+        }
+        return p;
+    }
+
     static long pid() {
 #ifdef _WIN32
         return static_cast<long>(_getpid());
@@ -150,7 +177,7 @@ private:
         std::filesystem::remove(temp_, ec);
     }
 
-    std::string path_, temp_;
+    std::string path_, target_, temp_;  // target_: path_ with its links followed
     std::ofstream out_;
     bool committed_ = false;
 };
