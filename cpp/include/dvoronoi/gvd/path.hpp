@@ -31,10 +31,8 @@ struct PathResult {
 
 namespace detail {
 
-inline std::string show_point(const Vec2& p) {
-    char buf[80];
-    std::snprintf(buf, sizeof buf, "(%.10g, %.10g)", p.x(), p.y());
-    return buf;
+inline std::string show_point(const Vec2& p) {  // every digit: a point near another must not read as it
+    return "(" + ::dvoronoi::detail::shortest_text(p.x()) + ", " + ::dvoronoi::detail::shortest_text(p.y()) + ")";
 }
 
 /// Throws InputError when `p` is outside the area or within the robot radius of an obstacle.
