@@ -59,7 +59,7 @@ int run_cells(const CellsOptions& o) {
     const Method method = parse_method(o.method);
     const bool to_stdout = o.output.empty() || o.output == "-";
     const Format format = to_stdout ? Format::Json : output_format(o.output, "-o/--output");
-    check_outputs_differ(o.output, o.svg);
+    check_outputs(o.output, o.svg, {{o.points, "POINTS"}});
 
     const io::PointFile file = read_points_argument(o.points, o.columns, true);
 

@@ -18,6 +18,8 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #ifdef _WIN32
 #include <io.h>
@@ -69,10 +71,9 @@ inline std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-/// Refuses an --svg path naming the -o/--output file (as spelt, or another path to it: ./a.json, an
-/// absolute path, a link): both would be written and one lost.
-inline void check_outputs_differ(const std::string& output, const std::string& svg) {
-    if (output.empty() || output == "-" || svg.empty()) return;
+/// Whether two paths name one file: as spelt, or by another path to it (./a.json, an absolute path,
+/// a link, a hard link).
+inline bool same_file(const std::string& a, const std::string& b) {
     namespace fs = std::filesystem;
     auto resolved = [](const std::string& p) {  // links and dots resolved as far as the path exists
         std::error_code ec;
@@ -80,8 +81,31 @@ inline void check_outputs_differ(const std::string& output, const std::string& s
         return ec ? fs::path(p).lexically_normal() : c;
     };
     std::error_code ec;
-    const bool same = fs::equivalent(output, svg, ec) || resolved(output) == resolved(svg);
-    if (same || output == svg) throw UsageError("--svg: same file as -o/--output ('" + svg + "')");
+    return a == b || fs::equivalent(a, b, ec) || resolved(a) == resolved(b);
+}
+
+/// A file a command reads, and how a message names it ("INPUT", "--polygon", "the image of INPUT").
+struct ReadFile {
+    std::string path, name;
+};
+
+/// Refuses outputs that would lose a file: an --svg path naming the -o/--output file (both would be
+/// written and one lost), and an output naming a file the command reads (INPUT, a YAML's image...):
+/// it would be replaced. '-' is stdout (or stdin) and no file; `--svg -` is refused, as only -o may
+/// write to stdout. One function for every command, so that each compares paths the same way.
+inline void check_outputs(const std::string& output, const std::string& svg, const std::vector<ReadFile>& inputs = {}) {
+    if (svg == "-") throw UsageError("--svg: '-' (stdout) is for -o/--output's JSON; give the SVG a file name");
+    const bool to_file = !output.empty() && output != "-";
+    if (to_file && !svg.empty() && same_file(output, svg)) throw UsageError("--svg: same file as -o/--output ('" + svg + "')");
+    for (const ReadFile& in : inputs) {
+        if (in.path.empty() || in.path == "-") continue;
+        for (const auto& [path, option] : {std::pair<const std::string&, const char*>(output, "-o/--output"),
+                                           std::pair<const std::string&, const char*>(svg, "--svg")})
+            if (!path.empty() && path != "-" && same_file(path, in.path))
+                throw UsageError(std::string(option) + ": '" + path + "' is the same file as " + in.name +
+                                 (path == in.path ? std::string() : " ('" + in.path + "')") +
+                                 ": an output may not overwrite an input");
+    }
 }
 
 /// The format of an output path, from its extension. \throws UsageError naming `option`.

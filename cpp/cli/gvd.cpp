@@ -48,7 +48,7 @@ using cli_maps::is_map_file;
 bool check_common(const GvdCliOptions& o) {
     if (o.workers < 0) throw UsageError("--workers: must be 0 (all cores) or positive, got " + std::to_string(o.workers));
     const bool to_stdout = cli_maps::check_run_options(o.robot_radius, o.path, o.output);
-    check_outputs_differ(o.output, o.svg);
+    check_outputs(o.output, o.svg, {{o.obstacles, "INPUT"}});
     return to_stdout;
 }
 
@@ -91,6 +91,7 @@ int run_map(const GvdCliOptions& o) {
     o.map.check(o.obstacles);
     const bool to_stdout = check_common(o);
     const io::LoadedMap map = io::read_occupancy_map(o.obstacles, o.map.read_options());
+    check_outputs(o.output, o.svg, {{map.image, "the image of INPUT"}});  // a YAML's image is known now
     std::unique_ptr<io::AtomicFile> out, svg;
     if (!to_stdout) out = open_output(o.output, "-o/--output");
     if (!o.svg.empty()) svg = open_output(o.svg, "--svg");
@@ -98,9 +99,8 @@ int run_map(const GvdCliOptions& o) {
 }
 
 int run_gvd(const GvdCliOptions& o) {
+    cli_maps::check_input(o.obstacles);  // a folder, a missing file, a JPEG: said before any option check
     if (is_map_file(o.obstacles)) return run_map(o);
-    if (std::filesystem::is_directory(o.obstacles))
-        throw UsageError("'" + o.obstacles + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
     const bool medial = o.diagram == "medial";
     cli_maps::check_document_options(o.map, o.obstacles, o.grid, medial, o.mode, o.no_visibility);
     const bool to_stdout = check_common(o);

@@ -66,6 +66,28 @@ nlohmann::json points_json(const Points& p) {
     return a;
 }
 
+/// The picture of step `step` in --svg-dir.
+std::string frame_path(const LloydOptions& o, int step) {
+    char name[32];
+    std::snprintf(name, sizeof name, "step_%06d.svg", step);
+    return (std::filesystem::path(o.svg_dir) / name).string();
+}
+
+/// Refuses an --svg-dir whose pictures (steps 0, every --svg-every and the last) would replace an input.
+void check_frames(const LloydOptions& o, const std::vector<ReadFile>& inputs) {
+    if (o.svg_dir.empty()) return;
+    for (const ReadFile& in : inputs) {
+        int step = -1;
+        const std::string name = std::filesystem::path(in.path).filename().string();
+        if (in.path.empty() || in.path == "-" || std::sscanf(name.c_str(), "step_%d", &step) != 1 || step < 0 || step > o.steps ||
+            (step != 0 && step != o.steps && step % o.svg_every != 0))
+            continue;
+        if (same_file(frame_path(o, step), in.path))
+            throw UsageError("--svg-dir: the picture '" + frame_path(o, step) + "' is the same file as " + in.name + " ('" +
+                             in.path + "'): an output may not overwrite an input");
+    }
+}
+
 int run_lloyd(const LloydOptions& o) {
     // --columns X,Y,R reads one sensing radius per agent (a heterogeneous team); otherwise --radius.
     const bool radius_column = !o.columns.empty() && io::parse_columns(o.columns, "--columns", true).has_radius();
@@ -93,6 +115,9 @@ int run_lloyd(const LloydOptions& o) {
     if (!to_stdout && lower_extension(o.output) != ".json")
         throw UsageError("-o/--output: the run is written as JSON; use a .json file name or '-', got '" +
                          o.output + "'");
+    const std::vector<ReadFile> inputs = {{o.points, "POINTS"}, {o.polygon, "--polygon"}};
+    check_outputs(o.output, "", inputs);
+    check_frames(o, inputs);
     std::optional<ConvexPolygon> env = environment(o);
 
     const io::PointFile file = read_points_argument(o.points, o.columns, true);
@@ -144,9 +169,7 @@ int run_lloyd(const LloydOptions& o) {
             const Swarm swarm(frames[k], stepper.radius());
             const AgentRadii team = radii.empty() ? AgentRadii{} : AgentRadii(swarm, radii);
             const LimitedPartition cells = coverage_cells(swarm, team, stepper.environment(), -1, o.threads);
-            char name[32];
-            std::snprintf(name, sizeof name, "step_%06d.svg", frame_steps[k]);
-            io::AtomicFile f((std::filesystem::path(o.svg_dir) / name).string());
+            io::AtomicFile f(frame_path(o, frame_steps[k]));
             io::write_svg(f.stream(), cells);
             f.commit();
             pictures(static_cast<Index>(k + 1), static_cast<Index>(frames.size()));

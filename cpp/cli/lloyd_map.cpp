@@ -31,6 +31,8 @@ int run_lloyd_map(const LloydMapRequest& r) {
     if (!to_stdout && lower_extension(r.output) != ".json")
         throw UsageError("-o/--output: the run is written as JSON; use a .json file name or '-', got '" + r.output + "'");
 
+    check_outputs(r.output, "", {{r.points, "POINTS"}, {r.map, "--map"}});
+
     io::MapReadOptions ro;
     ro.unknown_occupied = r.unknown == "occupied";
     if (r.resolution > 0) ro.resolution = r.resolution;

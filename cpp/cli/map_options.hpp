@@ -15,6 +15,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +26,31 @@ namespace dvoronoi::cli_maps {
 inline bool is_map_file(const std::string& path) {
     const std::string e = io::detail::lower_ext(path);
     return e == ".yaml" || e == ".yml" || e == ".pgm" || e == ".png" || e == ".map";
+}
+
+/// The first check of INPUT in both programs, before any option check, so that a wrong file is not
+/// taken for an obstacle document missing --grid: a folder; and, for an input that is no map file by
+/// its extension, a missing file or one that is not JSON (an obstacle document is a JSON object). A
+/// missing or unreadable map is named by its reader, after the option checks. \throws InputError
+inline void check_input(const std::string& input) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(input, ec))
+        throw InputError("'" + input + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
+    if (is_map_file(input)) return;
+    if (!fs::exists(input, ec) && !ec) throw InputError(input + ": cannot open file: it does not exist");
+    if (io::detail::lower_ext(input) == ".json") return;  // the JSON reader names what is wrong, with line and column
+    std::ifstream in(input, std::ios::binary);
+    if (!in) return;  // unreadable: the reader says so
+    char bom[3] = {};
+    if (!in.read(bom, 3) || std::string(bom, 3) != "\xEF\xBB\xBF") {  // a UTF-8 byte order mark is skipped
+        in.clear();
+        in.seekg(0);
+    }
+    in >> std::ws;
+    if (in.peek() != '{')
+        throw InputError(input + ": neither a map file nor an obstacle document (not JSON): maps are read from .yaml/.yml "
+                                 "(map_server), .pgm, .png and .map (MovingAI) files, obstacle documents from JSON (.json)");
 }
 
 struct MapOptions {
@@ -63,6 +90,9 @@ struct MapOptions {
         };
         if (resolution_given && !(resolution > 0.0 && std::isfinite(resolution)))
             throw InputError("--resolution: must be a positive number (map units per pixel), got " + num(resolution));
+        if (resolution_given && !gvd::resolution_in_range(resolution))
+            throw InputError("--resolution: must lie in " + gvd::resolution_range() +
+                             " (map units per pixel) so that map coordinates stay finite, got " + num(resolution));
         const std::string ext = io::detail::lower_ext(input);
         if ((ext == ".yaml" || ext == ".yml") && (resolution_given || !origin.empty()))
             throw InputError("--resolution/--origin: a map_server YAML brings its own resolution and origin");

@@ -43,6 +43,7 @@ int run_distances(const DistOptions& o) {
             throw UsageError("-o/--output: robots known only by distances have no coordinates, so no GeoJSON; use .json or .csv");
         csv = f == Format::Csv;
     }
+    check_outputs(o.output, "", {{o.file, "DISTFILE"}});
     const io::DistanceFile file = io::read_distance_file(o.file);
     if (o.n >= 0)
         for (std::size_t k = 0; k < file.rows.size(); ++k)

@@ -96,6 +96,7 @@ int run_network(const NetworkOptions& o) {
         throw UsageError("--tolerance: must be a finite number >= 0, got " + show(o.tolerance));
     const bool to_stdout = o.output.empty() || o.output == "-";
     const Format format = to_stdout ? Format::Json : output_format(o.output, "-o/--output");
+    check_outputs(o.output, o.svg, {{o.points, "POINTS"}, {o.obstacles, "--obstacles"}});
     network::Options opt;
     opt.algorithm = network::parse_algorithm(o.algorithm);
     opt.range = o.range;

@@ -52,7 +52,7 @@ int run_voronoi(const VoronoiOptions& o) {
     const AsrInner inner = o.inner == "evt" ? AsrInner::Evt : o.inner == "scan" ? AsrInner::Scan : AsrInner::Auto;
     const bool to_stdout = o.output.empty() || o.output == "-";
     const Format format = to_stdout ? Format::Json : output_format(o.output, "-o/--output");
-    check_outputs_differ(o.output, o.svg);
+    check_outputs(o.output, o.svg, {{o.points, "POINTS"}});
 
     const io::PointFile file = read_points_argument(o.points, o.columns);
 

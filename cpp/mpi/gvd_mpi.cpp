@@ -118,9 +118,11 @@ std::vector<T> gather(const std::vector<T>& mine, int rank, int size, std::vecto
 }
 
 /// Rank 0: opens the outputs before any work, as the CLI does (--svg naming the -o file by another
-/// path, ./a.json or a link, is refused: one would be lost).
-void open_outputs(const Args& a, bool to_stdout, std::unique_ptr<io::AtomicFile>& out, std::unique_ptr<io::AtomicFile>& svg) {
-    cli::check_outputs_differ(to_stdout ? std::string() : a.output, a.svg);
+/// path, ./a.json or a link, is refused: one would be lost; so is an output naming INPUT or a YAML's
+/// `image`).
+void open_outputs(const Args& a, bool to_stdout, std::unique_ptr<io::AtomicFile>& out, std::unique_ptr<io::AtomicFile>& svg,
+                  const std::string& image = std::string()) {
+    cli::check_outputs(to_stdout ? std::string() : a.output, a.svg, {{a.input, "INPUT"}, {image, "the image of INPUT"}});
     if (!to_stdout) out = cli::open_output(a.output, "-o/--output");
     if (!a.svg.empty()) svg = cli::open_output(a.svg, "--svg");
 }
@@ -150,10 +152,6 @@ int run_medial(const Args& a, int rank, int size, gvd::OccupancyGrid grid, std::
                std::unique_ptr<io::AtomicFile> out, std::unique_ptr<io::AtomicFile> svg);
 
 int run_obstacles(const Args& a, int rank, int size) {
-    on_rank0(rank, [&] {  // the CLI's first word on a folder, before any option check
-        if (std::filesystem::is_directory(a.input))
-            throw InputError("'" + a.input + "' is a folder: give a map file (.yaml, .pgm, .png, .map) or an obstacle document (.json)");
-    });
     // the same checks and messages as `dvoronoi gvd`, on every rank alike
     const bool medial = a.diagram == "medial";
     cli_maps::check_document_options(a.map, a.input, a.grid, medial, a.mode, a.no_visibility);
@@ -335,7 +333,7 @@ int run_map(const Args& a, int rank, int size) {
         } catch (const InputError& e) {
             throw InputError(a.input + ": " + e.what());
         }
-        open_outputs(a, to_stdout, out, svg);
+        open_outputs(a, to_stdout, out, svg, map.image);
     });
     return run_medial(a, rank, size, std::move(map.grid), map.unknown, false, std::move(out), std::move(svg));
 }
@@ -440,6 +438,8 @@ int run_medial(const Args& a, int rank, int size, gvd::OccupancyGrid grid, std::
 }
 
 int run(const Args& a, int rank, int size) {
+    // the CLI's first word on a folder, a missing file or a JPEG, before any option check
+    on_rank0(rank, [&] { cli_maps::check_input(a.input); });
     return is_map_file(a.input) ? run_map(a, rank, size) : run_obstacles(a, rank, size);
 }
 

@@ -75,10 +75,18 @@ def load_obstacles(obstacles: Any, area: Any = None) -> "_core._GvdScene":
         # A file is parsed by the compiled loader the CLI uses: the same messages, FILE:LINE:COLUMN for
         # invalid JSON, a repeated key or a number beyond the range of a double.
         name = os.fspath(obstacles)
+        if os.path.isdir(name):
+            raise ValueError(f"{name}: is a folder, not a file")
         try:
             text = Path(name).read_bytes()
+        except FileNotFoundError:
+            raise ValueError(f"{name}: cannot open file: it does not exist") from None
         except OSError as e:
             raise ValueError(f"{name}: cannot read file ({e.strerror})") from None
+        if not name.lower().endswith(".json") and not text.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"{"):
+            from .occupancy import MAP_EXTENSIONS  # a JPEG read as JSON would say "a NUL byte"
+            raise ValueError(f"{name}: neither a map file nor an obstacle document (not JSON): maps are read from "
+                             f"{', '.join(MAP_EXTENSIONS)} files, obstacle documents from JSON (.json)")
         return _core._GvdScene.from_text(text, name, None if area is None else _area_json(area))
     if isinstance(obstacles, dict):
         doc = dict(obstacles)

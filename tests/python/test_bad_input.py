@@ -392,3 +392,19 @@ def test_writes_follow_links_and_keep_pipes(tmp_path):
     finally:
         os.close(fd)
     assert stat.S_ISFIFO(os.stat(fifo).st_mode)
+
+
+def test_grid_voronoi_names_what_a_file_is_not(tmp_path):
+    # Before: a JPEG said "invalid JSON: a NUL byte", a missing file gave the OS's words only.
+    jpg = tmp_path / "office.jpg"
+    jpg.write_bytes(b"\xff\xd8\xff\xe0\x00\x10JFIF\x00")
+    with pytest.raises(ValueError, match=r"office.jpg: neither a map file nor an obstacle document.*\.pgm.*\.json"):
+        dv.grid_voronoi(jpg)
+    with pytest.raises(ValueError, match=r"no_such_map: cannot open file: it does not exist"):
+        dv.grid_voronoi(tmp_path / "no_such_map")
+    (tmp_path / "d.json").mkdir()
+    with pytest.raises(ValueError, match=r"d.json: is a folder"):
+        dv.grid_voronoi(tmp_path / "d.json")
+    doc = tmp_path / "scene.txt"  # a document without the .json name is still read
+    doc.write_text('\ufeff {"area": {"box": [0, 0, 10, 10]}, "obstacles": []}', encoding="utf-8")
+    assert dv.grid_voronoi(doc, cells=16, diagram="labels").shape == (16, 16)

@@ -143,3 +143,149 @@ def test_cli_labelled_diagram_without_path_or_cells_says_so(tmp_path):
         {"type": "polygon", "vertices": [[-1, -1], [5, -1], [5, 5], [-1, 5]]}]}))
     r = run("gvd", full, "--grid", 16, "-q")
     assert r.returncode == 0 and "gvd: warning: no diagram cell: the corners of every cell share one nearest obstacle" in r.stderr
+
+
+# -- outputs never overwrite inputs; map files read whole or refused; inputs named for what they are --
+
+ROOM = "type octile\nheight 8\nwidth 12\nmap\n" + "@" * 12 + "\n" + ("@" + "." * 10 + "@\n") * 6 + "@" * 12 + "\n"
+
+
+def _ros_map(folder: Path) -> Path:
+    grey = np.full((20, 30), 254, np.uint8)
+    grey[:, 15] = 0
+    (folder / "lab.pgm").write_bytes(b"P5\n30 20\n255\n" + grey.tobytes())
+    (folder / "lab.yaml").write_text("image: lab.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
+                                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    return folder / "lab.yaml"
+
+
+def test_cli_no_output_may_overwrite_an_input(tmp_path):
+    # Before: each of these exited 0 and replaced the input (the map, the obstacle document, the
+    # YAML's own image, the point file) with the output.
+    (tmp_path / "in.map").write_text(ROOM)
+    (tmp_path / "obs.json").write_text(json.dumps(mixed_shapes()))
+    _ros_map(tmp_path)
+    (tmp_path / "sub").mkdir()
+    os.link(tmp_path / "in.map", tmp_path / "hard.svg")
+    (tmp_path / "pts.csv").write_text("x,y\n1,1\n2,3\n4,1\n3,3.5\n")
+    (tmp_path / "d.csv").write_text("0 1 1.5\n1 2 2.0\n0 2 2.5\n")
+    (tmp_path / "poly.json").write_text("0 0\n10 0\n10 10\n0 10\n")
+    frames = tmp_path / "frames"
+    frames.mkdir()
+    (frames / "step_000002.svg").write_text("1 1\n2 3\n4 1\n")  # a point file where a picture would go
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    cases = [
+        (["gvd", "in.map", "-q", "-o", "out.json", "--svg", "in.map"], "--svg: 'in.map' is the same file as INPUT"),
+        (["gvd", "in.map", "-q", "--svg", "sub/../in.map"], "--svg: 'sub/../in.map' is the same file as INPUT ('in.map')"),
+        (["gvd", "in.map", "-q", "--svg", "hard.svg"], "--svg: 'hard.svg' is the same file as INPUT ('in.map')"),
+        (["gvd", "obs.json", "-g", "50", "-o", "obs.json"], "-o/--output: 'obs.json' is the same file as INPUT"),
+        (["gvd", "obs.json", "-g", "50", "--diagram", "medial", "-o", str(tmp_path / "obs.json")], "-o/--output: "),
+        (["gvd", "lab.yaml", "-q", "--svg", "lab.pgm"], "--svg: 'lab.pgm' is the same file as the image of INPUT"),
+        (["gvd", "lab.yaml", "-q", "--svg", "./sub/../lab.pgm"], "is the same file as the image of INPUT"),
+        (["cells", "pts.csv", "-r", "1", "-q", "-o", "pts.csv"], "-o/--output: 'pts.csv' is the same file as POINTS"),
+        (["cells", "pts.csv", "-r", "1", "-q", "--svg", "./pts.csv"], "--svg: './pts.csv' is the same file as POINTS"),
+        (["voronoi", "pts.csv", "-q", "-o", "./pts.csv"], "-o/--output: './pts.csv' is the same file as POINTS"),
+        (["network", "cc", "pts.csv", "-r", "3", "-q", "--svg", "pts.csv"], "--svg: 'pts.csv' is the same file as POINTS"),
+        (["neighbors-from-distances", "d.csv", "-q", "-o", "d.csv"], "-o/--output: 'd.csv' is the same file as DISTFILE"),
+        (["lloyd", "pts.csv", "-r", "1", "--steps", "2", "--polygon", "poly.json", "-q", "-o", "poly.json"],
+         "-o/--output: 'poly.json' is the same file as --polygon"),
+        (["lloyd", "frames/step_000002.svg", "-r", "1", "--steps", "2", "--bounds", "0", "0", "10", "10", "-q",
+          "--svg-dir", "frames"], "--svg-dir: the picture 'frames/step_000002.svg' is the same file as POINTS"),
+    ]
+    for args, message in cases:
+        p = subprocess.run([CLI, *args], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+        assert p.returncode == 2 and message in p.stderr, (args, p.stderr)
+        assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before, args  # nothing written
+    # what is not an input still works: another name, and the pictures of other steps
+    p = subprocess.run([CLI, "gvd", "lab.yaml", "-q", "--svg", "lab.svg", "-o", "lab.json"], capture_output=True,
+                       text=True, cwd=tmp_path, timeout=120)
+    assert p.returncode == 0 and (tmp_path / "lab.svg").exists() and json.loads((tmp_path / "lab.json").read_text()), p.stderr
+    p = subprocess.run([CLI, "lloyd", "frames/step_000002.svg", "-r", "1", "--steps", "4", "--svg-every", "3", "--bounds",
+                        "0", "0", "10", "10", "-q", "--svg-dir", "frames", "-o", "run.json"],
+                       capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert p.returncode == 0, p.stderr  # steps 0, 3 and 4 are drawn
+    assert sorted(f.name for f in frames.iterdir()) == ["step_000000.svg", "step_000002.svg", "step_000003.svg",
+                                                        "step_000004.svg"]
+    assert (frames / "step_000002.svg").read_text() == "1 1\n2 3\n4 1\n"
+
+
+def test_cli_svg_to_stdout_is_refused(tmp_path):
+    # Before: `--svg -` wrote a file named '-' while `-o -` means stdout.
+    (tmp_path / "room.map").write_text(ROOM)
+    (tmp_path / "pts.csv").write_text("1 1\n2 3\n4 1\n")
+    for args in (["gvd", "room.map", "-q", "-o", "out.json", "--svg", "-"], ["cells", "pts.csv", "-r", "1", "-q", "--svg", "-"],
+                 ["voronoi", "pts.csv", "-q", "--svg", "-"], ["network", "cc", "pts.csv", "-r", "3", "-q", "--svg", "-"]):
+        p = subprocess.run([CLI, *args], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+        assert p.returncode == 2 and "--svg: '-' (stdout) is for -o/--output's JSON" in p.stderr, (args, p.stderr)
+        assert sorted(f.name for f in tmp_path.iterdir()) == ["pts.csv", "room.map"], args
+
+
+def test_cli_pgm_raster_must_match_its_header(tmp_path):
+    # Before: a raster longer than W x H was read sheared (its extra pixels dropped) and samples above
+    # the maximum grey value were clipped, both with exit code 0.
+    img = np.full((20, 31), 254, np.uint8)
+    img[:, 15] = 0
+    cases = [
+        (b"P5\n30 20\n255\n" + img.tobytes(), "shear.pgm: the PGM raster is longer than its header's 30 x 20 pixels (20 bytes after"),
+        (b"P5\r\n3 1\r\n255\r\n\xfe\x00\xfe", "the header ends in CR LF, but one whitespace character ends a P5 header"),
+        (b"P5\n3 1\n100\n\x00\x96\x00", "shear.pgm: PGM pixel value 150 exceeds the maximum grey value 100 (row 0, column 1)"),
+        (b"P2\n3 1\n100\n0 150 999\n", "shear.pgm:4:3: PGM pixel value '150' exceeds the maximum grey value 100 (row 0, column 1)"),
+        (b"P2\n2 2\n255\n0 1\n2 3 # four values\n4\n", "shear.pgm:6:1: the PGM raster is longer than its header's 2 x 2 pixels ('4' after"),
+    ]
+    for data, message in cases:
+        (tmp_path / "shear.pgm").write_bytes(data)
+        p = run("gvd", tmp_path / "shear.pgm", "-q", "-o", tmp_path / "out.json")
+        assert p.returncode == 2 and message in p.stderr, (data[:20], p.stderr)
+        assert not (tmp_path / "out.json").exists()
+    # exact rasters (comments after a plain one, the maximum itself) are read
+    for data in (b"P2\n2 1\n100\n0 100\n# end\n", b"P5\n2 1\n100\n\x00\x64"):
+        (tmp_path / "ok.pgm").write_bytes(data)
+        p = run("gvd", tmp_path / "ok.pgm", "-q")
+        assert p.returncode == 0 and json.loads(p.stdout)["map"]["cols"] == 2, p.stderr
+
+
+def test_cli_inputs_named_for_what_they_are(tmp_path):
+    # Before: a JPEG, a missing file and a folder named like a map got "--grid: required" or a
+    # truncated header; now the first word is about the file.
+    import cv2
+
+    cv2.imwrite(str(tmp_path / "office.jpg"), np.full((20, 20), 254, np.uint8))
+    for name in ("dir.pgm", "d.yaml", "d.map", "d.png", "plain"):
+        (tmp_path / name).mkdir()
+    cases = [(["office.jpg"], "office.jpg: neither a map file nor an obstacle document (not JSON): maps are read from "
+                              ".yaml/.yml (map_server), .pgm, .png and .map (MovingAI) files"),
+             (["no_such_map"], "no_such_map: cannot open file: it does not exist"),
+             (["no_such_map.json", "--grid", "8"], "no_such_map.json: cannot open file: it does not exist"),
+             (["nope.pgm"], "nope.pgm: cannot open file: it does not exist")]
+    cases += [([name], f"'{name}' is a folder: give a map file") for name in ("dir.pgm", "d.yaml", "d.map", "d.png", "plain")]
+    for args, message in cases:
+        p = subprocess.run([CLI, "gvd", *args, "-q"], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+        assert p.returncode == 2 and message in p.stderr and "--grid: required" not in p.stderr, (args, p.stderr)
+    # a JSON obstacle document under another name is still one
+    (tmp_path / "obstacles.txt").write_text("\ufeff  " + json.dumps(mixed_shapes()), encoding="utf-8")
+    p = subprocess.run([CLI, "gvd", "obstacles.txt", "-q"], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert p.returncode == 2 and "--grid: required" in p.stderr, p.stderr
+    # a YAML whose image is a folder says so
+    (tmp_path / "lab.yaml").write_text("image: dir.pgm\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\n"
+                                       "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    p = subprocess.run([CLI, "gvd", "lab.yaml", "-q"], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert p.returncode == 2 and "lab.yaml: image: dir.pgm: is a folder, not a file" in p.stderr, p.stderr
+
+
+def test_cli_resolution_bounds_are_printed_so_that_they_are_accepted(tmp_path):
+    # Before: --resolution 2.2e-308 failed with "must lie in [2.2e-308, 4e295]".
+    import re
+
+    (tmp_path / "m.pgm").write_bytes(b"P5\n3 3\n255\n" + bytes([254, 254, 254, 254, 0, 254, 254, 254, 254]))
+    for bad in ("2.2e-308", "1e-310", "4.1e295"):
+        p = run("gvd", tmp_path / "m.pgm", "--resolution", bad, "-q")
+        assert p.returncode == 2, p.stderr
+        m = re.search(r"--resolution: must lie in \[(\S+), (\S+)\]", p.stderr)
+        assert m, p.stderr
+        for end in m.groups():
+            ok = run("gvd", tmp_path / "m.pgm", "--resolution", end, "-q")
+            assert ok.returncode == 0 and json.loads(ok.stdout)["map"]["resolution"] == float(end), (end, ok.stderr)
+    (tmp_path / "m.yaml").write_text("image: m.pgm\nresolution: 2.2e-308\norigin: [0, 0, 0]\nnegate: 0\n"
+                                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    p = run("gvd", tmp_path / "m.yaml", "-q")
+    assert p.returncode == 2 and "m.yaml:2: resolution: must lie in [2.2250738585072014e-308, " in p.stderr, p.stderr

@@ -375,3 +375,31 @@ def test_gvd_mpi_bad_map_exits_2_naming_the_file(tmp_path):
     proc = mpirun(2, str(bad.with_name("x.map")), "--min-separation", "0.5", program=GVD_MPI, timeout=120)
     assert proc.returncode == 2 and "--min-separation: must be a number in [1, 32768]" in proc.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.map"]  # nothing written, no temporary left
+
+
+@needs_gvd
+def test_gvd_mpi_outputs_never_overwrite_an_input_and_inputs_are_named(tmp_path):
+    # As the CLI: an output naming INPUT (by any path) or a YAML's image, `--svg -`, a JPEG, a missing
+    # file and a folder named like a map exit 2 with the CLI's message, nothing written. Before, the
+    # first three replaced the input and the last ones were reported as a missing --grid.
+    _write_movingai(tmp_path / "in.map", occupancy_maps.building(40, 1))
+    _write_ros(tmp_path, occupancy_maps.building((40, 50), 4))
+    (tmp_path / "doc.json").write_text(json.dumps(DOC))
+    (tmp_path / "office.jpg").write_bytes(b"\xff\xd8\xff\xe0" + bytes(64))
+    (tmp_path / "dir.pgm").mkdir()
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir() if p.is_file()}
+    cases = (([ "in.map", "-o", "a.json", "--svg", "./in.map"], "--svg: './in.map' is the same file as INPUT ('in.map')"),
+             (["doc.json", "--grid", "32", "-o", "doc.json"], "-o/--output: 'doc.json' is the same file as INPUT"),
+             (["doc.json", "--grid", "32", "--diagram", "medial", "--svg", "doc.json"], "--svg: 'doc.json' is the same file"),
+             (["floor.yaml", "--svg", "floor.pgm"], "--svg: 'floor.pgm' is the same file as the image of INPUT"),
+             (["in.map", "--svg", "-"], "--svg: '-' (stdout) is for -o/--output's JSON"),
+             (["office.jpg"], "office.jpg: neither a map file nor an obstacle document"),
+             (["no_such_map"], "no_such_map: cannot open file: it does not exist"),
+             (["dir.pgm"], "'dir.pgm' is a folder"))
+    for args, message in cases:
+        cli = subprocess.run([CLI, "gvd", *args, "-q"], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+        assert cli.returncode == 2 and message in cli.stderr, (args, cli.stderr)
+        proc = mpirun(2, *args, "-q", program=GVD_MPI, timeout=120, cwd=tmp_path)
+        assert proc.returncode == 2 and message in proc.stderr, (args, proc.stderr[-2000:])
+        assert proc.stderr.count("dvoronoi_gvd_mpi: error: ") == 1
+        assert {p.name: p.read_bytes() for p in tmp_path.iterdir() if p.is_file()} == before, args

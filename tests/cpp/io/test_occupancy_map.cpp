@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -306,7 +307,8 @@ TEST_CASE("a map the diagrams would refuse (gvd::check_grid) is refused naming i
             diagram_accepts = false;
         }
         CHECK(err.empty() == diagram_accepts);
-        if (!err.empty()) CHECK_MESSAGE(err.compare(0, path.size() + 2, path + ": ") == 0, err);
+        // the file first; a YAML's resolution out of the range is refused at its line ("f.yaml:2: ")
+        if (!err.empty()) CHECK_MESSAGE(err.compare(0, path.size() + 1, path + ":") == 0, err);
     }
 }
 
@@ -351,4 +353,64 @@ TEST_CASE("MovingAI maps: one set of rules (Python's read_movingai_map is this r
         {"type octile\nheight 1\nwidth 2\nmap\n.\xc3\xa9\n", "b.map:5: not an ASCII MovingAI map file"},
     };
     check_error_tails(d, "b.map", cases);
+}
+
+TEST_CASE("a PGM raster longer than its header, or a sample above the maximum, is an error naming the file and pixel") {
+    TempDir d;
+    const std::string dir = d.path.string() + "/";
+    // P5: one byte more than 3 x 1 would shear every row if read; a CR LF header leaves exactly one
+    CHECK(error_of(d.write("a.pgm", pgm_row({0, 1, 2}) + "x")) ==
+          dir + "a.pgm: the PGM raster is longer than its header's 3 x 1 pixels (1 byte after the last pixel)");
+    CHECK(error_of(d.write("b.pgm", "P5\r\n3 1\r\n255\r\n\x01\x02\x03")) ==
+          dir + "b.pgm: the PGM raster is longer than its header's 3 x 1 pixels (1 byte after the last pixel; the header "
+                "ends in CR LF, but one whitespace character ends a P5 header)");
+    CHECK(error_of(d.write("c.pgm", pgm_row({0, 150, 7}, 100))) ==
+          dir + "c.pgm: PGM pixel value 150 exceeds the maximum grey value 100 (row 0, column 1)");
+    CHECK(error_of(d.write("d.pgm", "P5\n2 2\n1000\n" + std::string("\x00\x01\x00\x02\x00\x03\x03\xe9", 8))) ==
+          dir + "d.pgm: PGM pixel value 1001 exceeds the maximum grey value 1000 (row 1, column 1)");
+    // P2: a value after the last, or above the maximum, names its line and column; comments may follow
+    CHECK(error_of(d.write("e.pgm", "P2\n2 1\n255\n0 1\n2\n")) ==
+          dir + "e.pgm:5:1: the PGM raster is longer than its header's 2 x 1 pixels ('2' after the last pixel value)");
+    CHECK(error_of(d.write("f.pgm", "P2\n3 1\n100\n0 150 999\n")) ==
+          dir + "f.pgm:4:3: PGM pixel value '150' exceeds the maximum grey value 100 (row 0, column 1)");
+    CHECK(error_of(d.write("g.pgm", "P2\n2 1\n100\n0 100\n# the end\n\n")).empty());
+    CHECK(cells(read_occupancy_map(d.write("h.pgm", pgm_row({0, 100}, 100)))) == std::vector<int>{1, 0});  // maxval itself is fine
+}
+
+TEST_CASE("a folder or a missing file named like a map says so") {
+    TempDir d;
+    fs::create_directories(d.path / "dir.pgm");
+    fs::create_directories(d.path / "dir.map");
+    CHECK(error_of((d.path / "dir.pgm").string()) == (d.path / "dir.pgm").string() + ": is a folder, not a file");
+    CHECK(error_of((d.path / "dir.map").string()) == (d.path / "dir.map").string() + ": is a folder, not a file");
+    CHECK(error_of((d.path / "nope.pgm").string()) == (d.path / "nope.pgm").string() + ": cannot open file: it does not exist");
+    // a YAML whose image is a folder names both
+    const std::string yaml = d.write("m.yaml", "image: dir.pgm\nresolution: 1\n" + kRest);
+    CHECK(error_of(yaml) == yaml + ": image: " + (d.path / "dir.pgm").string() + ": is a folder, not a file");
+}
+
+TEST_CASE("the resolution's range is printed exactly: its printed ends are accepted") {
+    TempDir d;
+    const std::string pgm = d.write("m.pgm", pgm_row({0, 254}));
+    MapReadOptions o;
+    o.resolution = std::numeric_limits<double>::min() / 2;  // positive, finite, below the range
+    const std::string err = error_of(pgm, o);
+    const std::string want = "resolution: must lie in [2.2250738585072014e-308, 4.0874809539271057e+295]";
+    REQUIRE_MESSAGE(err.find(want) != std::string::npos, err);
+    for (const char* end : {"2.2250738585072014e-308", "4.0874809539271057e+295"}) {
+        o.resolution = std::strtod(end, nullptr);
+        CHECK_MESSAGE(error_of(pgm, o).empty(), end);
+    }
+    o.resolution = std::nextafter(std::strtod("4.0874809539271057e+295", nullptr), 1e300);
+    CHECK(error_of(pgm, o).find(want) != std::string::npos);
+}
+
+TEST_CASE("MovingAI: every character of .G@OTSW is valid, those not free are blocked") {
+    TempDir d;
+    const std::string path = d.write("g.map", "type octile\nheight 1\nwidth 7\nmap\n.G@OTSW\n");
+    MapReadOptions o;
+    o.movingai_free = ".";
+    CHECK(cells(read_occupancy_map(path, o)) == std::vector<int>{0, 1, 1, 1, 1, 1, 1});
+    o.movingai_free = "TW";
+    CHECK(cells(read_occupancy_map(path, o)) == std::vector<int>{1, 1, 1, 1, 0, 1, 0});
 }

@@ -335,6 +335,18 @@ private:
     std::vector<std::uint64_t> w_;
 };
 
+/// check_grid's range of resolutions: map coordinates stay finite 2^40 pixels from (0, 0).
+inline bool resolution_in_range(double r) {
+    return r >= std::numeric_limits<double>::min() && r <= std::numeric_limits<double>::max() / (4.0 * 1099511627776.0);
+}
+
+/// "[2.2250738585072014e-308, 4.0874809539271057e+295]": the ends exactly, so that both are accepted
+/// (a rounded 2.2e-308 would be refused).
+inline std::string resolution_range() {
+    return "[" + ::dvoronoi::detail::shortest_text(std::numeric_limits<double>::min()) + ", " +
+           ::dvoronoi::detail::shortest_text(std::numeric_limits<double>::max() / (4.0 * 1099511627776.0)) + "]";
+}
+
 /// Checks sizes, resolution and origin; names the argument.
 inline void check_grid(const OccupancyGrid& g) {
     if (g.rows < 1 || g.cols < 1)
@@ -355,9 +367,9 @@ inline void check_grid(const OccupancyGrid& g) {
     // and clearances and paths lose their meaning.
     constexpr double kReach = 1099511627776.0;  // 2^40 pixels
     using ::dvoronoi::detail::shortest_text;
-    if (g.resolution < std::numeric_limits<double>::min() || g.resolution > std::numeric_limits<double>::max() / (4.0 * kReach))
-        throw InputError("resolution " + shortest_text(g.resolution) + " is out of range: map units per pixel must lie in [" +
-                         "2.2e-308, 4e295] so that map coordinates stay finite");
+    if (!resolution_in_range(g.resolution))
+        throw InputError("resolution " + shortest_text(g.resolution) + " is out of range: map units per pixel must lie in " +
+                         resolution_range() + " so that map coordinates stay finite");
     const double reach = std::max(std::abs(g.origin.x()) / g.resolution + g.cols, std::abs(g.origin.y()) / g.resolution + g.rows);
     if (!(reach <= kReach))
         throw InputError("origin (" + shortest_text(g.origin.x()) + ", " + shortest_text(g.origin.y()) +

@@ -32,7 +32,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -50,7 +52,7 @@ struct MapReadOptions {
     double occupied_thresh = 0.65; ///< in [0, 1]
     double free_thresh = 0.196;    ///< in [0, 1], at most occupied_thresh
     bool negate = false;
-    std::string movingai_free = ".G";  ///< MovingAI characters that are free (the rest of @OTSW blocked; the SPEC's rule)
+    std::string movingai_free = ".G";  ///< MovingAI characters that are free (the rest of .G@OTSW blocked; the SPEC's rule)
 };
 
 /// A loaded map and what the loader saw.
@@ -63,12 +65,26 @@ struct LoadedMap {
 
 namespace detail {
 
+/// The file's bytes. A folder, a missing file and a failed read are named as such (a folder opens on
+/// some systems and reads as nothing: it would show as a truncated header).
 inline std::string read_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a folder, not a file");
+    errno = 0;
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (f == nullptr) {
+        const int err = errno;
+        throw InputError(path + ": cannot open file" +
+                         (err == ENOENT ? std::string(": it does not exist") : err != 0 ? " (" + std::string(std::strerror(err)) + ")" : std::string()));
+    }
+    std::string data;
+    char buf[1 << 16];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) data.append(buf, n);
+    const bool failed = std::ferror(f) != 0;
+    const int err = errno;
+    std::fclose(f);
+    if (failed) throw InputError(path + ": cannot read file" + (err != 0 ? " (" + std::string(std::strerror(err)) + ")" : std::string()));
+    return data;
 }
 
 inline std::string lower_ext(const std::string& path) {
@@ -87,6 +103,10 @@ using ::dvoronoi::detail::shortest_text;
 inline const char* bad_read_option(const MapReadOptions& o, std::string& why) {
     if (!(std::isfinite(o.resolution) && o.resolution > 0.0)) {
         why = "resolution: must be a positive finite number, got " + shortest_text(o.resolution);
+        return "resolution";
+    }
+    if (!gvd::resolution_in_range(o.resolution)) {
+        why = "resolution: must lie in " + gvd::resolution_range() + " so that map coordinates stay finite, got " + shortest_text(o.resolution);
         return "resolution";
     }
     if (!std::isfinite(o.origin.x()) || !std::isfinite(o.origin.y())) {
@@ -182,13 +202,31 @@ inline std::vector<double> read_pgm(const std::string& path, std::int32_t& h, st
         throw InputError(path + ": truncated PGM data (room for at most " + std::to_string((data.size() - pos + 1) / 2) +
                          " of " + std::to_string(n) + " pixels)");
     }
+    // Pixels are named 0-based, row 0 at the top, as the grid's rows and columns.
+    auto pixel = [W](std::size_t i) {
+        return "row " + std::to_string(i / static_cast<std::size_t>(W)) + ", column " + std::to_string(i % static_cast<std::size_t>(W));
+    };
+    auto above_maxval = [&](long long v, std::size_t i) {
+        return "PGM pixel value " + std::to_string(v) + " exceeds the maximum grey value " + std::to_string(maxval) + " (" +
+               pixel(i) + ")";
+    };
+    const std::string longer = "the PGM raster is longer than its header's " + std::to_string(W) + " x " + std::to_string(H) + " pixels";
     std::vector<double> grey(n);
     if (magic == "P5") {
         const std::size_t bytes = maxval < 256 ? 1 : 2;
+        // Extra bytes would shift every row if the header's width were wrong: refused, not dropped.
+        if (const std::size_t extra = data.size() - pos - n * bytes; extra > 0)
+            throw InputError(path + ": " + longer + " (" + std::to_string(extra) + " byte" + (extra == 1 ? "" : "s") +
+                             " after the last pixel" +
+                             (pos >= 1 && data[pos - 1] == '\r' && data[pos] == '\n'
+                                  ? "; the header ends in CR LF, but one whitespace character ends a P5 header"
+                                  : "") +
+                             ")");
         for (std::size_t i = 0; i < n; ++i) {
             const auto* p = reinterpret_cast<const unsigned char*>(data.data() + pos + i * bytes);
             const unsigned v = bytes == 1 ? p[0] : (static_cast<unsigned>(p[0]) << 8 | p[1]);
-            grey[i] = static_cast<double>(std::min<unsigned>(v, static_cast<unsigned>(maxval))) / static_cast<double>(maxval);
+            if (v > static_cast<unsigned>(maxval)) throw InputError(path + ": " + above_maxval(v, i));
+            grey[i] = static_cast<double>(v) / static_cast<double>(maxval);
         }
     } else {
         // Plain PGM is text: its pixel errors name the line and column, as the other text formats do.
@@ -209,7 +247,21 @@ inline std::vector<double> read_pgm(const std::string& path, std::int32_t& h, st
             if (t.empty() || *end != '\0' || v < 0 || !std::isdigit(static_cast<unsigned char>(t[0])))
                 throw InputError(path + ":" + line_column(data, start) + ": bad PGM pixel value '" + printable(t) + "' (pixel " +
                                  std::to_string(i + 1) + " of " + std::to_string(n) + ")");
-            grey[i] = static_cast<double>(std::min(v, maxval)) / static_cast<double>(maxval);
+            if (v > maxval)  // strtoll saturates, so a huge value lands here too: quote the text
+                throw InputError(path + ":" + line_column(data, start) + ": PGM pixel value '" + printable(t) +
+                                 "' exceeds the maximum grey value " + std::to_string(maxval) + " (" + pixel(i) + ")");
+            grey[i] = static_cast<double>(v) / static_cast<double>(maxval);
+        }
+        for (;;) {  // after the last value only whitespace and comments
+            while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+            if (pos >= data.size() || data[pos] != '#') break;
+            while (pos < data.size() && data[pos] != '\n' && data[pos] != '\r') ++pos;
+        }
+        if (pos < data.size()) {
+            std::size_t stop = pos;
+            while (stop < data.size() && !std::isspace(static_cast<unsigned char>(data[stop])) && data[stop] != '#') ++stop;
+            throw InputError(path + ":" + line_column(data, pos) + ": " + longer + " (" + in_quotes(std::string_view(data).substr(pos, stop - pos)) +
+                             " after the last pixel value)");
         }
     }
     return grey;
@@ -328,7 +380,7 @@ inline std::vector<double> read_png(const std::string& path, std::int32_t& h, st
 
 /// The MovingAI `.map` format: a header of `type NAME`, `height H` and `width W` lines (any order,
 /// keys in any case, each once), then `map`, then H rows of exactly W characters: `free` characters
-/// (o.movingai_free, default `.` and `G`) are free, `@ O T S W` not among them blocked, anything else
+/// (o.movingai_free, default `.` and `G`) are free, the others of `. G @ O T S W` blocked, anything else
 /// an error. CRLF line ends are accepted, blank lines after the rows ignored. Every error names the
 /// line. Rows are read one at a time before the grid is allocated: memory follows the file, not its
 /// header. (Python's occupancy_maps.read_movingai_map is this reader.)
@@ -394,7 +446,8 @@ inline LoadedMap read_movingai(const std::string& path, const MapReadOptions& o)
         for (long long c = 0; c < W; ++c) {
             const char ch = line[static_cast<std::size_t>(c)];
             const bool is_free = ch != '\0' && free.find(ch) != std::string::npos;
-            if (!is_free && (ch == '\0' || std::strchr("@OTSW", ch) == nullptr))
+            // the whole alphabet is valid whatever `free` says: a `G` not free is blocked, not unknown
+            if (!is_free && (ch == '\0' || std::strchr(".G@OTSW", ch) == nullptr))
                 fail(lineno, "unknown character '" + printable(std::string(1, ch)) + "' in column " + std::to_string(c + 1) +
                                  " (free '" + printable(free) + "', blocked the rest of '.G@OTSW')");
             cells.push_back(is_free ? 0 : 1);
