@@ -3,6 +3,7 @@
 // both programs make of their other options, and the medial diagram's JSON with its path.
 #pragma once
 
+#include "common.hpp"
 #include "dvoronoi/gvd/grid_path.hpp"
 #include "dvoronoi/gvd/medial_diagram.hpp"
 #include "dvoronoi/gvd/path.hpp"
@@ -168,11 +169,8 @@ inline void check_document_options(const MapOptions& map, const std::string& inp
 /// The checks of --robot-radius, --path and -o in both programs, for either input; returns whether
 /// the JSON goes to stdout. \throws InputError naming the option.
 inline bool check_run_options(double robot_radius, const std::vector<double>& path, const std::string& output) {
-    if (!std::isfinite(robot_radius) || robot_radius < 0.0) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.10g", robot_radius);
-        throw InputError(std::string("--robot-radius: must be a finite number >= 0, got ") + buf);
-    }
+    if (!std::isfinite(robot_radius) || robot_radius < 0.0)
+        throw InputError("--robot-radius: must be a finite number >= 0, got " + cli::show(robot_radius));
     if (!path.empty() && path.size() != 4) throw InputError("--path: expects SX SY GX GY");
     for (double v : path)
         if (!std::isfinite(v)) throw InputError("--path: coordinates must be finite");
